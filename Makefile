@@ -1,0 +1,54 @@
+# The two commands a newcomer needs:  `make course`  and  `make test`.
+# Both create the virtual environment in $(VENV) on first use and install urkin into it.
+
+PYTHON ?= python3
+VENV ?= .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.urkin-installed
+NBVAL := $(PY) -m pytest -o addopts="" -p no:cacheprovider --nbval-current-env \
+         --nbval-sanitize-with tests/nbval_sanitize.cfg
+
+.PHONY: course test lint unit notebooks docs lessons grade-demo bench clean
+
+$(STAMP): pyproject.toml
+	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "urkin needs Python 3.10 or newer; found " + sys.version.split()[0])'
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e ".[dev,docs]"
+	$(PY) -m ipykernel install --sys-prefix --name python3 --display-name "Python 3 (ipykernel)" > /dev/null
+	@touch $(STAMP)
+
+## make course: open the course notebooks in JupyterLab
+course: $(STAMP)
+	$(VENV)/bin/jupyter lab course/
+
+## make test: every check CI runs (lint, unit tests and doctests, autograder, notebooks, docs)
+test: lint unit notebooks docs
+
+lint: $(STAMP)
+	$(PY) -m ruff check .
+	$(PY) -m ruff format --check urkin tests bench docs/conf.py
+
+unit: $(STAMP)
+	$(PY) -m pytest
+
+notebooks: $(STAMP)
+	$(PY) -m urkin course check
+	$(NBVAL) --nbval solutions
+	$(NBVAL) --nbval-lax course
+
+docs: $(STAMP)
+	rm -rf docs/_build docs/lessons
+	$(PY) -m sphinx -W --keep-going -q -b html docs docs/_build/html
+	@echo "docs: open docs/_build/html/index.html"
+
+## make lessons: after editing solutions/*.py, re-execute the solution notebooks and rebuild course/
+lessons: $(STAMP)
+	$(PY) -m urkin course execute
+	$(PY) -m urkin course build
+
+bench: $(STAMP)
+	$(PY) bench/kinematics.py
+
+clean:
+	rm -rf docs/_build docs/lessons build *.egg-info

@@ -1,0 +1,74 @@
+import math
+
+import numpy as np
+import pytest
+
+import urkin
+from tests.reference import OFFICIAL_DH
+from urkin.robots import ALPHA_UR, T_BASE_LINK_BASE, Robot
+
+
+def test_the_seven_arms_in_ur_order():
+    assert urkin.ROBOTS == ("UR3", "UR5", "UR10", "UR3e", "UR5e", "UR10e", "UR16e")
+
+
+@pytest.mark.parametrize("name", sorted(OFFICIAL_DH))
+def test_dh_lengths_are_urs_published_values(name):
+    assert urkin.robot(name).lengths == OFFICIAL_DH[name]
+
+
+def test_ur5_d1_is_the_official_value_not_the_toolbox_typo():
+    ur5 = urkin.robot("UR5")
+    assert ur5.d1 == 0.089159
+    assert "0.089459" in ur5.notes
+
+
+def test_lookup_ignores_case_and_spaces():
+    assert urkin.robot(" ur10E ") is urkin.robot("UR10e")
+
+
+def test_unknown_name_lists_the_known_ones():
+    with pytest.raises(KeyError, match="UR3, UR5, UR10, UR3e, UR5e, UR10e, UR16e"):
+        urkin.robot("UR20")
+
+
+def test_joint_limits_are_plus_minus_two_pi(arm):
+    assert arm.joint_limits == ((-2 * math.pi, 2 * math.pi),) * 6
+
+
+def test_dh_table_has_the_ur_structure(arm):
+    table = arm.dh_table()
+    np.testing.assert_array_equal(table[:, 2], ALPHA_UR)
+    np.testing.assert_array_equal(table[[1, 2], 0], 0.0)
+    np.testing.assert_array_equal(table[[0, 3, 4, 5], 1], 0.0)
+
+
+def test_base_and_tool_default_to_identity_and_are_read_only(arm):
+    assert arm.has_identity_frames
+    np.testing.assert_array_equal(arm.base, np.eye(4))
+    with pytest.raises(ValueError):
+        arm.tool[0, 3] = 1.0
+
+
+def test_with_tool_and_base_return_new_arms():
+    ur5 = urkin.robot("ur5")
+    T = np.eye(4)
+    T[2, 3] = 0.1
+    tooled = ur5.with_tool(T)
+    assert not tooled.has_identity_frames and ur5.has_identity_frames
+    assert tooled.tool[2, 3] == 0.1
+
+
+def test_bad_base_transform_is_rejected():
+    with pytest.raises(ValueError, match="not a rotation"):
+        urkin.robot("ur5").with_base(np.diag([2.0, 1.0, 1.0, 1.0]))
+
+
+def test_millimetres_are_rejected():
+    with pytest.raises(ValueError, match="millimetres"):
+        Robot("UR5-mm", 89.2, -425.0, -392.0, 109.3, 94.75, 82.5)
+
+
+def test_urdf_base_link_is_rz_pi_of_base():
+    expected = np.array([[-1, 0, 0, 0], [0, -1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]], float)
+    np.testing.assert_array_equal(T_BASE_LINK_BASE, expected)

@@ -1,0 +1,31 @@
+"""urkin: kinematics of Universal Robots arms, and the course built on it.
+
+The public API::
+
+    import urkin
+    ur5 = urkin.robot("ur5")          # a Robot; urkin.ROBOTS lists the names
+    T = urkin.fk(ur5, q)              # (4, 4) for q (6,); (N, 4, 4) for q (N, 6)
+    Ts = urkin.fk_frames(ur5, q)      # (7, 4, 4): the base, then DH frames 1 … 6
+    J = urkin.jacobian(ur5, q)        # (6, 6): [v; ω] of the tool origin, base frame
+    Jp = urkin.position_jacobian(ur5, q)  # (3, 6): ∂p/∂q
+
+Units are metres and radians; poses are 4×4 homogeneous transforms in DH frame 0 (UR's
+``base``).  ``import urkin`` loads numpy only: SymPy stays in :mod:`urkin.symbolic` and
+matplotlib in :mod:`urkin.plot`.
+"""
+
+from urkin.kinematics import fk, fk_frames, jacobian, position_jacobian
+from urkin.robots import ROBOTS, T_BASE_LINK_BASE, Robot, robot
+
+__all__ = [
+    "ROBOTS",
+    "T_BASE_LINK_BASE",
+    "Robot",
+    "fk",
+    "fk_frames",
+    "jacobian",
+    "position_jacobian",
+    "robot",
+]
+
+__version__ = "0.1.0"

@@ -1,0 +1,364 @@
+"""Forward kinematics and Jacobians of UR arms, for one configuration or a batch.
+
+Every function takes joint angles ``q`` of shape ``(6,)`` (one configuration) or ``(N, 6)``
+(a batch) in radians, and returns arrays with the matching leading shape.  The heavy lifting
+is done by code generated from the SymPy derivation in :mod:`urkin.symbolic`
+(``urkin/_generated``): scalar ``math`` code for one pose, whole-column numpy code for a batch.
+
+Poses are those of the robot's tool frame (the flange, DH frame 6, unless a tool was set with
+:meth:`urkin.Robot.with_tool`) in the robot's world frame (DH frame 0, UR's ``base``, unless
+a base was set with :meth:`urkin.Robot.with_base`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from urkin._generated import ur_kinematics as _gen
+from urkin.robots import Robot
+from urkin.transforms import skew
+
+__all__ = [
+    "MAX_JOINT_ANGLE",
+    "check_joints",
+    "dh_chain",
+    "dh_transform",
+    "fk",
+    "fk_frames",
+    "jacobian",
+    "position_jacobian",
+]
+
+#: Joint angles beyond ±8π (±1440°) are rejected as a likely degrees-for-radians mistake.
+MAX_JOINT_ANGLE = 8 * math.pi
+
+
+#: Batches are evaluated in blocks of this many poses, which keeps temporaries in cache.
+_BLOCK = 2048
+
+
+def _many(function, array: np.ndarray, robot: Robot, shape: tuple[int, ...]) -> np.ndarray:
+    """Evaluate a generated ``*_many`` function block by block into one output array."""
+    n = array.shape[0]
+    if n <= _BLOCK:
+        return function(array, *robot.lengths)
+    out = np.empty((n, *shape))
+    for start in range(0, n, _BLOCK):
+        stop = start + _BLOCK
+        function(array[start:stop], *robot.lengths, out=out[start:stop])
+    return out
+
+
+def _bad_angles(message: str, name: str) -> ValueError:
+    return ValueError(f"{name} {message}")
+
+
+def _joints(q: ArrayLike, name: str = "q") -> tuple[np.ndarray, list[float] | None]:
+    """Validated joint array, and its values as floats when it is one configuration."""
+    try:
+        array = np.asarray(q, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(
+            f"{name} must be 6 joint angles in radians, shape (6,) or (N, 6); got {q!r:.60}"
+        ) from exc
+    if array.shape == (6,):
+        values = array.tolist()
+        if not all(map(math.isfinite, values)):
+            raise _bad_angles(f"contains NaN or infinity: {values}", name)
+        if max(map(abs, values)) > MAX_JOINT_ANGLE:
+            raise _bad_angles(
+                f"has an angle of {max(map(abs, values)):.4g} rad: joint angles are in radians "
+                "(did you pass degrees? numpy.radians converts them)",
+                name,
+            )
+        return array, values
+    if array.ndim == 2 and array.shape[1] == 6:
+        if not np.isfinite(array).all():
+            row = int(np.argwhere(~np.isfinite(array))[0, 0])
+            raise _bad_angles(f"contains NaN or infinity (first in row {row})", name)
+        largest = np.abs(array).max(initial=0.0)
+        if largest > MAX_JOINT_ANGLE:
+            raise _bad_angles(
+                f"has an angle of {largest:.4g} rad: joint angles are in radians "
+                "(did you pass degrees? numpy.radians converts them)",
+                name,
+            )
+        return array, None
+    raise ValueError(f"{name} must have shape (6,) or (N, 6); got {array.shape}")
+
+
+def check_joints(q: ArrayLike, name: str = "q") -> np.ndarray:
+    """Validate joint angles and return them as a float array of shape (6,) or (N, 6).
+
+    Raises
+    ------
+    TypeError
+        If ``q`` is not numeric.
+    ValueError
+        If the shape is wrong, a value is NaN or infinite, or an angle exceeds
+        :data:`MAX_JOINT_ANGLE` (which almost always means degrees were passed).
+
+    Examples
+    --------
+    >>> check_joints([0, -1.57, 0, -1.57, 0, 0]).shape
+    (6,)
+    >>> check_joints([0, 90, 0, 0, 0, 0])
+    Traceback (most recent call last):
+    ...
+    ValueError: q has an angle of 90 rad: joint angles are in radians (did you pass degrees? numpy.radians converts them)
+    """  # noqa: E501
+    return _joints(q, name)[0]
+
+
+def _robot(robot: Robot) -> Robot:
+    if not isinstance(robot, Robot):
+        raise TypeError(
+            f"expected a urkin Robot such as urkin.robot('ur5'); got {type(robot).__name__}"
+        )
+    return robot
+
+
+def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
+    """Forward kinematics: the tool pose ``T_base_tool`` for joint angles ``q``.
+
+    Parameters
+    ----------
+    robot : Robot
+        The arm, for example ``urkin.robot("ur5")``.
+    q : array_like, shape (6,) or (N, 6)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (4, 4) or (N, 4, 4)
+        Homogeneous transforms of the tool frame (the flange unless a tool was set) in the
+        base frame (DH frame 0 unless a base was set).
+
+    Examples
+    --------
+    >>> import urkin
+    >>> ur5 = urkin.robot("ur5")
+    >>> home = [0, -np.pi / 2, 0, -np.pi / 2, 0, 0]
+    >>> fk(ur5, home).round(5) + 0.0  # + 0.0 turns -0.0 into 0.0
+    array([[-1.     ,  0.     ,  0.     ,  0.     ],
+           [ 0.     ,  0.     , -1.     , -0.19145],
+           [ 0.     , -1.     ,  0.     ,  1.00106],
+           [ 0.     ,  0.     ,  0.     ,  1.     ]])
+    >>> fk(ur5, np.zeros((10, 6))).shape
+    (10, 4, 4)
+    """
+    robot = _robot(robot)
+    array, values = _joints(q)
+    if values is not None:
+        T = _gen.t06_one(*values, *robot.lengths)
+    else:
+        T = _many(_gen.t06_many, array, robot, (4, 4))
+    if robot._plain:
+        return T
+    return robot.base @ T @ robot.tool
+
+
+def fk_frames(robot: Robot, q: ArrayLike) -> np.ndarray:
+    """Poses of the base and of DH frames 1 … 6, for drawing the arm or building Jacobians.
+
+    Parameters
+    ----------
+    robot : Robot
+    q : array_like, shape (6,) or (N, 6)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (7, 4, 4) or (N, 7, 4, 4)
+        ``[T_base_0, T_base_1, …, T_base_6]``: frame 0 is the robot's base (the identity
+        unless a base was set); the tool transform is not applied.
+
+    Examples
+    --------
+    >>> import urkin
+    >>> frames = fk_frames(urkin.robot("ur3"), np.zeros(6))
+    >>> frames[1][:3, 3]  # the shoulder frame sits d1 above the base
+    array([0.    , 0.    , 0.1519])
+    """
+    robot = _robot(robot)
+    array, values = _joints(q)
+    if values is not None:
+        frames = _gen.frames_one(*values, *robot.lengths)
+    else:
+        frames = _many(_gen.frames_many, array, robot, (7, 4, 4))
+    if robot._plain:
+        return frames
+    return robot.base @ frames
+
+
+def _with_tool_and_base(robot: Robot, J: np.ndarray, array, values) -> np.ndarray:
+    """Move a flange Jacobian to the tool origin and express it in the world frame."""
+    if values is not None:
+        R06 = _gen.t06_one(*values, *robot.lengths)[:3, :3]
+    else:
+        R06 = _many(_gen.t06_many, array, robot, (4, 4))[:, :3, :3]
+    r = R06 @ robot.tool[:3, 3]  # flange → tool origin, in base coordinates
+    J = J.copy()
+    J[..., :3, :] -= skew(r) @ J[..., 3:, :]  # v_tool = v_flange + ω × r
+    R_base = robot.base[:3, :3]
+    J[..., :3, :] = R_base @ J[..., :3, :]
+    J[..., 3:, :] = R_base @ J[..., 3:, :]
+    return J
+
+
+def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
+    """Geometric Jacobian ``[v; ω]`` of the tool origin, in the base frame.
+
+    Column ``i`` maps the speed of joint ``i`` (rad/s) to the linear velocity ``v`` (m/s) of
+    the tool origin and the angular velocity ``ω`` (rad/s) of the tool, both in base
+    coordinates: ``[v; ω] = J(q) q̇``.
+
+    Parameters
+    ----------
+    robot : Robot
+    q : array_like, shape (6,) or (N, 6)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (6, 6) or (N, 6, 6)
+
+    Examples
+    --------
+    >>> import urkin
+    >>> J = jacobian(urkin.robot("ur5"), np.zeros(6))
+    >>> J[3:, 0]  # joint 1 turns about the base z axis
+    array([0., 0., 1.])
+    """
+    robot = _robot(robot)
+    array, values = _joints(q)
+    if values is not None:
+        J = _gen.jacobian_one(*values, *robot.lengths)
+    else:
+        J = _many(_gen.jacobian_many, array, robot, (6, 6))
+    if robot._plain:
+        return J
+    return _with_tool_and_base(robot, J, array, values)
+
+
+def position_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
+    """Position Jacobian ``∂p/∂q`` of the tool origin, in the base frame.
+
+    Derived by differentiating the closed-form position in :mod:`urkin.symbolic`; it equals
+    the first three rows of :func:`jacobian`.
+
+    Parameters
+    ----------
+    robot : Robot
+    q : array_like, shape (6,) or (N, 6)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (3, 6) or (N, 3, 6)
+
+    Examples
+    --------
+    >>> import urkin
+    >>> position_jacobian(urkin.robot("ur5"), np.zeros((4, 6))).shape
+    (4, 3, 6)
+    """
+    robot = _robot(robot)
+    array, values = _joints(q)
+    if not robot._plain:
+        return jacobian(robot, array)[..., :3, :]
+    if values is not None:
+        return _gen.position_jacobian_one(*values, *robot.lengths)
+    return _many(_gen.position_jacobian_many, array, robot, (3, 6))
+
+
+def dh_transform(
+    theta: ArrayLike,
+    d: ArrayLike,
+    a: ArrayLike,
+    alpha: ArrayLike,
+    convention: str = "standard",
+) -> np.ndarray:
+    """Numeric DH link transform ``T_{i-1,i}``, broadcasting over its arguments.
+
+    Parameters
+    ----------
+    theta, d, a, alpha : array_like
+        Joint angle (rad), offset (m), length (m) and twist (rad).  In the modified convention
+        ``a`` and ``alpha`` are the previous link's ``a_{i-1}`` and ``α_{i-1}``.
+    convention : {"standard", "modified"}
+        ``"standard"``: ``Rz(θ) Tz(d) Tx(a) Rx(α)``; ``"modified"`` (Craig):
+        ``Rx(α) Tx(a) Rz(θ) Tz(d)``.
+
+    Returns
+    -------
+    ndarray, shape (..., 4, 4)
+
+    Examples
+    --------
+    >>> dh_transform(0.0, 0.1, 0.2, np.pi / 2).round(3)
+    array([[ 1. , -0. ,  0. ,  0.2],
+           [ 0. ,  0. , -1. ,  0. ],
+           [ 0. ,  1. ,  0. ,  0.1],
+           [ 0. ,  0. ,  0. ,  1. ]])
+    """
+    th, dd, aa, al = np.broadcast_arrays(
+        *(np.asarray(x, dtype=float) for x in (theta, d, a, alpha))
+    )
+    ct, st, ca, sa = np.cos(th), np.sin(th), np.cos(al), np.sin(al)
+    T = np.zeros((*th.shape, 4, 4))
+    if convention == "standard":
+        T[..., 0, :] = np.stack([ct, -st * ca, st * sa, aa * ct], axis=-1)
+        T[..., 1, :] = np.stack([st, ct * ca, -ct * sa, aa * st], axis=-1)
+        T[..., 2, 1], T[..., 2, 2], T[..., 2, 3] = sa, ca, dd
+    elif convention == "modified":
+        T[..., 0, 0], T[..., 0, 1], T[..., 0, 3] = ct, -st, aa
+        T[..., 1, :] = np.stack([st * ca, ct * ca, -sa, -sa * dd], axis=-1)
+        T[..., 2, :] = np.stack([st * sa, ct * sa, ca, ca * dd], axis=-1)
+    else:
+        raise ValueError(f"convention must be 'standard' or 'modified'; got {convention!r}")
+    T[..., 3, 3] = 1.0
+    return T
+
+
+def dh_chain(table: ArrayLike, q: ArrayLike, convention: str = "standard") -> np.ndarray:
+    """Product of DH link transforms for any serial arm: ``T_0_n = T_0_1 T_1_2 … T_{n-1}_n``.
+
+    A plain, general (and slower) counterpart of :func:`fk` for tables that are not a UR arm,
+    or for comparing conventions.
+
+    Parameters
+    ----------
+    table : array_like, shape (n, 3)
+        Rows ``(d_i, a_i, α_i)`` (in the modified convention ``(d_i, a_{i-1}, α_{i-1})``).
+    q : array_like, shape (n,) or (N, n)
+        Joint angles in radians (added to θ offsets of zero).
+    convention : {"standard", "modified"}
+
+    Returns
+    -------
+    ndarray, shape (4, 4) or (N, 4, 4)
+
+    Examples
+    --------
+    >>> import urkin
+    >>> ur3 = urkin.robot("ur3")
+    >>> q = np.array([0.1, -1.2, 0.8, 0.3, 1.1, -0.4])
+    >>> np.allclose(dh_chain(ur3.dh_table(), q), fk(ur3, q))
+    True
+    """
+    rows = np.asarray(table, dtype=float)
+    angles = np.asarray(q, dtype=float)
+    if rows.ndim != 2 or rows.shape[1] != 3 or angles.shape[-1] != rows.shape[0]:
+        raise ValueError(
+            f"table must be (n, 3) rows (d, a, alpha) and q (n,) or (N, n); "
+            f"got {rows.shape} and {angles.shape}"
+        )
+    links = dh_transform(angles, rows[:, 0], rows[:, 1], rows[:, 2], convention)
+    T = links[..., 0, :, :]
+    for i in range(1, rows.shape[0]):
+        T = T @ links[..., i, :, :]
+    return T

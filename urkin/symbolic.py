@@ -1,0 +1,304 @@
+"""SymPy derivations of UR kinematics, and the generator of ``urkin/_generated``.
+
+One derivation serves every UR arm: the link lengths ``d1, a2, a3, d4, d5, d6`` stay symbols and
+the twists are UR's ``α = (π/2, 0, 0, π/2, −π/2, 0)``.  From the chain of standard-DH transforms
+this module derives
+
+* the frames ``T_0_i`` (i = 0 … 6) and the flange pose ``T_0_6``,
+* the geometric Jacobian ``[v; ω]`` of the flange origin, column by column from the frames
+  (``z_{i-1} × (p − p_{i-1})`` and ``z_{i-1}``),
+* the position Jacobian ``∂p/∂q`` by differentiating ``p``,
+
+each simplified into sums of angles (``cos(q2 + q3 + q4)`` and so on), and prints them as plain
+numpy code with common-subexpression elimination.  The generated module is committed; run
+``python -m urkin.symbolic`` (or ``urkin codegen``) to rewrite it, and the test suite fails when
+the committed file differs from what this module would write.
+
+This is the only module of urkin that imports SymPy; ``import urkin`` never loads it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import sys
+from pathlib import Path
+
+import sympy as sp
+
+__all__ = [
+    "ALPHA_UR",
+    "LENGTHS",
+    "Q",
+    "dh_transform",
+    "generate_code",
+    "ur_frames",
+    "ur_geometric_jacobian",
+    "ur_position_jacobian",
+    "ur_t06",
+    "write_generated",
+]
+
+#: Joint angles q1 … q6 (real symbols).
+Q: tuple[sp.Symbol, ...] = sp.symbols("q1:7", real=True)
+#: Link lengths d1, a2, a3, d4, d5, d6 (real symbols).
+LENGTHS: tuple[sp.Symbol, ...] = sp.symbols("d1 a2 a3 d4 d5 d6", real=True)
+#: UR link twists, exact.
+ALPHA_UR: tuple[sp.Expr, ...] = (sp.pi / 2, sp.S.Zero, sp.S.Zero, sp.pi / 2, -sp.pi / 2, sp.S.Zero)
+
+GENERATED_PATH = Path(__file__).with_name("_generated") / "ur_kinematics.py"
+
+
+def dh_transform(theta, d, a, alpha, convention: str = "standard") -> sp.Matrix:
+    """Symbolic DH link transform ``T_{i-1,i}``.
+
+    Parameters
+    ----------
+    theta, d, a, alpha : sympy expressions or numbers
+        Joint angle, offset, length and twist of link ``i``.  In the modified convention ``a``
+        and ``alpha`` are those of the previous link, ``a_{i-1}`` and ``α_{i-1}``.
+    convention : {"standard", "modified"}
+        ``"standard"`` (Denavit–Hartenberg): ``Rz(θ) Tz(d) Tx(a) Rx(α)``.
+        ``"modified"`` (Craig): ``Rx(α) Tx(a) Rz(θ) Tz(d)``.
+
+    Returns
+    -------
+    sympy.Matrix, shape (4, 4)
+
+    Examples
+    --------
+    >>> t, d = sp.symbols("theta d")
+    >>> dh_transform(t, d, 0, 0)[:3, 3].T
+    Matrix([[0, 0, d]])
+    """
+    ct, st = sp.cos(theta), sp.sin(theta)
+    ca, sa = sp.cos(alpha), sp.sin(alpha)
+    if convention == "standard":
+        return sp.Matrix(
+            [
+                [ct, -st * ca, st * sa, a * ct],
+                [st, ct * ca, -ct * sa, a * st],
+                [0, sa, ca, d],
+                [0, 0, 0, 1],
+            ]
+        )
+    if convention == "modified":
+        return sp.Matrix(
+            [
+                [ct, -st, 0, a],
+                [st * ca, ct * ca, -sa, -sa * d],
+                [st * sa, ct * sa, ca, ca * d],
+                [0, 0, 0, 1],
+            ]
+        )
+    raise ValueError(f"convention must be 'standard' or 'modified'; got {convention!r}")
+
+
+def _simplify(expr: sp.Expr) -> sp.Expr:
+    return sp.trigsimp(sp.expand(expr))
+
+
+@functools.cache
+def ur_frames() -> tuple[sp.Matrix, ...]:
+    """Frames ``T_0_i`` for i = 0 … 6 of the UR chain, simplified into sums of angles.
+
+    Returns
+    -------
+    tuple of sympy.Matrix
+        Seven 4×4 matrices; the first is the identity (the base, DH frame 0).
+    """
+    d1, a2, a3, d4, d5, d6 = LENGTHS
+    table = [(d1, 0), (0, a2), (0, a3), (d4, 0), (d5, 0), (d6, 0)]
+    frames = [sp.eye(4)]
+    for q, (d, a), alpha in zip(Q, table, ALPHA_UR):
+        frames.append((frames[-1] * dh_transform(q, d, a, alpha)).applyfunc(_simplify))
+    return tuple(frames)
+
+
+def ur_t06() -> sp.Matrix:
+    """Flange pose ``T_0_6(q)`` of a UR arm with symbolic link lengths.
+
+    Examples
+    --------
+    >>> p = ur_t06()[:3, 3]
+    >>> p[2]
+    a2*sin(q2) + a3*sin(q2 + q3) + d1 - d5*cos(q2 + q3 + q4) - d6*sin(q5)*sin(q2 + q3 + q4)
+    """
+    return ur_frames()[-1]
+
+
+@functools.cache
+def ur_geometric_jacobian() -> sp.Matrix:
+    """Geometric Jacobian ``[v; ω]`` of the flange origin in the base frame (6×6).
+
+    Column ``i`` is ``[z_{i-1} × (p − p_{i-1}); z_{i-1}]`` with ``z_{i-1}`` and ``p_{i-1}`` the
+    z axis and origin of DH frame ``i − 1``.
+    """
+    frames = ur_frames()
+    p = frames[-1][:3, 3]
+    columns = []
+    for frame in frames[:-1]:
+        z, origin = frame[:3, 2], frame[:3, 3]
+        columns.append(sp.Matrix.vstack(z.cross(p - origin), z))
+    return sp.Matrix.hstack(*columns).applyfunc(_simplify)
+
+
+@functools.cache
+def ur_position_jacobian() -> sp.Matrix:
+    """Position Jacobian ``∂p/∂q`` (3×6), by differentiating the flange position."""
+    p = ur_t06()[:3, 3]
+    return p.jacobian(sp.Matrix(Q)).applyfunc(_simplify)
+
+
+# --------------------------------------------------------------------------- code generation
+
+_HEADER = '''"""Generated by ``python -m urkin.symbolic`` from the derivation in urkin.symbolic.
+
+Do not edit: change urkin/symbolic.py and regenerate.  ``*_one`` functions take six joint
+angles as floats and use the math module (fast for one pose); ``*_many`` functions take an
+(N, 6) array and use numpy on whole columns.  Both take the link lengths d1, a2, a3, d4, d5, d6.
+"""
+
+from math import cos, sin
+
+import numpy as np
+'''
+
+
+def _trig_symbols(exprs: list[sp.Expr]) -> tuple[dict, list[tuple[str, str]]]:
+    """Replace cos/sin of sums of joint angles by symbols ``c23``, ``s234``…"""
+    index = {q: str(i + 1) for i, q in enumerate(Q)}
+    replacements, preamble = {}, []
+    atoms = set()
+    for expr in exprs:
+        atoms |= expr.atoms(sp.cos, sp.sin)
+    for atom in sorted(atoms, key=sp.default_sort_key):
+        terms = sp.Add.make_args(atom.args[0])
+        if not all(t in index for t in terms):
+            raise ValueError(f"cannot print {atom}: its argument is not a sum of joint angles")
+        digits = "".join(sorted(index[t] for t in terms))
+        name = ("c" if isinstance(atom, sp.cos) else "s") + digits
+        replacements[atom] = sp.Symbol(name, real=True)
+        preamble.append((name, digits))
+    return replacements, sorted(preamble, key=lambda item: (len(item[1]), item[1], item[0]))
+
+
+def _emit(name: str, doc: str, entries: dict[tuple[int, ...], sp.Expr], shape: tuple[int, ...]):
+    """Return the source of ``{name}_one`` and ``{name}_many`` for an array of expressions."""
+    keys = list(entries)
+    exprs = [entries[k] for k in keys]
+    replacements, trig = _trig_symbols(exprs)
+    exprs = [sp.sympify(e).xreplace(replacements) for e in exprs]
+    # constants stay out of the CSE
+    varying = [i for i, e in enumerate(exprs) if not e.is_number]
+    temps, reduced = sp.cse(
+        [exprs[i] for i in varying], symbols=sp.numbered_symbols("x"), optimizations="basic"
+    )
+    final = list(exprs)
+    for i, e in zip(varying, reduced):
+        final[i] = e
+
+    def pycode(e):
+        return sp.pycode(e, fully_qualified_modules=False)
+
+    lengths = "d1, a2, a3, d4, d5, d6"
+    sums = sorted({digits for _, digits in trig if len(digits) > 1}, key=lambda s: (len(s), s))
+    used_q = sorted({d for _, digits in trig for d in digits if len(digits) == 1})
+    body = [f"    {t} = {pycode(e)}" for t, e in temps]
+
+    one = [f"def {name}_one(q1, q2, q3, q4, q5, q6, {lengths}):", f'    """{doc} (one pose)."""']
+    for digits in sums:
+        head, last = digits[:-1], digits[-1]
+        first = f"q{head}" if head in sums else " + ".join("q" + x for x in head)
+        one.append(f"    q{digits} = {first} + q{last}")
+    for sym, digits in trig:
+        arg = f"q{digits}"
+        one.append(f"    {sym} = {'cos' if sym[0] == 'c' else 'sin'}({arg})")
+    one += body
+    flat = [pycode(final[keys.index(k)]) if k in entries else "0.0" for k in _all_indices(shape)]
+    one.append(f"    return np.array(({', '.join(flat)},)).reshape({shape})")
+
+    many = [
+        f"def {name}_many(q, {lengths}, out=None):",
+        f'    """{doc} (N poses, q of shape (N, 6); fills ``out`` if given)."""',
+    ]
+    many.append("    qt = np.ascontiguousarray(q.T)")
+    for d in used_q:
+        many.append(f"    q{d} = qt[{int(d) - 1}]")
+    for digits in sums:
+        head, last = digits[:-1], digits[-1]
+        first = f"q{head}" if head in sums else " + ".join(f"qt[{int(x) - 1}]" for x in head)
+        many.append(f"    q{digits} = {first} + qt[{int(last) - 1}]")
+    for sym, digits in trig:
+        many.append(f"    {sym} = np.{'cos' if sym[0] == 'c' else 'sin'}(q{digits})")
+    many += body
+    many.append("    if out is None:")
+    many.append(f"        out = np.empty((q.shape[0], {', '.join(map(str, shape))}))")
+    for k in keys:
+        index = ", ".join(map(str, k))
+        many.append(f"    out[:, {index}] = {pycode(final[keys.index(k)])}")
+    many.append("    return out")
+    return "\n".join(one) + "\n\n\n" + "\n".join(many) + "\n"
+
+
+def _all_indices(shape: tuple[int, ...]) -> list[tuple[int, ...]]:
+    import itertools
+
+    return list(itertools.product(*(range(n) for n in shape)))
+
+
+def _matrix_entries(M: sp.Matrix, prefix: tuple[int, ...] = ()) -> dict:
+    return {(*prefix, i, j): M[i, j] for i in range(M.rows) for j in range(M.cols)}
+
+
+def generate_code() -> str:
+    """Source text of ``urkin/_generated/ur_kinematics.py``."""
+    frames = ur_frames()
+    t06 = _matrix_entries(frames[-1])
+    all_frames: dict = {}
+    for i, frame in enumerate(frames):
+        all_frames |= _matrix_entries(frame, (i,))
+    parts = [
+        _HEADER,
+        _emit("t06", "Flange pose T_0_6", t06, (4, 4)),
+        _emit("frames", "Frames T_0_i, i = 0 … 6", all_frames, (7, 4, 4)),
+        _emit(
+            "jacobian",
+            "Geometric Jacobian [v; ω] of the flange origin",
+            _matrix_entries(ur_geometric_jacobian()),
+            (6, 6),
+        ),
+        _emit(
+            "position_jacobian",
+            "Position Jacobian ∂p/∂q",
+            _matrix_entries(ur_position_jacobian()),
+            (3, 6),
+        ),
+    ]
+    return "\n\n\n".join(part.rstrip("\n") for part in parts) + "\n"
+
+
+def write_generated(path: Path | None = None) -> Path:
+    """Write the generated module (to ``urkin/_generated/ur_kinematics.py`` by default)."""
+    target = Path(path) if path is not None else GENERATED_PATH
+    target.write_text(generate_code(), encoding="utf-8")
+    return target
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Command line: write the generated module, or ``--check`` that it is up to date."""
+    parser = argparse.ArgumentParser(prog="python -m urkin.symbolic", description=__doc__)
+    parser.add_argument("--check", action="store_true", help="fail if regeneration would differ")
+    args = parser.parse_args(argv)
+    if args.check:
+        if GENERATED_PATH.read_text(encoding="utf-8") != generate_code():
+            print(f"{GENERATED_PATH} is out of date: run `python -m urkin.symbolic`")
+            return 1
+        print(f"{GENERATED_PATH} is up to date")
+        return 0
+    print(f"wrote {write_generated()}")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

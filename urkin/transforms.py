@@ -1,0 +1,432 @@
+"""Rotations and rigid-body transforms: SO(3) and SE(3) as numpy arrays.
+
+Conventions
+    * Rotations are 3×3 arrays, homogeneous transforms 4×4 arrays; every function also accepts
+      a stack ``(..., 3, 3)`` or ``(..., 4, 4)`` and works on all of them at once.
+    * Rotation vectors (exponential coordinates) ``ω = θ k``: unit axis ``k`` times angle ``θ``
+      in radians.
+    * Roll–pitch–yaw ``(r, p, y)`` are fixed-axis X–Y–Z angles: ``R = Rz(y) @ Ry(p) @ Rx(r)``.
+    * Names carry frames: ``T_a_b`` is the pose of frame ``b`` in frame ``a``, so
+      ``T_a_c = T_a_b @ T_b_c``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+__all__ = [
+    "check_rotation",
+    "check_transform",
+    "inv_transform",
+    "make_transform",
+    "rot_x",
+    "rot_y",
+    "rot_z",
+    "rotation_angle",
+    "rotation_to_rpy",
+    "rpy_to_rotation",
+    "skew",
+    "so3_exp",
+    "so3_log",
+    "unskew",
+]
+
+#: Default tolerance of :func:`check_rotation` on ``‖RᵀR − I‖`` and ``|det R − 1|``.
+ROTATION_TOLERANCE = 1e-6
+
+
+def _float_array(x: ArrayLike, name: str) -> np.ndarray:
+    try:
+        array = np.asarray(x, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be an array of numbers; got {type(x).__name__}") from exc
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} contains NaN or infinity")
+    return array
+
+
+def _vector3(x: ArrayLike, name: str) -> np.ndarray:
+    array = _float_array(x, name)
+    if array.ndim == 0 or array.shape[-1] != 3:
+        raise ValueError(f"{name} must have shape (3,) or (N, 3); got {array.shape}")
+    return array
+
+
+def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R") -> np.ndarray:
+    """Validate one rotation matrix or a stack of them and return it as a float array.
+
+    Parameters
+    ----------
+    R : array_like, shape (3, 3) or (..., 3, 3)
+        Candidate rotation matrices.
+    tol : float
+        Largest accepted ``max |RᵀR − I|`` and ``|det R − 1|``.
+    name : str
+        Name used in error messages.
+
+    Returns
+    -------
+    ndarray
+        ``R`` as a float array.
+
+    Raises
+    ------
+    ValueError
+        If the shape is wrong, an entry is not finite, the columns are not orthonormal or the
+        matrix is a reflection (``det R = −1``).
+
+    Examples
+    --------
+    >>> check_rotation(rot_z(0.3)).shape
+    (3, 3)
+    >>> check_rotation(np.diag([1.0, 1.0, -1.0]))
+    Traceback (most recent call last):
+    ...
+    ValueError: R is a reflection, not a rotation: det(R) = -1
+    """
+    array = _float_array(R, name)
+    if array.ndim < 2 or array.shape[-2:] != (3, 3):
+        raise ValueError(f"{name} must have shape (3, 3) or (N, 3, 3); got {array.shape}")
+    gram_error = np.abs(np.swapaxes(array, -1, -2) @ array - np.eye(3)).max(initial=0.0)
+    det = np.linalg.det(array)
+    if np.any(det < 0):
+        raise ValueError(f"{name} is a reflection, not a rotation: det({name}) = -1")
+    if gram_error > tol or np.abs(det - 1.0).max(initial=0.0) > tol:
+        raise ValueError(
+            f"{name} is not a rotation matrix: its columns are not orthonormal "
+            f"(max |{name}ᵀ{name} − I| = {gram_error:.3g}, tolerance {tol:g})"
+        )
+    return array
+
+
+def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "T") -> np.ndarray:
+    """Validate one homogeneous transform or a stack of them and return it as a float array.
+
+    Parameters
+    ----------
+    T : array_like, shape (4, 4) or (..., 4, 4)
+        Candidate rigid-body transforms.
+    tol : float
+        Tolerance of the rotation test and of the bottom row ``[0, 0, 0, 1]``.
+    name : str
+        Name used in error messages.
+
+    Returns
+    -------
+    ndarray
+        ``T`` as a float array.
+
+    Raises
+    ------
+    ValueError
+        If the shape is wrong, an entry is not finite, the bottom row is not ``[0, 0, 0, 1]``
+        or the upper-left block is not a rotation.
+
+    Examples
+    --------
+    >>> check_transform(np.eye(4)).shape
+    (4, 4)
+    >>> check_transform(np.zeros((4, 4)))
+    Traceback (most recent call last):
+    ...
+    ValueError: T must end in the row [0, 0, 0, 1]; got [0. 0. 0. 0.]
+    """
+    array = _float_array(T, name)
+    if array.ndim < 2 or array.shape[-2:] != (4, 4):
+        raise ValueError(f"{name} must have shape (4, 4) or (N, 4, 4); got {array.shape}")
+    bottom = array[..., 3, :]
+    bad = np.abs(bottom - (0.0, 0.0, 0.0, 1.0)).max(axis=-1) > tol
+    if np.any(bad):
+        first = bottom[bad][0] if bottom.ndim > 1 else bottom
+        raise ValueError(f"{name} must end in the row [0, 0, 0, 1]; got {first}")
+    check_rotation(array[..., :3, :3], tol=tol, name=f"the rotation part of {name}")
+    return array
+
+
+def _axis_rotation(angle: ArrayLike, axis: int) -> np.ndarray:
+    theta = _float_array(angle, "angle")
+    c, s = np.cos(theta), np.sin(theta)
+    R = np.zeros((*theta.shape, 3, 3))
+    i, j = [(1, 2), (2, 0), (0, 1)][axis]
+    R[..., axis, axis] = 1.0
+    R[..., i, i] = c
+    R[..., j, j] = c
+    R[..., i, j] = -s
+    R[..., j, i] = s
+    return R
+
+
+def rot_x(angle: ArrayLike) -> np.ndarray:
+    """Rotation by ``angle`` radians about the x axis; shape (3, 3), or (..., 3, 3) for an array.
+
+    Examples
+    --------
+    >>> rot_x(np.pi / 2).round(3)
+    array([[ 1.,  0.,  0.],
+           [ 0.,  0., -1.],
+           [ 0.,  1.,  0.]])
+    """
+    return _axis_rotation(angle, 0)
+
+
+def rot_y(angle: ArrayLike) -> np.ndarray:
+    """Rotation by ``angle`` radians about the y axis; shape (3, 3), or (..., 3, 3) for an array.
+
+    Examples
+    --------
+    >>> rot_y(np.pi / 2) @ [1.0, 0.0, 0.0]
+    array([ 6.123234e-17,  0.000000e+00, -1.000000e+00])
+    """
+    return _axis_rotation(angle, 1)
+
+
+def rot_z(angle: ArrayLike) -> np.ndarray:
+    """Rotation by ``angle`` radians about the z axis; shape (3, 3), or (..., 3, 3) for an array.
+
+    Examples
+    --------
+    >>> rot_z([0.0, np.pi]).shape
+    (2, 3, 3)
+    """
+    return _axis_rotation(angle, 2)
+
+
+def make_transform(R: ArrayLike | None = None, p: ArrayLike | None = None) -> np.ndarray:
+    """Homogeneous transform from a rotation ``R`` and a translation ``p``.
+
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3), optional
+        Rotation (identity if omitted).  It is not validated; see :func:`check_rotation`.
+    p : array_like, shape (..., 3), optional
+        Translation in metres (zero if omitted).
+
+    Returns
+    -------
+    ndarray, shape (..., 4, 4)
+
+    Examples
+    --------
+    >>> make_transform(p=[0.1, 0.2, 0.3])[:3, 3]
+    array([0.1, 0.2, 0.3])
+    """
+    R_array = np.eye(3) if R is None else _float_array(R, "R")
+    p_array = np.zeros(3) if p is None else _vector3(p, "p")
+    if R_array.shape[-2:] != (3, 3):
+        raise ValueError(f"R must have shape (3, 3) or (N, 3, 3); got {R_array.shape}")
+    batch = np.broadcast_shapes(R_array.shape[:-2], p_array.shape[:-1])
+    T = np.zeros((*batch, 4, 4))
+    T[..., :3, :3] = R_array
+    T[..., :3, 3] = p_array
+    T[..., 3, 3] = 1.0
+    return T
+
+
+def inv_transform(T: ArrayLike) -> np.ndarray:
+    """Inverse of rigid-body transforms without a general matrix inverse.
+
+    ``inv([[R, p], [0, 1]]) = [[Rᵀ, −Rᵀ p], [0, 1]]``.
+
+    Parameters
+    ----------
+    T : array_like, shape (..., 4, 4)
+
+    Returns
+    -------
+    ndarray, shape (..., 4, 4)
+
+    Examples
+    --------
+    >>> T = make_transform(rot_z(0.4), [0.3, -0.1, 0.2])
+    >>> np.allclose(inv_transform(T) @ T, np.eye(4))
+    True
+    """
+    array = _float_array(T, "T")
+    if array.shape[-2:] != (4, 4):
+        raise ValueError(f"T must have shape (4, 4) or (N, 4, 4); got {array.shape}")
+    R_t = np.swapaxes(array[..., :3, :3], -1, -2)
+    out = np.zeros_like(array)
+    out[..., :3, :3] = R_t
+    out[..., :3, 3] = -(R_t @ array[..., :3, 3, None])[..., 0]
+    out[..., 3, 3] = 1.0
+    return out
+
+
+def skew(w: ArrayLike) -> np.ndarray:
+    """Skew-symmetric matrix ``[w]`` with ``[w] @ v = w × v``.
+
+    Examples
+    --------
+    >>> skew([1.0, 2.0, 3.0])
+    array([[ 0., -3.,  2.],
+           [ 3.,  0., -1.],
+           [-2.,  1.,  0.]])
+    """
+    v = _vector3(w, "w")
+    W = np.zeros((*v.shape[:-1], 3, 3))
+    W[..., 0, 1], W[..., 0, 2] = -v[..., 2], v[..., 1]
+    W[..., 1, 0], W[..., 1, 2] = v[..., 2], -v[..., 0]
+    W[..., 2, 0], W[..., 2, 1] = -v[..., 1], v[..., 0]
+    return W
+
+
+def unskew(W: ArrayLike) -> np.ndarray:
+    """Vector ``w`` of a skew-symmetric matrix ``[w]`` (its antisymmetric part is used).
+
+    Examples
+    --------
+    >>> unskew(skew([1.0, 2.0, 3.0]))
+    array([1., 2., 3.])
+    """
+    M = _float_array(W, "W")
+    if M.shape[-2:] != (3, 3):
+        raise ValueError(f"W must have shape (3, 3) or (N, 3, 3); got {M.shape}")
+    return 0.5 * np.stack(
+        [M[..., 2, 1] - M[..., 1, 2], M[..., 0, 2] - M[..., 2, 0], M[..., 1, 0] - M[..., 0, 1]],
+        axis=-1,
+    )
+
+
+def so3_exp(omega: ArrayLike) -> np.ndarray:
+    """Rotation matrix of a rotation vector ``ω = θ k`` (Rodrigues' formula).
+
+    ``exp([ω]) = I + sin θ [k] + (1 − cos θ) [k]²``; accurate down to ``θ = 0``.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Rotation vectors in radians.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> np.allclose(so3_exp([0.0, 0.0, 0.7]), rot_z(0.7))
+    True
+    """
+    w = _vector3(omega, "omega")
+    theta = np.linalg.norm(w, axis=-1)[..., None, None]
+    W = skew(w)
+    small = theta < 1e-6
+    safe = np.where(small, 1.0, theta)
+    # sin θ / θ and (1 − cos θ) / θ², with their Taylor series near 0
+    a = np.where(small, 1.0 - theta**2 / 6.0, np.sin(safe) / safe)
+    b = np.where(small, 0.5 - theta**2 / 24.0, (1.0 - np.cos(safe)) / safe**2)
+    return np.eye(3) + a * W + b * (W @ W)
+
+
+def so3_log(R: ArrayLike) -> np.ndarray:
+    """Rotation vector ``ω = θ k`` of a rotation matrix, with ``θ`` in [0, π].
+
+    Accurate over the whole range, including angles near 0 and exactly π (where the axis is
+    read from the symmetric part of ``R``).
+
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3)
+        Rotation matrices (validated with :func:`check_rotation`).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> so3_log(rot_x(0.5))
+    array([0.5, 0. , 0. ])
+    >>> np.round(so3_log(rot_y(np.pi)), 12)
+    array([0.        , 3.14159265, 0.        ])
+    """
+    M = check_rotation(R)
+    s = unskew(M)  # sin θ · k
+    sin_theta = np.linalg.norm(s, axis=-1)
+    cos_theta = 0.5 * (np.trace(M, axis1=-2, axis2=-1) - 1.0)
+    theta = np.arctan2(sin_theta, cos_theta)
+    # general case: ω = θ / sin θ · s  (series near θ = 0)
+    small = sin_theta < 1e-8
+    scale = np.where(small, 1.0 + theta**2 / 6.0, theta / np.where(small, 1.0, sin_theta))
+    omega = scale[..., None] * s
+    # near π, sin θ loses the axis: use B = (R + Rᵀ)/2 − cos θ·I = (1 − cos θ) k kᵀ
+    near_pi = cos_theta < -0.9
+    if np.any(near_pi):
+        B = 0.5 * (M + np.swapaxes(M, -1, -2)) - cos_theta[..., None, None] * np.eye(3)
+        column = np.argmax(np.diagonal(B, axis1=-2, axis2=-1), axis=-1)
+        k = np.take_along_axis(B, column[..., None, None], axis=-1)[..., 0]
+        k = k / np.linalg.norm(k, axis=-1, keepdims=True)
+        sign = np.where(np.sum(k * s, axis=-1) < 0.0, -1.0, 1.0)
+        omega = np.where(near_pi[..., None], (sign * theta)[..., None] * k, omega)
+    return omega
+
+
+def rotation_angle(R1: ArrayLike, R2: ArrayLike | None = None) -> np.ndarray | float:
+    """Angle in radians of the rotation taking ``R1`` to ``R2`` (of ``R1`` itself if no ``R2``).
+
+    Uses ``2·asin(‖R1 − R2‖_F / (2√2))``, which stays accurate for tiny angles where
+    ``arccos((trace − 1)/2)`` loses all precision below about 1e-8 rad.
+
+    Examples
+    --------
+    >>> float(rotation_angle(rot_z(1e-12), np.eye(3)))
+    1e-12
+    """
+    A = _float_array(R1, "R1")
+    B = np.eye(3) if R2 is None else _float_array(R2, "R2")
+    frob = np.linalg.norm(A - B, axis=(-2, -1))
+    return 2.0 * np.arcsin(np.minimum(frob / (2.0 * np.sqrt(2.0)), 1.0))
+
+
+def rpy_to_rotation(rpy: ArrayLike) -> np.ndarray:
+    """Rotation from roll–pitch–yaw angles: ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``.
+
+    Parameters
+    ----------
+    rpy : array_like, shape (..., 3)
+        ``(roll, pitch, yaw)`` in radians.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> np.allclose(rpy_to_rotation([0.0, 0.0, 0.3]), rot_z(0.3))
+    True
+    """
+    angles = _vector3(rpy, "rpy")
+    return rot_z(angles[..., 2]) @ rot_y(angles[..., 1]) @ rot_x(angles[..., 0])
+
+
+def rotation_to_rpy(R: ArrayLike) -> np.ndarray:
+    """Roll–pitch–yaw angles of a rotation, the inverse of :func:`rpy_to_rotation`.
+
+    Pitch is in [−π/2, π/2]; roll and yaw in (−π, π].  At the gimbal lock (pitch = ±π/2)
+    only ``roll ∓ yaw`` is defined: the yaw is then reported as 0.
+
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        ``(roll, pitch, yaw)`` in radians.
+
+    Examples
+    --------
+    >>> rotation_to_rpy(rpy_to_rotation([0.1, -0.2, 0.3]))
+    array([ 0.1, -0.2,  0.3])
+    """
+    M = check_rotation(R)
+    cos_pitch = np.hypot(M[..., 0, 0], M[..., 1, 0])
+    pitch = np.arctan2(-M[..., 2, 0], cos_pitch)
+    locked = cos_pitch < 1e-9
+    roll = np.where(
+        locked,
+        np.arctan2(-M[..., 1, 2], M[..., 1, 1]),
+        np.arctan2(M[..., 2, 1], M[..., 2, 2]),
+    )
+    yaw = np.where(locked, 0.0, np.arctan2(M[..., 1, 0], M[..., 0, 0]))
+    return np.stack([roll, pitch, yaw], axis=-1)
