@@ -1,0 +1,164 @@
+"""Textbook implementations of the exercises, written without urkin, and known-wrong variants.
+
+The tests check that the exercise checks give these full marks, and that each wrong variant
+loses points with the mistake it embodies named in the feedback.
+"""
+
+import numpy as np
+
+
+def deg_to_rad(angles_deg):
+    return np.asarray(angles_deg, dtype=float) * (np.pi / 180.0)
+
+
+def base_link_pose(T_base_tool):
+    Rz_pi = np.diag([-1.0, -1.0, 1.0, 1.0])
+    return Rz_pi @ T_base_tool
+
+
+def rot_z(theta):
+    c, s = np.cos(theta), np.sin(theta)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def transform_inverse(T):
+    R, p = T[:3, :3], T[:3, 3]
+    out = np.eye(4)
+    out[:3, :3] = R.T
+    out[:3, 3] = -R.T @ p
+    return out
+
+
+def rotation_to_rpy(R):
+    pitch = np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0]))
+    if np.hypot(R[0, 0], R[1, 0]) < 1e-9:
+        return np.array([np.arctan2(-R[1, 2], R[1, 1]), pitch, 0.0])
+    return np.array([np.arctan2(R[2, 1], R[2, 2]), pitch, np.arctan2(R[1, 0], R[0, 0])])
+
+
+def axis_angle_to_rotation(axis, angle):
+    k = np.asarray(axis, float) / np.linalg.norm(axis)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+def dh_transform(theta, d, a, alpha):
+    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+    return np.array(
+        [[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st], [0, sa, ca, d],
+         [0, 0, 0, 1]]
+    )
+
+
+def forward_kinematics(robot, q):
+    T = np.eye(4)
+    for theta, d, a, alpha in zip(q, robot.d, robot.a, robot.alpha):
+        T = T @ dh_transform(theta, d, a, alpha)
+    return T
+
+
+def ur5_position(q):
+    d1, a2, a3, d4, d5, d6 = 0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823
+    q1, q2, q3, q4, q5, _ = q
+    c1, s1, c5, s5 = np.cos(q1), np.sin(q1), np.cos(q5), np.sin(q5)
+    c234, s234 = np.cos(q2 + q3 + q4), np.sin(q2 + q3 + q4)
+    reach = a2 * np.cos(q2) + a3 * np.cos(q2 + q3)
+    return np.array(
+        [
+            d4 * s1 + d5 * c1 * s234 + d6 * (s1 * c5 - c1 * c234 * s5) + c1 * reach,
+            -d4 * c1 + d5 * s1 * s234 - d6 * (c1 * c5 + s1 * c234 * s5) + s1 * reach,
+            d1 + a2 * np.sin(q2) + a3 * np.sin(q2 + q3) - d5 * c234 - d6 * s234 * s5,
+        ]
+    )
+
+
+SOLUTIONS = {
+    "0.1": deg_to_rad,
+    "0.2": base_link_pose,
+    "1.1": rot_z,
+    "1.2": transform_inverse,
+    "1.3": rotation_to_rpy,
+    "1.4": axis_angle_to_rotation,
+    "2.1": dh_transform,
+    "2.2": forward_kinematics,
+    "2.3": ur5_position,
+}
+
+
+# ------------------------------------------------------------------ known-wrong variants
+
+
+def _modified_dh(theta, d, a, alpha):
+    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+    return np.array(
+        [[ct, -st, 0, a], [st * ca, ct * ca, -sa, -sa * d], [st * sa, ct * sa, ca, ca * d],
+         [0, 0, 0, 1]]
+    )
+
+
+def _fk_with(link, robot, q, flip_a=False, reverse=False):
+    a = robot.a * (-1 if flip_a else 1)
+    links = [link(t, d, aa, al) for t, d, aa, al in zip(q, robot.d, a, robot.alpha)]
+    T = np.eye(4)
+    for L in links[::-1] if reverse else links:
+        T = T @ L
+    return T
+
+
+def _seed002_position(q):
+    d1, a2, a3, d4, d5, d6 = 0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823
+    q1, q2, q3, q4, q5, _ = q
+    c1, s1, c5 = np.cos(q1), np.sin(q1), np.cos(q5)
+    c234, s234 = np.cos(q2 + q3 + q4), np.sin(q2 + q3 + q4)
+    reach = a2 * np.cos(q2) + a3 * np.cos(q2 + q3)
+    return np.array(
+        [
+            d5 * c1 * s234 + d4 * s1 - d6 * c1 * c234 + d6 * c5 * s1 + c1 * reach,
+            d5 * s1 * s234 - d4 * c1 - d6 * s1 * c234 - d6 * c1 * c5 + s1 * reach,
+            d1 - d6 * s234 * np.sin(q5) + a2 * np.sin(q2) + a3 * np.sin(q2 + q3) - d5 * c234,
+        ]
+    )
+
+
+#: exercise id -> list of (wrong function, words the named mistake must contain)
+WRONG = {
+    "0.1": [
+        (lambda x: np.asarray(x, float) * 0.0175, "0.0175"),
+        (lambda x: np.degrees(x), "wrong way"),
+        (lambda x: np.asarray(x, float), "unchanged"),
+    ],
+    "0.2": [(lambda T: T @ np.diag([-1.0, -1.0, 1.0, 1.0]), "wrong side")],
+    "1.1": [
+        (lambda t: rot_z(t).T, "transposed"),
+        (lambda t: rot_z(np.radians(t)), "degrees"),
+    ],
+    "1.2": [
+        (lambda T: np.block([[T[:3, :3].T, -T[:3, 3:]], [np.zeros((1, 3)), np.ones((1, 1))]]),
+         "not rotated"),
+    ],
+    "1.3": [
+        (lambda R: np.degrees(rotation_to_rpy(R)), "degrees"),
+        (lambda R: rotation_to_rpy(R)[::-1], "reversed"),
+    ],
+    "1.4": [
+        (lambda k, t: axis_angle_to_rotation(k, t).T, "transposed"),
+    ],
+    "2.1": [
+        (_modified_dh, "modified"),
+        (lambda t, d, a, al: dh_transform(np.radians(t), d, a, np.radians(al)), "degrees"),
+        (lambda *args: _transposed(dh_transform(*args)), "transposed"),
+    ],
+    "2.2": [
+        (lambda robot, q: _fk_with(dh_transform, robot, q, flip_a=True), "wrong sign"),
+        (lambda robot, q: _fk_with(_modified_dh, robot, q), "modified"),
+        (lambda robot, q: _fk_with(dh_transform, robot, np.radians(q)), "degrees"),
+        (lambda robot, q: _fk_with(dh_transform, robot, q, reverse=True), "reverse order"),
+    ],
+    "2.3": [(_seed002_position, "seed 002")],
+}
+
+
+def _transposed(T):
+    out = T.copy()
+    out[:3, :3] = T[:3, :3].T
+    return out
