@@ -1,0 +1,122 @@
+"""The ``urkin`` command.
+
+::
+
+    urkin grade SUBMISSIONS... --out DIR   grade notebooks (files or folders) into DIR
+    urkin course build|check|execute       build course/ from solutions/, check it, run lessons
+    urkin codegen [--check]                regenerate urkin/_generated from the SymPy derivation
+    urkin info                             the arms urkin knows and their DH lengths
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+__all__ = ["main"]
+
+
+def _grade(args: argparse.Namespace) -> int:
+    from urkin.grading import grade_many, new_seed, progress_bar, write_reports
+
+    seed = args.seed if args.seed is not None else new_seed()
+    progress = progress_bar() if not args.quiet else None
+    results = grade_many(
+        args.submissions,
+        seed=seed,
+        lesson=args.lesson,
+        time_limit=args.time_limit,
+        memory_limit_mb=args.memory_limit,
+        setup_limit=args.setup_limit,
+        jobs=args.jobs,
+        progress=progress,
+    )
+    if not results:
+        print("no notebooks found in " + " ".join(map(str, args.submissions)), file=sys.stderr)
+        return 2
+    out = write_reports(results, args.out)
+    graded = sum(r.status == "graded" for r in results)
+    print(f"graded {graded} of {len(results)} submissions (seed {seed}); reports in {out}/")
+    for r in results:
+        print(f"  {r.name:<40} {r.earned:>5g} / {r.points:<5g} {r.status}")
+    return 0
+
+
+def _info(_: argparse.Namespace) -> int:
+    import urkin
+
+    print(f"{'arm':<6} {'d1':>9} {'a2':>9} {'a3':>9} {'d4':>9} {'d5':>9} {'d6':>9}   (metres)")
+    for name in urkin.ROBOTS:
+        values = " ".join(f"{x:>9.5f}" for x in urkin.robot(name).lengths)
+        print(f"{name:<6} {values}")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``urkin`` console script."""
+    from urkin.grading import DEFAULT_MEMORY_LIMIT_MB, DEFAULT_SETUP_LIMIT, DEFAULT_TIME_LIMIT
+
+    parser = argparse.ArgumentParser(
+        prog="urkin", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    commands = parser.add_subparsers(dest="command", required=True)
+
+    grade = commands.add_parser("grade", help="grade submitted notebooks")
+    grade.add_argument("submissions", nargs="+", type=Path, help="notebooks or folders of them")
+    grade.add_argument("--out", type=Path, required=True, help="folder for the reports")
+    grade.add_argument("--seed", type=int, help="seed of the test inputs (fresh by default)")
+    grade.add_argument("--lesson", help="lesson number, if the notebooks do not say")
+    grade.add_argument(
+        "--time-limit",
+        type=float,
+        default=DEFAULT_TIME_LIMIT,
+        help=f"seconds per exercise (default {DEFAULT_TIME_LIMIT:g})",
+    )
+    grade.add_argument(
+        "--memory-limit",
+        type=int,
+        default=DEFAULT_MEMORY_LIMIT_MB,
+        help=f"MiB per exercise (default {DEFAULT_MEMORY_LIMIT_MB})",
+    )
+    grade.add_argument(
+        "--setup-limit",
+        type=float,
+        default=DEFAULT_SETUP_LIMIT,
+        help=f"seconds for a notebook's top-level definitions (default {DEFAULT_SETUP_LIMIT:g})",
+    )
+    grade.add_argument("--jobs", type=int, help="submissions graded at once (default: cores)")
+    grade.add_argument("--quiet", action="store_true", help="no progress bar")
+    grade.set_defaults(run=_grade)
+
+    course = commands.add_parser("course", help="build or check the student notebooks")
+    course.add_argument("action", choices=["build", "check", "execute"])
+    course.add_argument("lessons", nargs="*")
+    course.add_argument("--root", type=Path, default=Path("."))
+    course.set_defaults(run=lambda a: _course(a))
+
+    codegen = commands.add_parser("codegen", help="regenerate urkin/_generated")
+    codegen.add_argument("--check", action="store_true")
+    codegen.set_defaults(run=lambda a: _codegen(a))
+
+    info = commands.add_parser("info", help="list the arms and their DH lengths")
+    info.set_defaults(run=_info)
+
+    args = parser.parse_args(argv)
+    return int(args.run(args))
+
+
+def _course(args: argparse.Namespace) -> int:
+    from urkin import course
+
+    return course.main([args.action, *args.lessons, "--root", str(args.root)])
+
+
+def _codegen(args: argparse.Namespace) -> int:
+    from urkin import symbolic
+
+    return symbolic.main(["--check"] if args.check else [])
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

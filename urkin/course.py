@@ -1,0 +1,324 @@
+"""Build the student notebooks in ``course/`` from the solution notebooks in ``solutions/``.
+
+``solutions/NN_topic.ipynb`` is the only source of a lesson (its paired ``NN_topic.py``, in
+jupytext's percent format, is the text to edit and review).  Exercise code sits between
+``### BEGIN SOLUTION`` and ``### END SOLUTION`` inside the function the student writes; the
+student version keeps the signature and docstring and raises
+``NotImplementedError("Exercise N.k: …")`` instead.  Student notebooks carry no outputs, a
+normalised ``python3`` kernelspec and no other metadata than the lesson number.
+
+Commands (also ``urkin course …``)::
+
+    python -m urkin.course execute   # paired .py → .ipynb, executed in place (needs jupytext)
+    python -m urkin.course build     # solutions/ → course/
+    python -m urkin.course check     # fails on drift, a leaked solution line or a missing check
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import json
+import re
+import sys
+from pathlib import Path
+
+__all__ = [
+    "KERNELSPEC",
+    "build",
+    "build_student_notebook",
+    "check",
+    "execute",
+    "find_lessons",
+    "normalise_solution",
+]
+
+BEGIN, END = "### BEGIN SOLUTION", "### END SOLUTION"
+KERNELSPEC = {"display_name": "Python 3 (ipykernel)", "language": "python", "name": "python3"}
+_DEF = re.compile(r"^\s*def\s+([A-Za-z_]\w*)\s*\(")
+_CHECK = re.compile(r"""check\(\s*["'](\d+\.\d+)["']\s*,\s*([A-Za-z_]\w*)\s*\)""")
+
+
+def find_lessons(root: Path) -> list[Path]:
+    """The solution notebooks ``solutions/NN_*.ipynb`` under a course root, in order."""
+    return sorted((root / "solutions").glob("[0-9][0-9]_*.ipynb"))
+
+
+def _source(cell: dict) -> str:
+    source = cell.get("source", "")
+    return "".join(source) if isinstance(source, list) else source
+
+
+def _lesson_number(path: Path) -> str:
+    return path.name[:2]
+
+
+def _exercise_for(function: str, lesson: str, where: str) -> str:
+    from urkin.exercises import exercises_for_lesson
+
+    for ex in exercises_for_lesson(lesson):
+        if ex.function == function:
+            return ex.id
+    raise ValueError(
+        f"{where}: a solution block sits in `{function}`, which no exercise of "
+        f"lesson {lesson} names (see urkin/exercises/lesson{lesson}.py)"
+    )
+
+
+def strip_solutions(source: str, lesson: str, where: str) -> tuple[str, list[str], list[str]]:
+    """Replace solution blocks; return the new source, the exercise ids and the removed lines."""
+    out, removed, ids = [], [], []
+    function, inside = None, False
+    for line in source.split("\n"):
+        match = _DEF.match(line)
+        if match and not inside:
+            function = match.group(1)
+        stripped = line.strip()
+        if stripped == BEGIN:
+            if inside or function is None:
+                raise ValueError(f"{where}: {BEGIN} outside a function, or nested")
+            inside = True
+            indent = line[: len(line) - len(line.lstrip())]
+            exercise_id = _exercise_for(function, lesson, where)
+            ids.append(exercise_id)
+            out.append(
+                f'{indent}raise NotImplementedError("Exercise {exercise_id}: write {function}")'
+            )
+            continue
+        if stripped == END:
+            if not inside:
+                raise ValueError(f"{where}: {END} without {BEGIN}")
+            inside = False
+            continue
+        if inside:
+            removed.append(line)
+        else:
+            out.append(line)
+    if inside:
+        raise ValueError(f"{where}: {BEGIN} without {END}")
+    return "\n".join(out), ids, removed
+
+
+def build_student_notebook(solution: dict, lesson: str, name: str = "notebook") -> dict:
+    """The student version of a solution notebook (a new dict; the input is not changed)."""
+    student = {
+        "cells": [],
+        "metadata": {
+            "kernelspec": dict(KERNELSPEC),
+            "language_info": {"name": "python"},
+            "urkin": {"lesson": lesson},
+        },
+        "nbformat": 4,
+        "nbformat_minor": 5,
+    }
+    for index, cell in enumerate(solution["cells"]):
+        kind = cell["cell_type"]
+        new = {"cell_type": kind, "id": cell.get("id", f"cell-{index}"), "metadata": {}}
+        source = _source(cell)
+        if kind == "code":
+            source, _, _ = strip_solutions(source, lesson, f"{name}, cell {index + 1}")
+            new["execution_count"] = None
+            new["outputs"] = []
+        new["source"] = source
+        tags = cell.get("metadata", {}).get("tags")
+        if tags:
+            new["metadata"]["tags"] = list(tags)
+        student["cells"].append(new)
+    return student
+
+
+def normalise_solution(notebook: dict, lesson: str) -> dict:
+    """Solution notebook with stable cell ids, the python3 kernelspec and minimal metadata."""
+    out = copy.deepcopy(notebook)
+    out["metadata"] = {
+        "kernelspec": dict(KERNELSPEC),
+        "language_info": {"name": "python"},
+        "urkin": {"lesson": lesson},
+    }
+    if "jupytext" in notebook.get("metadata", {}):  # keep the pairing, not jupytext's versions
+        out["metadata"]["jupytext"] = {"formats": "ipynb,py:percent"}
+    for index, cell in enumerate(out["cells"]):
+        cell["id"] = f"c{index:03d}"
+        tags = cell.get("metadata", {}).get("tags")
+        cell["metadata"] = {"tags": list(tags)} if tags else {}
+        cell["source"] = _source(cell)
+    out["nbformat"], out["nbformat_minor"] = 4, 5
+    return out
+
+
+def _dumps(notebook: dict) -> str:
+    return json.dumps(notebook, indent=1, sort_keys=True, ensure_ascii=False) + "\n"
+
+
+def build(root: Path) -> list[Path]:
+    """Write ``course/NN_topic.ipynb`` for every solution notebook; return the paths."""
+    written = []
+    (root / "course").mkdir(exist_ok=True)
+    for path in find_lessons(root):
+        notebook = json.loads(path.read_text(encoding="utf-8"))
+        student = build_student_notebook(notebook, _lesson_number(path), path.name)
+        target = root / "course" / path.name
+        target.write_text(_dumps(student), encoding="utf-8")
+        written.append(target)
+    return written
+
+
+def _pair_problems(path: Path, notebook: dict) -> list[str]:
+    pair = path.with_suffix(".py")
+    if not pair.exists():
+        return []
+    try:
+        import jupytext
+    except ImportError:
+        return [f"{pair}: jupytext is not installed, so the pair could not be compared"]
+    text_cells = jupytext.read(pair)["cells"]
+    ipynb_cells = notebook["cells"]
+    if [(c["cell_type"], _source(c)) for c in text_cells] != [
+        (c["cell_type"], _source(c)) for c in ipynb_cells
+    ]:
+        return [f"{path} differs from its pair {pair.name}: run `urkin course execute`"]
+    return []
+
+
+def check(root: Path) -> list[str]:
+    """Every problem with the course sources and student notebooks (empty when all is well)."""
+    from urkin.exercises import exercises_for_lesson
+
+    problems: list[str] = []
+    lessons = find_lessons(root)
+    if not lessons:
+        return [f"no solution notebooks in {root / 'solutions'}"]
+    expected_students = set()
+    for path in lessons:
+        lesson = _lesson_number(path)
+        notebook = json.loads(path.read_text(encoding="utf-8"))
+        problems += _pair_problems(path, notebook)
+        if notebook.get("metadata", {}).get("kernelspec") != KERNELSPEC:
+            problems.append(f"{path}: kernelspec is not normalised to python3")
+        solution_ids, removed_lines, checks = [], [], set()
+        for index, cell in enumerate(notebook["cells"]):
+            if cell["cell_type"] != "code":
+                continue
+            for output in cell.get("outputs", []):
+                if output.get("output_type") == "error":
+                    problems.append(f"{path}, cell {index + 1}: stored output is an error")
+            try:
+                _, ids, removed = strip_solutions(
+                    _source(cell), lesson, f"{path}, cell {index + 1}"
+                )
+            except ValueError as exc:
+                problems.append(str(exc))
+                continue
+            solution_ids += ids
+            removed_lines += removed
+            checks |= {m.group(1) for m in _CHECK.finditer(_source(cell))}
+        for ex in exercises_for_lesson(lesson):
+            count = solution_ids.count(ex.id)
+            if count != 1:
+                problems.append(
+                    f"{path}: exercise {ex.id} ({ex.function}) has {count} "
+                    "solution blocks; it needs exactly one"
+                )
+            if ex.id not in checks:
+                problems.append(
+                    f'{path}: exercise {ex.id} has no check("{ex.id}", {ex.function}) cell'
+                )
+        target = root / "course" / path.name
+        expected_students.add(target.name)
+        if not target.exists():
+            problems.append(f"{target} is missing: run `urkin course build`")
+            continue
+        try:
+            expected = _dumps(build_student_notebook(notebook, lesson, path.name))
+        except ValueError:
+            continue  # already reported above
+        actual = target.read_text(encoding="utf-8")
+        if actual != expected:
+            problems.append(f"{target} is out of date with {path}: run `urkin course build`")
+        problems += _leaks(target, actual, notebook, removed_lines)
+    for stray in sorted((root / "course").glob("*.ipynb")):
+        if stray.name not in expected_students:
+            problems.append(f"{stray} has no source in solutions/")
+    return problems
+
+
+def _leaks(target: Path, text: str, solution: dict, removed_lines: list[str]) -> list[str]:
+    problems = []
+    if BEGIN in text or END in text:
+        problems.append(f"{target}: a solution marker is left in the student notebook")
+    student = json.loads(text)
+    student_lines = {
+        line.strip() for cell in student["cells"] for line in _source(cell).split("\n")
+    }
+    outside = set()
+    for cell in solution["cells"]:
+        source = _source(cell)
+        if cell["cell_type"] == "code":
+            try:
+                source, _, _ = strip_solutions(source, _lesson_number(target), str(target))
+            except ValueError:
+                pass
+        outside |= {line.strip() for line in source.split("\n")}
+    for line in removed_lines:
+        key = line.strip()
+        if len(key) >= 12 and key not in outside and key in student_lines:
+            problems.append(f"{target}: solution line leaked into the student notebook: {key!r}")
+    return problems
+
+
+def execute(root: Path, names: list[str] | None = None, timeout: int = 120) -> list[Path]:
+    """Sync each paired ``solutions/NN_*.py`` into its ``.ipynb`` and execute it in place."""
+    import jupytext
+    import nbformat
+    from nbclient import NotebookClient
+
+    done = []
+    for pair in sorted((root / "solutions").glob("[0-9][0-9]_*.py")):
+        if names and pair.stem not in names and pair.name not in names:
+            continue
+        notebook = jupytext.read(pair)
+        notebook.metadata["kernelspec"] = dict(KERNELSPEC)
+        client = NotebookClient(
+            notebook,
+            timeout=timeout,
+            kernel_name="python3",
+            resources={"metadata": {"path": str(root / "solutions")}},
+        )
+        client.execute()
+        target = pair.with_suffix(".ipynb")
+        data = normalise_solution(json.loads(nbformat.writes(notebook)), _lesson_number(pair))
+        target.write_text(_dumps(data), encoding="utf-8")
+        done.append(target)
+    return done
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Command line of ``urkin course``."""
+    parser = argparse.ArgumentParser(
+        prog="urkin course",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("action", choices=["build", "check", "execute"])
+    parser.add_argument("lessons", nargs="*", help="execute only these (e.g. 02_dh_fk)")
+    parser.add_argument("--root", type=Path, default=Path("."), help="course root (default .)")
+    args = parser.parse_args(argv)
+    root = args.root.resolve()
+    if args.action == "build":
+        for path in build(root):
+            print(f"wrote {path.relative_to(root)}")
+        return 0
+    if args.action == "execute":
+        for path in execute(root, args.lessons):
+            print(f"executed {path.relative_to(root)}")
+        return 0
+    problems = check(root)
+    for problem in problems:
+        print(problem)
+    if not problems:
+        print(f"course OK: {len(find_lessons(root))} lessons, student notebooks up to date")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
