@@ -45,8 +45,12 @@ def axis_angle_to_rotation(axis, angle):
 def dh_transform(theta, d, a, alpha):
     ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
     return np.array(
-        [[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st], [0, sa, ca, d],
-         [0, 0, 0, 1]]
+        [
+            [ct, -st * ca, st * sa, a * ct],
+            [st, ct * ca, -ct * sa, a * st],
+            [0, sa, ca, d],
+            [0, 0, 0, 1],
+        ]
     )
 
 
@@ -91,8 +95,12 @@ SOLUTIONS = {
 def _modified_dh(theta, d, a, alpha):
     ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
     return np.array(
-        [[ct, -st, 0, a], [st * ca, ct * ca, -sa, -sa * d], [st * sa, ct * sa, ca, ca * d],
-         [0, 0, 0, 1]]
+        [
+            [ct, -st, 0, a],
+            [st * ca, ct * ca, -sa, -sa * d],
+            [st * sa, ct * sa, ca, ca * d],
+            [0, 0, 0, 1],
+        ]
     )
 
 
@@ -133,8 +141,10 @@ WRONG = {
         (lambda t: rot_z(np.radians(t)), "degrees"),
     ],
     "1.2": [
-        (lambda T: np.block([[T[:3, :3].T, -T[:3, 3:]], [np.zeros((1, 3)), np.ones((1, 1))]]),
-         "not rotated"),
+        (
+            lambda T: np.block([[T[:3, :3].T, -T[:3, 3:]], [np.zeros((1, 3)), np.ones((1, 1))]]),
+            "not rotated",
+        ),
     ],
     "1.3": [
         (lambda R: np.degrees(rotation_to_rpy(R)), "degrees"),

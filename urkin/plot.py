@@ -65,7 +65,14 @@ def axes3d(
     return ax
 
 
-def draw_frame(ax, T: ArrayLike, length: float = 0.05, label: str | None = None, linewidth=2.0):
+def draw_frame(
+    ax,
+    T: ArrayLike,
+    length: float = 0.05,
+    label: str | None = None,
+    linewidth: float = 2.0,
+    tips: bool = False,
+):
     """Draw a frame triad: its x, y and z axes in red, green and blue.
 
     Parameters
@@ -78,6 +85,8 @@ def draw_frame(ax, T: ArrayLike, length: float = 0.05, label: str | None = None,
     label : str, optional
         Text written at the frame's origin.
     linewidth : float
+    tips : bool
+        Write "x", "y" and "z" at the arrow tips.
 
     Returns
     -------
@@ -90,6 +99,8 @@ def draw_frame(ax, T: ArrayLike, length: float = 0.05, label: str | None = None,
     for axis, colour in enumerate(AXIS_COLOURS):
         tip = origin + length * pose[:3, axis]
         artists += ax.plot(*np.column_stack([origin, tip]), color=colour, linewidth=linewidth)
+        if tips:
+            artists.append(ax.text(*tip, "xyz"[axis], color=colour, fontsize=9))
     if label:
         artists.append(ax.text(*origin, f" {label}", fontsize=8))
     return artists
@@ -150,8 +161,8 @@ def pose_text(T: ArrayLike) -> str:
     roll/pitch/yaw   r    0.0°  p    0.0°  y    0.0°
     """
     pose = check_transform(T)
-    x, y, z = pose[:3, 3] + 0.0
-    roll, pitch, yaw = np.degrees(rotation_to_rpy(pose[:3, :3])) + 0.0
+    x, y, z = np.round(pose[:3, 3], 3) + 0.0  # + 0.0: no "-0.000"
+    roll, pitch, yaw = np.round(np.degrees(rotation_to_rpy(pose[:3, :3])), 1) + 0.0
     return (
         f"position (m)     x {x:6.3f}   y {y:6.3f}   z {z:6.3f}\n"
         f"roll/pitch/yaw   r {roll:6.1f}°  p {pitch:6.1f}°  y {yaw:6.1f}°"
@@ -180,7 +191,7 @@ def show_robot(robot: Robot, q: ArrayLike, *, title: str | None = None, ax=None,
     if title is None:
         degrees = ", ".join(f"{v:.0f}" for v in np.degrees(q) + 0.0)
         title = f"{robot.name} at q = [{degrees}]°"
-    ax = axes3d(ax, center=(0.0, 0.0, robot.d1 + 0.3 * reach), half_width=0.9 * reach, title=title)
+    ax = axes3d(ax, center=(0.0, 0.0, robot.d1 + 0.3 * reach), half_width=0.75 * reach, title=title)
     draw_robot(ax, robot, q, **style)
     T = fk_frames(robot, q)[-1]
     ax.text2D(

@@ -104,11 +104,13 @@ class Robot:
     d4: float
     d5: float
     d6: float
-    joint_limits: tuple[tuple[float, float], ...] = ((-2 * math.pi, 2 * math.pi),) * 6
+    joint_limits: tuple[tuple[float, float], ...] = field(
+        default=((-2 * math.pi, 2 * math.pi),) * 6, repr=False
+    )
     base: np.ndarray = field(default=None, repr=False)  # type: ignore[assignment]
     tool: np.ndarray = field(default=None, repr=False)  # type: ignore[assignment]
-    source: str = _UR_DH_SOURCE
-    notes: str = ""
+    source: str = field(default=_UR_DH_SOURCE, repr=False)
+    notes: str = field(default="", repr=False)
     _plain: bool = field(init=False, repr=False, default=True)
 
     def __post_init__(self) -> None:

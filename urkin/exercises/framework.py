@@ -36,8 +36,10 @@ __all__ = [
     "exercises_for_lesson",
     "format_array",
     "identify_mistake",
+    "link_dependencies",
     "register",
     "run_exercise",
+    "run_exercises",
 ]
 
 #: Seed of the inputs a notebook's check cell uses; grading uses other, fresh seeds.
@@ -129,6 +131,9 @@ class Exercise:
     forbidden : tuple of str
         Dotted names of urkin functions that do the exercise's work; a submission that calls
         them earns nothing for the exercise.
+    builds_on : tuple of str
+        Ids of earlier exercises whose functions this one usually calls; when both lose
+        points, the feedback says to fix the earlier one first.
     """
 
     id: str
@@ -136,6 +141,7 @@ class Exercise:
     title: str
     checks: tuple[Check, ...]
     forbidden: tuple[str, ...] = ()
+    builds_on: tuple[str, ...] = ()
 
     @property
     def points(self) -> float:
@@ -410,6 +416,32 @@ def run_exercise(
     if result.mistakes and fatal is None:
         result.message = "likely mistake: " + "; ".join(result.mistakes)
     return result
+
+
+def link_dependencies(results: list[ExerciseResult]) -> None:
+    """Add "fix exercise 2.1 first" to results that lost points while an exercise they build on
+    lost points too."""
+    by_id = {r.exercise: r for r in results}
+    for result in results:
+        if result.earned == result.points:
+            continue
+        for earlier_id in exercise(result.exercise).builds_on:
+            earlier = by_id.get(earlier_id)
+            if earlier is not None and earlier.earned < earlier.points:
+                note = (
+                    f"{result.function} usually calls your {earlier.function}, which lost "
+                    f"points in exercise {earlier_id}: fix that one first"
+                )
+                result.message = f"{result.message}\n{note}" if result.message else note
+
+
+def run_exercises(
+    functions: Mapping[str, Callable[..., Any]], seed: int = VISIBLE_SEED
+) -> list[ExerciseResult]:
+    """Run several exercises (id → function) and link their dependencies."""
+    results = [run_exercise(exercise_id, f, seed) for exercise_id, f in functions.items()]
+    link_dependencies(results)
+    return results
 
 
 def check(exercise_id: str, function: Callable[..., Any], seed: int = VISIBLE_SEED) -> None:

@@ -173,6 +173,7 @@ register(
             Check("matches the DH chain for random arms and configurations", 3, _fk_matches),
         ),
         forbidden=_FK_FUNCTIONS,
+        builds_on=("2.1",),
     )
 )
 

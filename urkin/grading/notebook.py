@@ -51,8 +51,14 @@ class Submission:
 
 
 def lesson_from_filename(path: Path) -> str | None:
-    """``"02"`` for ``02_dh_fk.ipynb`` or ``alice_02_dh_fk.ipynb``; None if no number."""
-    match = re.search(r"(?:^|[_\-\s])(\d{2})_", path.name) or re.match(r"(\d{2})", path.name)
+    """The lesson a file name gives, or None.
+
+    Examples
+    --------
+    >>> [lesson_from_filename(Path(n)) for n in ("02_dh_fk.ipynb", "bob_01.ipynb", "hw.ipynb")]
+    ['02', '01', None]
+    """
+    match = re.search(r"(?:^|[_\-\s])(\d{2})(?=[_\-.\s])", path.name)
     return match.group(1) if match else None
 
 

@@ -28,6 +28,7 @@ import time
 from pathlib import Path
 
 from urkin.exercises import Exercise, ExerciseResult, exercises_for_lesson, run_exercise
+from urkin.exercises.framework import link_dependencies
 from urkin.grading import sandbox
 from urkin.grading.notebook import Submission, read_submission
 
@@ -247,6 +248,7 @@ def grade_in_subprocesses(
                 "exercises": [],
             }
         notes = [note, *fallback_notes]
+    link_dependencies(results)
     return {
         "status": "graded",
         "reason": "",

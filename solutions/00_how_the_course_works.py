@@ -1,0 +1,260 @@
+# %% [markdown]
+# # Lesson 00 — How this course works
+#
+# This course teaches the kinematics of Universal Robots arms — the UR3, UR5, UR10 and their
+# e-series successors — one notebook at a time. Each lesson mixes three things:
+#
+# * **reading**: short explanations with the maths written out;
+# * **running**: demonstrations you can change and re-run, most of them drawing the arm;
+# * **writing**: exercises, each a single function, followed by a *check cell* that tells you
+#   whether your function is right and, when it is not, what it probably got wrong.
+#
+# By the end of this lesson you will know how to work through a notebook, which units and
+# frame conventions the whole course uses, and you will have looked at a UR3 in 3D.
+#
+# **Time:** about 30 minutes. **You need:** Python and numpy; no robotics yet.
+
+# %% [markdown]
+# ## Working in JupyterLab
+#
+# You started this notebook with `make course`, which opened JupyterLab on the `course/`
+# folder. A few habits make notebooks painless:
+#
+# * **Shift + Enter** runs a cell and moves to the next one.
+# * Cells run in the order *you* run them, not the order they appear. When something behaves
+#   strangely, use **Kernel → Restart Kernel and Run All Cells**: a notebook that works top to
+#   bottom after a restart is a notebook that works.
+# * Every demonstration uses the course's own package, `urkin`, so the whole notebook runs even
+#   before you have written a single exercise.
+#
+# The first code cell of every lesson imports what the lesson needs.
+
+# %%
+import matplotlib.pyplot as plt
+import numpy as np
+
+import urkin
+import urkin.plot
+from urkin.exercises import check
+
+np.set_printoptions(precision=4, suppress=True)
+
+# %% [markdown]
+# ## Exercises and check cells
+#
+# An exercise asks for one function. Its cell already holds the signature and a docstring that
+# says exactly what goes in and what comes out; you replace the line
+# `raise NotImplementedError(...)` with your code. The cell right after it calls `check`:
+#
+# ```python
+# check("0.1", deg_to_rad)
+# ```
+#
+# `check` runs your function on test inputs and prints a report: each property it tested, the
+# points it is worth, and for a failure the input, the expected answer, your answer and — when
+# it recognises one — the *likely mistake*, such as "converted the wrong way". A check cell never
+# raises an error, so you can run it as often as you like.
+#
+# **How you are graded.** Your instructor grades the notebook you hand in with the same checks,
+# but on *fresh random inputs*, so a function that only memorises the visible answers earns
+# nothing. The grader runs only your *definitions* — imports, functions, classes and
+# assignments — not your demonstrations, so keep each exercise self-contained in its function.
+# And where an exercise asks you to write something `urkin` already does, calling `urkin`'s
+# version earns no points for that exercise: the point is to write it yourself.
+
+# %% [markdown]
+# ## Units: metres and radians, always
+#
+# Every length in this course is in metres and every angle in radians. Degrees appear only where
+# a human reads them (figure titles, the pose panel). Mixing the two is the most common bug in
+# robotics code, and it is not always loud. One of the course reports this course draws on
+# converted angles with a factor of 0.0175 in one place and 0.01744 in another, instead of
+# π/180 = 0.0174533…. Each round trip through both factors scales the angle by
+# 0.01744 / 0.0175 ≈ 0.99657 — a third of a percent that nobody notices until a trajectory of
+# hundreds of warm-started steps has drifted.
+
+# %%
+exact = np.pi / 180
+print(f"pi/180            = {exact:.7f}")
+print(f"0.0175  differs by {100 * (0.0175 / exact - 1):+.3f} %")
+print(f"0.01744 differs by {100 * (0.01744 / exact - 1):+.3f} %")
+
+angle_deg = 20.0  # the initial guess of one report, on every joint
+for step in range(1, 4):
+    angle_deg = angle_deg * 0.0175 / 0.01744  # degrees → "radians" → "degrees"
+    print(f"after round trip {step}: {angle_deg:.4f}°")
+
+# %% [markdown]
+# ### Exercise 0.1 — `deg_to_rad` (4 points)
+#
+# Write `deg_to_rad(angles_deg)`, which converts degrees to radians. It must accept a single
+# number, a list, or a numpy array of any shape — such as an `(N, 6)` array holding N joint
+# configurations — and return floats of the same shape. Use the exact factor π/180.
+
+# %%
+def deg_to_rad(angles_deg):
+    """Convert angles from degrees to radians.
+
+    Parameters
+    ----------
+    angles_deg : float or array_like
+        Angles in degrees, any shape.
+
+    Returns
+    -------
+    float or ndarray
+        The same angles in radians, same shape.
+    """
+    ### BEGIN SOLUTION
+    return np.asarray(angles_deg, dtype=float) * (np.pi / 180.0)
+    ### END SOLUTION
+
+
+# %%
+check("0.1", deg_to_rad)
+
+# %% [markdown]
+# ## A first look at the UR3
+#
+# A UR arm has six revolute joints: the *base* turns the whole arm about the vertical, the
+# *shoulder* and *elbow* lift the upper arm and forearm, and three *wrist* joints orient the
+# tool. `urkin` knows seven arms by name, each with the link lengths Universal Robots publishes:
+
+# %%
+print(urkin.ROBOTS)
+ur3 = urkin.robot("UR3")
+print(ur3)
+
+# %% [markdown]
+# A configuration is a vector of six joint angles `q`, in radians. The *forward kinematics*
+# `urkin.fk(robot, q)` says where the tool flange is for a given `q`; lesson 02 derives it. Here
+# we only look. At `q = 0` every UR arm lies stretched out horizontally; UR's "home" position
+# `q = [0, −π/2, 0, −π/2, 0, 0]` points the arm straight up.
+
+# %%
+zero = np.zeros(6)
+home = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])
+
+fig = plt.figure(figsize=(11, 5.5))
+for index, (q, name) in enumerate([(zero, "q = 0 (stretched out)"), (home, "home")]):
+    ax = fig.add_subplot(1, 2, index + 1, projection="3d")
+    urkin.plot.show_robot(ur3, q, ax=ax, title=f"UR3, {name}")
+fig.suptitle("The UR3 in two configurations: links through the DH frames, with their axes")
+plt.show()
+
+# %% [markdown]
+# Each grey segment joins the origins of two consecutive *DH frames* (lesson 02), and each
+# frame is drawn as three short arrows: x in red, y in green, z in blue. The box in the corner is
+# the pose panel: where the flange is (metres) and how it is turned (roll, pitch and yaw in
+# degrees — lesson 01).
+#
+# Rotating one joint moves everything after it. Here the shoulder sweeps from −π/2 to 0 while
+# the other joints stay at home; the flange traces an arc of radius equal to the arm's length
+# beyond the shoulder.
+
+# %%
+sweep = np.tile(home, (40, 1))
+sweep[:, 1] = np.linspace(-np.pi / 2, 0.0, 40)
+flange = urkin.fk(ur3, sweep)[:, :3, 3]  # all 40 poses at once: shape (40, 4, 4)
+
+ax = urkin.plot.axes3d(center=(0.0, -0.1, 0.3), half_width=0.45,
+                       title="UR3: the flange while the shoulder turns from −90° to 0°")
+for q in sweep[::13]:
+    urkin.plot.draw_robot(ax, ur3, q, frames=False, alpha=0.5)
+ax.plot(*flange.T, color="tab:orange", linewidth=2, label="flange path")
+ax.legend(loc="upper right")
+plt.show()
+
+start, end = flange[0].round(3) + 0.0, flange[-1].round(3) + 0.0  # + 0.0 avoids "-0."
+print(f"flange moved {np.linalg.norm(end - start):.3f} m from {start} to {end}")
+
+# %% [markdown]
+# Notice that `urkin.fk` took all forty configurations at once, as an array of shape `(40, 6)`,
+# and returned forty poses. Every function in `urkin` works that way: one configuration `(6,)`
+# or a batch `(N, 6)`.
+#
+# ## Frames: where is "the base"?
+#
+# A pose only means something together with the frame it is measured in. This course writes
+# `T_a_b` for the pose of frame `b` in frame `a`, so that poses chain like fractions cancel:
+# `T_a_c = T_a_b @ T_b_c`.
+#
+# `urkin` measures poses in the frame Universal Robots calls **base** (DH frame 0), the frame the
+# robot's own controller reports. ROS and URDF models of the same arms name a different frame
+# **`base_link`**, turned by π (180°) about the vertical axis:
+# `T_base_link_base = Rz(π)`, available as `urkin.T_BASE_LINK_BASE`. Their `tool0` frame is the
+# flange, the same as urkin's last DH frame. Forgetting the half turn puts every target on the
+# wrong side of the robot.
+
+# %%
+fig = plt.figure(figsize=(10, 5))
+frames = [(np.eye(4), "UR's base (DH frame 0)"),
+          (urkin.T_BASE_LINK_BASE, "URDF base_link, drawn in base coordinates")]
+for index, (T, name) in enumerate(frames):
+    ax = urkin.plot.axes3d(fig.add_subplot(1, 2, index + 1, projection="3d"),
+                           center=(0.0, 0.0, 0.0), half_width=0.12, title=name)
+    urkin.plot.draw_frame(ax, T, length=0.1, tips=True)
+    ax.view_init(elev=30, azim=-60)
+fig.suptitle("The same origin, two frames: base_link is base turned by 180° about z")
+plt.show()
+
+# %% [markdown]
+# ### Exercise 0.2 — `base_link_pose` (3 points)
+#
+# Write `base_link_pose(T_base_tool)`: given a tool pose measured in UR's `base` frame, return
+# the same pose measured in the URDF `base_link` frame. Think of which transform goes on which
+# side: the names should cancel.
+
+# %%
+def base_link_pose(T_base_tool):
+    """Express a pose given in UR's base frame in the URDF base_link frame.
+
+    Parameters
+    ----------
+    T_base_tool : ndarray, shape (4, 4)
+        Pose of the tool in the base frame (DH frame 0).
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+        ``T_base_link_tool``, the pose of the same tool in the base_link frame.
+    """
+    ### BEGIN SOLUTION
+    return urkin.T_BASE_LINK_BASE @ T_base_tool
+    ### END SOLUTION
+
+
+# %%
+check("0.2", base_link_pose)
+
+# %% [markdown]
+# ## Seven arms, one structure
+#
+# All seven arms share the same joint layout; only six lengths differ. That is why one
+# derivation (lesson 02) serves them all. The longest, the UR10 and UR10e, reach about two and
+# a half times as far as the UR3.
+
+# %%
+names = urkin.ROBOTS
+reach = [abs(urkin.robot(n).a2) + abs(urkin.robot(n).a3) for n in names]
+print("arm     upper arm + forearm (m)")
+for name, value in zip(names, reach):
+    print(f"{name:<6}  {value:.4f}")
+
+fig, ax = plt.subplots(figsize=(7, 3.5))
+ax.bar(names, reach, color="tab:blue")
+ax.set_ylabel("upper arm + forearm, |a2| + |a3| (m)")
+ax.set_xlabel("arm")
+ax.set_title("How far each UR arm reaches beyond its shoulder")
+plt.show()
+
+# %% [markdown]
+# ## What comes next
+#
+# * **Lesson 01** builds the language of poses: rotation matrices, homogeneous transforms, their
+#   inverse, roll–pitch–yaw angles and the exponential map.
+# * **Lesson 02** derives the UR forward kinematics with SymPy from a table of four numbers per
+#   joint, and shows how a published formula can hide an error from its own test.
+#
+# Before you move on: restart the kernel and run the whole notebook. Both check cells should now
+# report full marks.
