@@ -10,7 +10,10 @@ from __future__ import annotations
 import csv
 import inspect
 import json
+import subprocess
+import sys
 import textwrap
+from pathlib import Path
 
 import pytest
 
@@ -323,3 +326,28 @@ def test_a_slow_setup_falls_back_to_definitions_only(tmp_path):
     result = grade_notebook(path, seed=3, setup_limit=2)
     assert result.earned == 13
     assert any("took longer than 2 s" in note for note in result.notes)
+
+
+ROOT = Path(__file__).resolve().parents[1]
+STUDENT_NOTEBOOKS = sorted((ROOT / "course").glob("[0-9][0-9]_*.ipynb"))
+
+
+@pytest.mark.parametrize("path", STUDENT_NOTEBOOKS, ids=lambda p: p.name)
+def test_unsolved_student_notebooks_score_zero_without_crashing(path):
+    result = grade_notebook(path, seed=5)
+    assert result.status == "graded", result.reason
+    assert result.exercises and result.earned == 0
+    assert {e.status for e in result.exercises} == {"not attempted"}
+
+
+def test_the_urkin_grade_command(tmp_path):
+    out = tmp_path / "grades"
+    command = [sys.executable, "-m", "urkin", "grade", str(STUDENT_NOTEBOOKS[0]),
+               str(ROOT / "solutions" / STUDENT_NOTEBOOKS[0].name), "--out", str(out),
+               "--seed", "3"]  # fmt: skip
+    done = subprocess.run(command, capture_output=True, text=True, check=True)
+    assert "graded 2 of 2 submissions (seed 3)" in done.stdout
+    assert "2/2" in done.stderr  # the progress bar
+    rows = list(csv.DictReader(open(out / "gradebook.csv", encoding="utf-8")))
+    assert sorted(float(r["total"]) for r in rows) == [0.0, float(rows[0]["max"])]
+    assert len(list((out / "feedback").glob("*.md"))) == 2
