@@ -63,15 +63,25 @@ np.set_printoptions(precision=4, suppress=True)
 # version earns no points for that exercise: the point is to write it yourself.
 
 # %% [markdown]
+# ## Where the material comes from
+#
+# The course is built on four published student reports about UR kinematics: a UR3 simulator
+# in Python (numerical inverse kinematics), a UR3 in a robot simulator (screw axes, sampling
+# motion planning), a UR5 study in MATLAB (symbolic forward kinematics), and a UR3 lab sheet
+# (closed-form inverse kinematics for a gripper pointing down). The lessons call them *seed
+# reports* 000, 001, 002 and 004. They are good starting points and they contain real
+# mistakes — a wrong formula that passed its own test, a solver line that would crash, a
+# missing `atan2` — and finding those mistakes is part of the course.
+
+# %% [markdown]
 # ## Units: metres and radians, always
 #
 # Every length in this course is in metres and every angle in radians. Degrees appear only where
 # a human reads them (figure titles, the pose panel). Mixing the two is the most common bug in
-# robotics code, and it is not always loud. One of the course reports this course draws on
-# converted angles with a factor of 0.0175 in one place and 0.01744 in another, instead of
-# π/180 = 0.0174533…. Each round trip through both factors scales the angle by
-# 0.01744 / 0.0175 ≈ 0.99657 — a third of a percent that nobody notices until a trajectory of
-# hundreds of warm-started steps has drifted.
+# robotics code, and it is not always loud. Seed report 002 converted angles with a factor of
+# 0.0175 in one place and 0.01744 in another, instead of π/180 = 0.0174533…. Each round trip
+# through both factors scales the angle by 0.01744 / 0.0175 ≈ 0.99657 — a third of a percent
+# that nobody notices until a trajectory of hundreds of warm-started steps has drifted.
 
 # %%
 exact = np.pi / 180

@@ -89,3 +89,14 @@ def test_grading_seeds_draw_other_inputs_than_the_visible_check():
     a = run_exercise("2.2", WRONG["2.2"][0][0], seed=0).report()
     b = run_exercise("2.2", WRONG["2.2"][0][0], seed=1).report()
     assert a != b
+
+
+def test_rpy_without_a_gimbal_lock_branch_loses_the_gimbal_lock_point():
+    def general_formulas_only(R):
+        pitch = np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0]))
+        return np.array([np.arctan2(R[2, 1], R[2, 2]), pitch, np.arctan2(R[1, 0], R[0, 0])])
+
+    for seed in SEEDS:
+        result = run_exercise("1.3", general_formulas_only, seed=seed)
+        assert result.earned == result.points - 1, result.report()
+        assert "gimbal lock" in result.report()

@@ -178,13 +178,27 @@ def _rpy_in_range(student, rng):
             )
 
 
+def _locked_rotation(pitch_sign: float, roll: float, yaw: float) -> np.ndarray:
+    """Rz(yaw) Ry(±π/2) Rx(roll) with its zeros exactly zero, as a hand-typed pose would be.
+
+    (``rpy_to_rotation`` at ±π/2 leaves cos(π/2) = 6e-17 in place of those zeros, which lets
+    formulas without a gimbal-lock branch get lucky.)
+    """
+    if pitch_sign > 0:
+        s, c = np.sin(roll - yaw), np.cos(roll - yaw)
+        return np.array([[0.0, s, c], [0.0, c, -s], [-1.0, 0.0, 0.0]])
+    s, c = np.sin(roll + yaw), np.cos(roll + yaw)
+    return np.array([[0.0, -s, -c], [0.0, c, -s], [1.0, 0.0, 0.0]])
+
+
 def _rpy_gimbal_lock(student, rng):
-    for pitch in (np.pi / 2, -np.pi / 2):
-        R = rpy_to_rotation([rng.uniform(-np.pi, np.pi), pitch, rng.uniform(-np.pi, np.pi)])
+    for pitch_sign in (1.0, -1.0, 1.0, -1.0):
+        R = _locked_rotation(pitch_sign, rng.uniform(-np.pi, np.pi), rng.uniform(-np.pi, np.pi))
         rpy = as_array(student(R.copy()), (3,), "rotation_to_rpy(R) at pitch = ±90°")
         if not np.allclose(rpy_to_rotation(rpy), R, atol=1e-9):
             raise Mismatch(
-                "at pitch = ±90° only roll ∓ yaw is defined; any angles that rebuild R will do",
+                "at pitch = ±90° only roll ∓ yaw is defined, and the general formulas divide "
+                "0 by 0: handle this case separately (any angles that rebuild R will do)",
                 inputs={"R": R},
                 got=rpy,
             )
