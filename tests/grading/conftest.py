@@ -16,7 +16,7 @@ import pytest
 
 from urkin.exercises import exercises_for_lesson
 from urkin.grading import DEFAULT_TIME_LIMIT, find_submissions, grade_notebook, new_seed
-from urkin.grading.runner import _lesson_of
+from urkin.grading.notebook import lesson_of
 
 ROOT = Path(__file__).resolve().parents[2]
 _graded: dict[Path, object] = {}
@@ -34,7 +34,7 @@ def pytest_generate_tests(metafunc):
         return
     cases, ids = [], []
     for path in _submissions(metafunc.config):
-        lesson = _lesson_of(path, None)
+        lesson = lesson_of(path)
         exercises = exercises_for_lesson(lesson) if lesson else []
         for ex in exercises or [None]:
             cases.append((path, ex.id if ex else None))

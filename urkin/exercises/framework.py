@@ -38,6 +38,8 @@ __all__ = [
     "identify_mistake",
     "link_dependencies",
     "register",
+    "require_rotation",
+    "require_transform",
     "run_exercise",
     "run_exercises",
 ]
@@ -285,6 +287,21 @@ def as_array(value: Any, shape: tuple[int, ...], what: str) -> np.ndarray:
     if not np.all(np.isfinite(array)):
         raise Mismatch(f"{what} returned NaN or infinity", got=array)
     return array
+
+
+def require_rotation(R: np.ndarray, what: str, inputs: Mapping[str, Any]) -> None:
+    """Raise :class:`Mismatch` unless ``R`` is a rotation matrix (orthonormal, det = +1)."""
+    if not np.allclose(R.T @ R, np.eye(3), atol=1e-9):
+        raise Mismatch(f"{what} is not orthonormal: RᵀR ≠ I", inputs=inputs, got=R)
+    if np.linalg.det(R) < 0:
+        raise Mismatch(f"{what} has det = −1: a reflection, not a rotation", inputs=inputs, got=R)
+
+
+def require_transform(T: np.ndarray, what: str, inputs: Mapping[str, Any]) -> None:
+    """Raise :class:`Mismatch` unless ``T`` is a homogeneous rigid-body transform."""
+    if not np.allclose(T[3], [0, 0, 0, 1]):
+        raise Mismatch(f"{what}: the last row must be [0, 0, 0, 1]", inputs=inputs, got=T)
+    require_rotation(T[:3, :3], f"the 3×3 block of {what}", inputs)
 
 
 def identify_mistake(

@@ -4,7 +4,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from urkin.exercises.framework import Check, Exercise, Mismatch, as_array, compare, register
+from urkin.exercises.framework import (
+    Check,
+    Exercise,
+    as_array,
+    compare,
+    register,
+    require_transform,
+)
 from urkin.exercises.inputs import random_pose
 from urkin.robots import T_BASE_LINK_BASE
 from urkin.transforms import rot_z
@@ -79,19 +86,7 @@ def _is_transform(student, rng):
     for _ in range(5):
         T = random_pose(rng)
         got = as_array(student(T.copy()), (4, 4), "base_link_pose(T_base_tool)")
-        if not np.allclose(got[3], [0, 0, 0, 1]):
-            raise Mismatch(
-                "the last row of a homogeneous transform is [0, 0, 0, 1]",
-                inputs={"T_base_tool": T},
-                got=got,
-            )
-        R = got[:3, :3]
-        if not np.allclose(R.T @ R, np.eye(3), atol=1e-9) or np.linalg.det(R) < 0:
-            raise Mismatch(
-                "the upper-left 3×3 block is not a rotation matrix",
-                inputs={"T_base_tool": T},
-                got=got,
-            )
+        require_transform(got, "base_link_pose(T_base_tool)", {"T_base_tool": T})
 
 
 def _base_link_matches(student, rng):

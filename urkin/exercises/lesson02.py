@@ -5,7 +5,14 @@ from __future__ import annotations
 import numpy as np
 
 import urkin
-from urkin.exercises.framework import Check, Exercise, Mismatch, as_array, compare, register
+from urkin.exercises.framework import (
+    Check,
+    Exercise,
+    as_array,
+    compare,
+    register,
+    require_transform,
+)
 from urkin.exercises.inputs import negated_a, random_arm, random_q
 from urkin.kinematics import dh_chain, dh_transform
 
@@ -21,14 +28,6 @@ _FK_FUNCTIONS = (
     "urkin._generated.ur_kinematics.frames_one",
     "urkin._generated.ur_kinematics.frames_many",
 )
-
-
-def _require_transform(T: np.ndarray, what: str, inputs: dict) -> None:
-    if not np.allclose(T[3], [0, 0, 0, 1]):
-        raise Mismatch(f"{what}: the last row must be [0, 0, 0, 1]", inputs=inputs, got=T)
-    R = T[:3, :3]
-    if not np.allclose(R.T @ R, np.eye(3), atol=1e-9) or np.linalg.det(R) < 0:
-        raise Mismatch(f"{what}: the 3×3 block is not a rotation", inputs=inputs, got=T)
 
 
 # --------------------------------------------------------------------------- 2.1 dh_transform
@@ -47,7 +46,7 @@ def _dh_is_transform(student, rng):
     for _ in range(10):
         theta, d, a, alpha = _link(rng)
         T = as_array(student(theta, d, a, alpha), (4, 4), "dh_transform(theta, d, a, alpha)")
-        _require_transform(T, "dh_transform", {"theta": theta, "d": d, "a": a, "alpha": alpha})
+        require_transform(T, "dh_transform", {"theta": theta, "d": d, "a": a, "alpha": alpha})
 
 
 def _transpose_rotation(T):
@@ -113,7 +112,7 @@ def _fk_is_transform(student, rng):
     for _ in range(5):
         robot, q = random_arm(rng), random_q(rng)
         T = as_array(student(robot, q.copy()), (4, 4), "forward_kinematics(robot, q)")
-        _require_transform(T, "forward_kinematics", {"robot": robot.name, "q": q})
+        require_transform(T, "forward_kinematics", {"robot": robot.name, "q": q})
 
 
 def _fk_matches(student, rng):

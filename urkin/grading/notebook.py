@@ -15,7 +15,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Statement", "Submission", "lesson_from_filename", "read_submission"]
+__all__ = ["Statement", "Submission", "lesson_from_filename", "lesson_of", "read_submission"]
 
 _KEPT = (ast.Import, ast.ImportFrom, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)
 _MAGIC = re.compile(r"^\s*[%!?]")
@@ -68,6 +68,19 @@ def _lesson_from_metadata(notebook: dict) -> str | None:
     if isinstance(lesson, str) and lesson.isdigit():
         return f"{int(lesson):02d}"
     return None
+
+
+def lesson_of(path: str | Path, lesson: str | None = None) -> str | None:
+    """Two-digit lesson of a notebook: ``lesson`` if given, else its metadata, else its name."""
+    if lesson is not None:
+        return f"{int(lesson):02d}"
+    path = Path(path)
+    try:
+        notebook = json.loads(path.read_text(encoding="utf-8"))
+        from_metadata = _lesson_from_metadata(notebook) if isinstance(notebook, dict) else None
+    except (OSError, ValueError, AttributeError):
+        from_metadata = None
+    return from_metadata or lesson_from_filename(path)
 
 
 def _cell_source(cell: dict) -> str:

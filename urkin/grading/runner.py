@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urkin.exercises import ExerciseResult, exercises_for_lesson
-from urkin.grading.notebook import lesson_from_filename
+from urkin.grading.notebook import lesson_of
 
 __all__ = [
     "DEFAULT_MEMORY_LIMIT_MB",
@@ -86,19 +86,6 @@ def new_seed() -> int:
     return secrets.randbelow(2**31 - 1) + 1
 
 
-def _lesson_of(path: Path, lesson: str | None) -> str | None:
-    if lesson is not None:
-        return f"{int(lesson):02d}"
-    try:
-        meta = json.loads(path.read_text(encoding="utf-8")).get("metadata", {}).get("urkin", {})
-        value = meta.get("lesson") if isinstance(meta, dict) else None
-        if isinstance(value, str) and value.isdigit():
-            return f"{int(value):02d}"
-    except (OSError, ValueError, AttributeError):
-        pass
-    return lesson_from_filename(path)
-
-
 def _worker_environment() -> dict:
     env = dict(os.environ)
     env.update(
@@ -147,7 +134,7 @@ def grade_notebook(
     """
     path = Path(path)
     seed = new_seed() if seed is None else int(seed)
-    result = SubmissionResult(name or path.name, str(path), _lesson_of(path, lesson), seed, "error")
+    result = SubmissionResult(name or path.name, str(path), lesson_of(path, lesson), seed, "error")
     if result.lesson is None or not exercises_for_lesson(result.lesson):
         result.status = "unknown lesson"
         result.reason = (
