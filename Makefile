@@ -5,6 +5,8 @@ PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.urkin-installed
+# JupyterLab refuses to run as root unless told; containers often run as root
+JUPYTER_FLAGS := $(if $(filter 0,$(shell id -u 2>/dev/null)),--allow-root,)
 NBVAL := $(PY) -m pytest -o addopts="" -p no:cacheprovider --nbval-current-env \
          --nbval-sanitize-with tests/nbval_sanitize.cfg
 
@@ -20,7 +22,7 @@ $(STAMP): pyproject.toml
 
 ## make course: open the course notebooks in JupyterLab
 course: $(STAMP)
-	$(VENV)/bin/jupyter lab course/
+	$(VENV)/bin/jupyter lab $(JUPYTER_FLAGS) course/
 
 ## make test: every check CI runs (lint, unit tests and doctests, autograder, notebooks, docs)
 test: lint unit notebooks docs

@@ -31,6 +31,7 @@ __all__ = [
     "execute",
     "find_lessons",
     "normalise_solution",
+    "strip_solutions",
 ]
 
 BEGIN, END = "### BEGIN SOLUTION", "### END SOLUTION"

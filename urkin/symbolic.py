@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import functools
+import itertools
 import sys
 from pathlib import Path
 
@@ -242,8 +243,6 @@ def _emit(name: str, doc: str, entries: dict[tuple[int, ...], sp.Expr], shape: t
 
 
 def _all_indices(shape: tuple[int, ...]) -> list[tuple[int, ...]]:
-    import itertools
-
     return list(itertools.product(*(range(n) for n in shape)))
 
 
