@@ -23,13 +23,20 @@ from urkin.transforms import skew
 
 __all__ = [
     "MAX_JOINT_ANGLE",
+    "SINGULARITIES",
+    "SINGULARITY_TOLERANCE",
     "check_joints",
+    "condition_number",
     "dh_chain",
     "dh_transform",
     "fk",
     "fk_frames",
     "jacobian",
+    "manipulability",
     "position_jacobian",
+    "singular_families",
+    "singularities",
+    "singularity_factors",
 ]
 
 #: Joint angles beyond ±8π (±1440°) are rejected as a likely degrees-for-radians mistake.
@@ -362,3 +369,141 @@ def dh_chain(table: ArrayLike, q: ArrayLike, convention: str = "standard") -> np
     for i in range(1, rows.shape[0]):
         T = T @ links[..., i, :, :]
     return T
+
+
+#: Names of the UR singular families, in the order of :func:`singularity_factors`.
+SINGULARITIES: tuple[str, str, str] = ("shoulder", "elbow", "wrist")
+
+#: A family is present when the magnitude of its factor is at most this (metres for the
+#: shoulder factor, dimensionless for the others).
+SINGULARITY_TOLERANCE = 1e-9
+
+
+def singularity_factors(robot: Robot, q: ArrayLike) -> np.ndarray:
+    """The three factors of ``det J = a2 a3 · s3 · s5 · (a2 c2 + a3 c23 + d5 s234)``.
+
+    For every UR arm the determinant of the geometric Jacobian factors into
+
+    * **shoulder**: ``a2 cos q2 + a3 cos(q2 + q3) + d5 sin(q2 + q3 + q4)`` (metres): zero
+      when the wrist centre lies on the plane through the base axis that the shoulder cannot
+      move it out of, so joint 1 loses its effect on it;
+    * **elbow**: ``sin q3``: zero when the upper arm and forearm are aligned;
+    * **wrist**: ``sin q5``: zero when the axes of joints 4 and 6 are parallel.
+
+    Lesson 04 derives this with SymPy.
+
+    Parameters
+    ----------
+    robot : Robot
+    q : array_like, shape (6,) or (N, 6)
+
+    Returns
+    -------
+    ndarray, shape (3,) or (N, 3)
+        ``(shoulder, elbow, wrist)`` factors.
+
+    Examples
+    --------
+    >>> import urkin
+    >>> ur5 = urkin.robot("ur5")
+    >>> singularity_factors(ur5, [0, -np.pi / 2, 0, -np.pi / 2, 0, 0]).round(6) + 0.0
+    array([0., 0., 0.])
+    """
+    robot = _robot(robot)
+    array, _ = _joints(q)
+    q2, q3, q4, q5 = (array[..., i] for i in (1, 2, 3, 4))
+    shoulder = robot.a2 * np.cos(q2) + robot.a3 * np.cos(q2 + q3) + robot.d5 * np.sin(q2 + q3 + q4)
+    return np.stack([shoulder, np.sin(q3), np.sin(q5)], axis=-1)
+
+
+def singular_families(robot: Robot, q: ArrayLike, tol: float = SINGULARITY_TOLERANCE) -> np.ndarray:
+    """Which singular families hold at ``q``: booleans ``(shoulder, elbow, wrist)``.
+
+    Returns
+    -------
+    ndarray of bool, shape (3,) or (N, 3)
+    """
+    return np.abs(singularity_factors(robot, q)) <= tol
+
+
+def singularities(
+    robot: Robot, q: ArrayLike, tol: float = SINGULARITY_TOLERANCE
+) -> tuple[str, ...] | list[tuple[str, ...]]:
+    """Names of the singular families present at ``q`` (see :func:`singularity_factors`).
+
+    Parameters
+    ----------
+    robot : Robot
+    q : array_like, shape (6,) or (N, 6)
+    tol : float
+        Largest factor magnitude that counts as singular.  At the default 1e-9 a flagged
+        configuration's Jacobian has a smallest singular value far below 1e-6.
+
+    Returns
+    -------
+    tuple of str, or list of tuples for a batch
+        A subset of ``("shoulder", "elbow", "wrist")``, empty when ``q`` is regular.
+
+    Examples
+    --------
+    >>> import urkin
+    >>> singularities(urkin.robot("ur5"), [0, -np.pi / 2, 0, -np.pi / 2, 0, 0])
+    ('shoulder', 'elbow', 'wrist')
+    >>> singularities(urkin.robot("ur5"), [0.1, -1.0, 1.2, -0.3, 0.5, 0.7])
+    ()
+    """
+    flags = singular_families(robot, q, tol)
+    if flags.ndim == 1:
+        return tuple(name for name, flag in zip(SINGULARITIES, flags) if flag)
+    return [tuple(n for n, flag in zip(SINGULARITIES, row) if flag) for row in flags]
+
+
+def manipulability(robot: Robot, q: ArrayLike, part: str = "full") -> np.ndarray | float:
+    """Yoshikawa's manipulability ``w = sqrt(det(J Jᵀ))``, zero exactly at singularities.
+
+    Parameters
+    ----------
+    robot : Robot
+    q : array_like, shape (6,) or (N, 6)
+    part : {"full", "position"}
+        The whole 6×6 Jacobian (then ``w = |det J|``, units mixing m and rad) or its linear
+        rows only (``w`` in m³/rad³: the volume of the velocity ellipsoid).
+
+    Returns
+    -------
+    float or ndarray, shape (N,)
+
+    Examples
+    --------
+    >>> import urkin
+    >>> ur5 = urkin.robot("ur5")
+    >>> float(manipulability(ur5, [0, -np.pi / 2, 0, -np.pi / 2, 0, 0]))
+    0.0
+    """
+    J = jacobian(robot, q)
+    if part == "full":
+        return np.abs(np.linalg.det(J)) + 0.0
+    if part == "position":
+        Jv = J[..., :3, :]
+        return np.sqrt(np.maximum(np.linalg.det(Jv @ np.swapaxes(Jv, -1, -2)), 0.0))
+    raise ValueError(f"part must be 'full' or 'position'; got {part!r}")
+
+
+def condition_number(robot: Robot, q: ArrayLike) -> np.ndarray | float:
+    """Condition number ``σ_max / σ_min`` of the geometric Jacobian.
+
+    It grows without bound towards a singularity (where rounding leaves ``σ_min`` near 1e-17
+    rather than exactly 0).
+
+    Examples
+    --------
+    >>> import urkin
+    >>> ur5 = urkin.robot("ur5")
+    >>> bool(condition_number(ur5, [0, -np.pi / 2, 0, -np.pi / 2, 0, 0]) > 1e15)
+    True
+    >>> round(float(condition_number(ur5, [0.1, -1.0, 1.2, -0.3, 0.5, 0.7])), 1)
+    12.2
+    """
+    sigma = np.linalg.svd(jacobian(robot, q), compute_uv=False)
+    with np.errstate(divide="ignore"):
+        return sigma[..., 0] / sigma[..., -1]

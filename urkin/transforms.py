@@ -6,6 +6,8 @@ Conventions
     * Rotation vectors (exponential coordinates) ``ω = θ k``: unit axis ``k`` times angle ``θ``
       in radians.
     * Roll–pitch–yaw ``(r, p, y)`` are fixed-axis X–Y–Z angles: ``R = Rz(y) @ Ry(p) @ Rx(r)``.
+    * Twists and screw axes are 6-vectors ``(ω, v)``, angular part first, as in Lynch and Park's
+      *Modern Robotics*; adjoint matrices act on them in that order.
     * Names carry frames: ``T_a_b`` is the pose of frame ``b`` in frame ``a``, so
       ``T_a_c = T_a_b @ T_b_c``.
 """
@@ -16,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 __all__ = [
+    "adjoint",
     "check_rotation",
     "check_transform",
     "inv_transform",
@@ -26,9 +29,13 @@ __all__ = [
     "rotation_angle",
     "rotation_to_rpy",
     "rpy_to_rotation",
+    "se3_exp",
+    "se3_log",
     "skew",
     "so3_exp",
     "so3_log",
+    "twist_matrix",
+    "twist_vector",
     "unskew",
 ]
 
@@ -430,3 +437,148 @@ def rotation_to_rpy(R: ArrayLike) -> np.ndarray:
     )
     yaw = np.where(locked, 0.0, np.arctan2(M[..., 1, 0], M[..., 0, 0]))
     return np.stack([roll, pitch, yaw], axis=-1)
+
+
+def _twist(V: ArrayLike, name: str) -> np.ndarray:
+    array = _float_array(V, name)
+    if array.ndim == 0 or array.shape[-1] != 6:
+        raise ValueError(f"{name} must have shape (6,) or (N, 6); got {array.shape}")
+    return array
+
+
+def twist_matrix(V: ArrayLike) -> np.ndarray:
+    """The 4×4 matrix ``[V] = [[[ω], v], [0, 0]]`` of a twist ``V = (ω, v)`` (an element of se(3)).
+
+    Examples
+    --------
+    >>> twist_matrix([0, 0, 1, 0.5, 0, 0]) + 0.0  # + 0.0 turns -0.0 into 0.0
+    array([[ 0. , -1. ,  0. ,  0.5],
+           [ 1. ,  0. ,  0. ,  0. ],
+           [ 0. ,  0. ,  0. ,  0. ],
+           [ 0. ,  0. ,  0. ,  0. ]])
+    """
+    twist = _twist(V, "V")
+    M = np.zeros((*twist.shape[:-1], 4, 4))
+    M[..., :3, :3] = skew(twist[..., :3])
+    M[..., :3, 3] = twist[..., 3:]
+    return M
+
+
+def twist_vector(M: ArrayLike) -> np.ndarray:
+    """The twist ``(ω, v)`` of a 4×4 se(3) matrix, the inverse of :func:`twist_matrix`.
+
+    Examples
+    --------
+    >>> twist_vector(twist_matrix([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]))
+    array([1., 2., 3., 4., 5., 6.])
+    """
+    array = _float_array(M, "M")
+    if array.shape[-2:] != (4, 4):
+        raise ValueError(f"M must have shape (4, 4) or (N, 4, 4); got {array.shape}")
+    return np.concatenate([unskew(array[..., :3, :3]), array[..., :3, 3]], axis=-1)
+
+
+def se3_exp(V: ArrayLike) -> np.ndarray:
+    """Rigid-body motion ``exp([V])`` of exponential coordinates ``V = (ω, v)`` (a twist × time).
+
+    ``R = exp([ω])`` and ``p = (I + (1 − cos θ)/θ² [ω] + (θ − sin θ)/θ³ [ω]²) v`` with
+    ``θ = ‖ω‖``; a pure translation (``ω = 0``) gives ``p = v``.
+
+    Parameters
+    ----------
+    V : array_like, shape (..., 6)
+
+    Returns
+    -------
+    ndarray, shape (..., 4, 4)
+
+    Examples
+    --------
+    >>> T = se3_exp([0, 0, np.pi / 2, 0, 0, 0])  # a quarter turn about z
+    >>> np.allclose(T[:3, :3], rot_z(np.pi / 2)), T[:3, 3]
+    (True, array([0., 0., 0.]))
+    >>> se3_exp([0, 0, 0, 0.1, 0.2, 0.3])[:3, 3]  # a pure translation
+    array([0.1, 0.2, 0.3])
+    """
+    twist = _twist(V, "V")
+    omega, v = twist[..., :3], twist[..., 3:]
+    theta = np.linalg.norm(omega, axis=-1)[..., None, None]
+    W = skew(omega)
+    W2 = W @ W
+    small = theta < 1e-6
+    safe = np.where(small, 1.0, theta)
+    a = np.where(small, 1.0 - theta**2 / 6.0, np.sin(safe) / safe)
+    b = np.where(small, 0.5 - theta**2 / 24.0, (1.0 - np.cos(safe)) / safe**2)
+    c = np.where(small, 1.0 / 6.0 - theta**2 / 120.0, (safe - np.sin(safe)) / safe**3)
+    T = np.zeros((*twist.shape[:-1], 4, 4))
+    T[..., :3, :3] = np.eye(3) + a * W + b * W2
+    T[..., :3, 3] = ((np.eye(3) + b * W + c * W2) @ v[..., None])[..., 0]
+    T[..., 3, 3] = 1.0
+    return T
+
+
+def se3_log(T: ArrayLike) -> np.ndarray:
+    """Exponential coordinates ``V = (ω, v)`` of a rigid-body transform, ``‖ω‖ ≤ π``.
+
+    The inverse of :func:`se3_exp`: ``ω = log(R)`` and ``v = G⁻¹ p`` with
+    ``G⁻¹ = I − [ω]/2 + (1 − θ sin θ / (2 (1 − cos θ))) / θ² · [ω]²``.
+
+    Parameters
+    ----------
+    T : array_like, shape (..., 4, 4)
+
+    Returns
+    -------
+    ndarray, shape (..., 6)
+
+    Examples
+    --------
+    >>> V = np.array([0.1, -0.2, 0.3, 0.4, 0.5, -0.6])
+    >>> np.allclose(se3_log(se3_exp(V)), V)
+    True
+    """
+    array = check_transform(T)
+    omega = so3_log(array[..., :3, :3])
+    theta = np.linalg.norm(omega, axis=-1)[..., None, None]
+    W = skew(omega)
+    small = theta < 1e-4
+    safe = np.where(small, 1.0, theta)
+    k = np.where(
+        small,
+        1.0 / 12.0 + theta**2 / 720.0,
+        (1.0 - safe * np.sin(safe) / (2.0 * (1.0 - np.cos(safe)))) / safe**2,
+    )
+    G_inverse = np.eye(3) - 0.5 * W + k * (W @ W)
+    v = (G_inverse @ array[..., :3, 3, None])[..., 0]
+    return np.concatenate([omega, v], axis=-1)
+
+
+def adjoint(T: ArrayLike) -> np.ndarray:
+    """Adjoint ``Ad_T = [[R, 0], [[p] R, R]]``, mapping twists ``(ω, v)`` through ``T``.
+
+    If ``V_b`` is a twist in frame b and ``T = T_a_b``, then ``V_a = Ad_T @ V_b``.
+
+    Parameters
+    ----------
+    T : array_like, shape (..., 4, 4)
+
+    Returns
+    -------
+    ndarray, shape (..., 6, 6)
+
+    Examples
+    --------
+    >>> T = make_transform(rot_z(0.3), [0.1, 0.2, 0.3])
+    >>> V = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0])
+    >>> np.allclose(twist_matrix(adjoint(T) @ V), T @ twist_matrix(V) @ inv_transform(T))
+    True
+    """
+    array = _float_array(T, "T")
+    if array.shape[-2:] != (4, 4):
+        raise ValueError(f"T must have shape (4, 4) or (N, 4, 4); got {array.shape}")
+    R, p = array[..., :3, :3], array[..., :3, 3]
+    Ad = np.zeros((*array.shape[:-2], 6, 6))
+    Ad[..., :3, :3] = R
+    Ad[..., 3:, 3:] = R
+    Ad[..., 3:, :3] = skew(p) @ R
+    return Ad

@@ -1,0 +1,335 @@
+"""Product of exponentials: screw axes, forward kinematics and Jacobians (Modern Robotics).
+
+Conventions are those of Lynch and Park, *Modern Robotics*:
+
+* a screw axis is a 6-vector ``(ω, v)``; for a revolute joint with unit axis ``ω`` through the
+  point ``q``, ``v = −ω × q``;
+* the screw axes of an n-joint arm are the columns of ``S`` (space frame) or ``B`` (body frame),
+  arrays of shape (6, n), Modern Robotics' ``Slist`` and ``Blist``;
+* ``M`` is the pose of the end-effector frame at the zero configuration;
+* ``T(q) = e^[S1]q1 ⋯ e^[Sn]qn M = M e^[B1]q1 ⋯ e^[Bn]qn``;
+* the space Jacobian ``J_s`` and body Jacobian ``J_b`` map joint rates to the twists
+  ``(ω, v)`` of the end effector in the space and body frames.
+
+urkin's geometric Jacobian (:func:`urkin.jacobian`) stacks ``[v; ω]`` with ``v`` the velocity of
+the end-effector origin; :func:`space_from_geometric` and :func:`geometric_from_space` convert.
+Every function takes one configuration ``(n,)`` or a batch ``(N, n)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from urkin.kinematics import dh_transform, fk, fk_frames
+from urkin.robots import Robot
+from urkin.transforms import adjoint, check_transform, inv_transform, se3_exp, skew
+
+__all__ = [
+    "body_screws",
+    "fk_body",
+    "fk_space",
+    "geometric_from_space",
+    "jacobian_body",
+    "jacobian_space",
+    "screw_axis",
+    "space_from_geometric",
+    "space_screws",
+]
+
+
+def screw_axis(omega: ArrayLike, point: ArrayLike) -> np.ndarray:
+    """Screw axis ``(ω, −ω × q)`` of a revolute joint turning about unit axis ``ω`` through ``q``.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Unit direction of the joint axis.
+    point : array_like, shape (..., 3)
+        Any point on the axis, metres.
+
+    Returns
+    -------
+    ndarray, shape (..., 6)
+
+    Examples
+    --------
+    >>> screw_axis([0, 0, 1], [0.5, 0, 0])  # a vertical axis through x = 0.5 m
+    array([ 0. ,  0. ,  1. ,  0. , -0.5,  0. ])
+    """
+    w = np.asarray(omega, dtype=float)
+    q = np.asarray(point, dtype=float)
+    return np.concatenate([w, -np.cross(w, q)], axis=-1) + 0.0
+
+
+def _frames_at_zero(table: np.ndarray, convention: str) -> np.ndarray:
+    links = dh_transform(0.0, table[:, 0], table[:, 1], table[:, 2], convention)
+    frames = [np.eye(4)]
+    for link in links:
+        frames.append(frames[-1] @ link)
+    return np.array(frames)
+
+
+def space_screws(
+    robot: Robot | ArrayLike, convention: str = "standard"
+) -> tuple[np.ndarray, np.ndarray]:
+    """Space-frame screw axes ``S`` and home pose ``M`` of an arm, derived from its DH table.
+
+    Parameters
+    ----------
+    robot : Robot or array_like, shape (n, 3)
+        A UR arm (its base and tool transforms are honoured), or any revolute arm's DH table
+        with rows ``(d_i, a_i, α_i)`` (``(d_i, a_{i-1}, α_{i-1})`` in the modified convention).
+    convention : {"standard", "modified"}
+        Convention of a table (ignored for a Robot, whose tables are standard).
+
+    Returns
+    -------
+    S : ndarray, shape (6, n)
+        One screw axis ``(ω, v)`` per column, in the base (space) frame.
+    M : ndarray, shape (4, 4)
+        End-effector pose at ``q = 0``.
+
+    Notes
+    -----
+    In standard DH, joint ``i`` turns about the z axis of frame ``i − 1``; in modified DH,
+    about the z axis of frame ``i``.  The screw axis is that axis through that frame's origin.
+
+    Examples
+    --------
+    >>> import urkin
+    >>> S, M = space_screws(urkin.robot("ur5"))
+    >>> S[:, 0]  # joint 1: the base z axis through the origin
+    array([0., 0., 1., 0., 0., 0.])
+    """
+    if isinstance(robot, Robot):
+        frames = fk_frames(robot, np.zeros(6))
+        axes, M = frames[:-1], fk(robot, np.zeros(6))
+    else:
+        table = np.asarray(robot, dtype=float)
+        if table.ndim != 2 or table.shape[1] != 3:
+            raise ValueError(f"a DH table has rows (d, a, alpha): shape (n, 3); got {table.shape}")
+        frames = _frames_at_zero(table, convention)
+        axes = frames[:-1] if convention == "standard" else frames[1:]
+        M = frames[-1]
+    S = screw_axis(axes[:, :3, 2], axes[:, :3, 3]).T
+    return S, M
+
+
+def body_screws(
+    robot: Robot | ArrayLike, convention: str = "standard"
+) -> tuple[np.ndarray, np.ndarray]:
+    """Body-frame screw axes ``B = Ad(M⁻¹) S`` and home pose ``M`` (see :func:`space_screws`).
+
+    Examples
+    --------
+    >>> import urkin
+    >>> B, M = body_screws(urkin.robot("ur3"))
+    >>> B[:, 5]  # the last joint turns about the flange's own z axis
+    array([0., 0., 1., 0., 0., 0.])
+    """
+    S, M = space_screws(robot, convention)
+    return adjoint(inv_transform(M)) @ S + 0.0, M
+
+
+def _check(M: ArrayLike | None, screws: ArrayLike, q: ArrayLike, name: str):
+    axes = np.asarray(screws, dtype=float)
+    if axes.ndim != 2 or axes.shape[0] != 6:
+        raise ValueError(f"{name} must have shape (6, n), one screw axis per column; "
+                         f"got {axes.shape}")  # fmt: skip
+    angles = np.asarray(q, dtype=float)
+    n = axes.shape[1]
+    if angles.shape[-1:] != (n,) or angles.ndim > 2:
+        raise ValueError(f"q must have shape ({n},) or (N, {n}) for {n} screw axes; "
+                         f"got {angles.shape}")  # fmt: skip
+    if not np.all(np.isfinite(angles)):
+        raise ValueError("q contains NaN or infinity")
+    home = None if M is None else check_transform(M, name="M")
+    return home, axes, angles
+
+
+def _exponentials(axes: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """``e^[A_i] q_i`` for every joint: shape (..., n, 4, 4)."""
+    return se3_exp(angles[..., :, None] * axes.T)
+
+
+def fk_space(M: ArrayLike, S: ArrayLike, q: ArrayLike) -> np.ndarray:
+    """Forward kinematics in the space form: ``T = e^[S1]q1 ⋯ e^[Sn]qn M``.
+
+    Parameters
+    ----------
+    M : array_like, shape (4, 4)
+        End-effector pose at ``q = 0``.
+    S : array_like, shape (6, n)
+        Space-frame screw axes, one per column.
+    q : array_like, shape (n,) or (N, n)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (4, 4) or (N, 4, 4)
+
+    Examples
+    --------
+    >>> import urkin
+    >>> ur5 = urkin.robot("ur5")
+    >>> S, M = space_screws(ur5)
+    >>> q = [0.1, -1.0, 1.2, -0.3, 0.5, 0.7]
+    >>> np.allclose(fk_space(M, S, q), urkin.fk(ur5, q))
+    True
+    """
+    home, axes, angles = _check(M, S, q, "S")
+    E = _exponentials(axes, angles)
+    T = E[..., 0, :, :]
+    for i in range(1, axes.shape[1]):
+        T = T @ E[..., i, :, :]
+    return T @ home
+
+
+def fk_body(M: ArrayLike, B: ArrayLike, q: ArrayLike) -> np.ndarray:
+    """Forward kinematics in the body form: ``T = M e^[B1]q1 ⋯ e^[Bn]qn``.
+
+    Parameters
+    ----------
+    M : array_like, shape (4, 4)
+        End-effector pose at ``q = 0``.
+    B : array_like, shape (6, n)
+        Body-frame screw axes, one per column.
+    q : array_like, shape (n,) or (N, n)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (4, 4) or (N, 4, 4)
+
+    Examples
+    --------
+    >>> import urkin
+    >>> B, M = body_screws(urkin.robot("ur3"))
+    >>> fk_body(M, B, np.zeros((5, 6))).shape
+    (5, 4, 4)
+    """
+    home, axes, angles = _check(M, B, q, "B")
+    E = _exponentials(axes, angles)
+    T = np.broadcast_to(home, (*angles.shape[:-1], 4, 4))
+    for i in range(axes.shape[1]):
+        T = T @ E[..., i, :, :]
+    return T
+
+
+def jacobian_space(S: ArrayLike, q: ArrayLike) -> np.ndarray:
+    """Space Jacobian: column ``i`` is ``Ad(e^[S1]q1 ⋯ e^[S(i-1)]q(i-1)) S_i``.
+
+    It maps joint rates to the end effector's twist ``(ω, v_s)`` in the space frame, where
+    ``v_s`` is the velocity of the point of the body at the space frame's origin.
+
+    Parameters
+    ----------
+    S : array_like, shape (6, n)
+    q : array_like, shape (n,) or (N, n)
+
+    Returns
+    -------
+    ndarray, shape (6, n) or (N, 6, n)
+
+    Examples
+    --------
+    >>> import urkin
+    >>> S, M = space_screws(urkin.robot("ur5"))
+    >>> np.allclose(jacobian_space(S, np.zeros(6)), S)  # at q = 0 the columns are the axes
+    True
+    """
+    _, axes, angles = _check(None, S, q, "S")
+    E = _exponentials(axes, angles)
+    n = axes.shape[1]
+    J = np.empty((*angles.shape[:-1], 6, n))
+    J[..., :, 0] = axes[:, 0]
+    T = E[..., 0, :, :]
+    for i in range(1, n):
+        J[..., :, i] = adjoint(T) @ axes[:, i]
+        T = T @ E[..., i, :, :]
+    return J
+
+
+def jacobian_body(B: ArrayLike, q: ArrayLike) -> np.ndarray:
+    """Body Jacobian: column ``i`` is ``Ad(e^−[Bn]qn ⋯ e^−[B(i+1)]q(i+1)) B_i``.
+
+    It maps joint rates to the end effector's twist ``(ω_b, v_b)`` in its own frame.
+
+    Parameters
+    ----------
+    B : array_like, shape (6, n)
+    q : array_like, shape (n,) or (N, n)
+
+    Returns
+    -------
+    ndarray, shape (6, n) or (N, 6, n)
+
+    Examples
+    --------
+    >>> import urkin
+    >>> B, M = body_screws(urkin.robot("ur5"))
+    >>> jacobian_body(B, np.zeros((3, 6))).shape
+    (3, 6, 6)
+    """
+    _, axes, angles = _check(None, B, q, "B")
+    E_inverse = _exponentials(axes, -angles)
+    n = axes.shape[1]
+    J = np.empty((*angles.shape[:-1], 6, n))
+    J[..., :, n - 1] = axes[:, n - 1]
+    T = E_inverse[..., n - 1, :, :]
+    for i in range(n - 2, -1, -1):
+        J[..., :, i] = adjoint(T) @ axes[:, i]
+        T = T @ E_inverse[..., i, :, :]
+    return J
+
+
+def space_from_geometric(J: ArrayLike, T_base_tool: ArrayLike) -> np.ndarray:
+    """Space Jacobian ``(ω; v_s)`` from a geometric Jacobian ``[v; ω]`` of the tool origin.
+
+    ``v_s = v + p × ω`` with ``p`` the tool origin: the velocity of the body point at the base
+    origin rather than at the tool.
+
+    Parameters
+    ----------
+    J : array_like, shape (..., 6, n)
+        Geometric Jacobian, rows ``[v; ω]`` (:func:`urkin.jacobian`).
+    T_base_tool : array_like, shape (..., 4, 4)
+        The tool pose the Jacobian belongs to (:func:`urkin.fk`).
+
+    Returns
+    -------
+    ndarray, shape (..., 6, n)
+
+    Examples
+    --------
+    >>> import urkin
+    >>> ur5, q = urkin.robot("ur5"), [0.3, -1.1, 0.9, 0.2, -0.6, 1.4]
+    >>> S, M = space_screws(ur5)
+    >>> J_s = space_from_geometric(urkin.jacobian(ur5, q), urkin.fk(ur5, q))
+    >>> np.allclose(J_s, jacobian_space(S, q))
+    True
+    """
+    geometric = np.asarray(J, dtype=float)
+    p = np.asarray(T_base_tool, dtype=float)[..., :3, 3]
+    Jv, Jw = geometric[..., :3, :], geometric[..., 3:, :]
+    return np.concatenate([Jw, Jv + skew(p) @ Jw], axis=-2)
+
+
+def geometric_from_space(J_space: ArrayLike, T_base_tool: ArrayLike) -> np.ndarray:
+    """Geometric Jacobian ``[v; ω]`` of the tool origin from a space Jacobian ``(ω; v_s)``.
+
+    The inverse of :func:`space_from_geometric`: ``v = v_s − p × ω``.
+
+    Examples
+    --------
+    >>> import urkin
+    >>> ur3, q = urkin.robot("ur3"), np.zeros(6)
+    >>> S, M = space_screws(ur3)
+    >>> np.allclose(geometric_from_space(jacobian_space(S, q), M), urkin.jacobian(ur3, q))
+    True
+    """
+    space = np.asarray(J_space, dtype=float)
+    p = np.asarray(T_base_tool, dtype=float)[..., :3, 3]
+    Jw, Jvs = space[..., :3, :], space[..., 3:, :]
+    return np.concatenate([Jvs - skew(p) @ Jw, Jw], axis=-2)
