@@ -76,6 +76,79 @@ def ur5_position(q):
     )
 
 
+def _skew(w):
+    return np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+
+
+def screw_axis(w, q):
+    w, q = np.asarray(w, float), np.asarray(q, float)
+    return np.concatenate([w, -np.cross(w, q)])
+
+
+def twist_exp(S, theta):
+    w, v = np.asarray(S[:3], float), np.asarray(S[3:], float)
+    W = _skew(w)
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    T[:3, 3] = (np.eye(3) * theta + (1 - np.cos(theta)) * W + (theta - np.sin(theta)) * W @ W) @ v
+    return T
+
+
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T @ M
+
+
+def fk_body(M, B, q):
+    T = np.array(M, dtype=float)
+    for i in range(len(q)):
+        T = T @ twist_exp(B[:, i], q[i])
+    return T
+
+
+def _frames(robot, q):
+    frames = [np.eye(4)]
+    for theta, d, a, alpha in zip(q, robot.d, robot.a, robot.alpha):
+        frames.append(frames[-1] @ dh_transform(theta, d, a, alpha))
+    return frames
+
+
+def geometric_jacobian(robot, q):
+    frames = _frames(robot, q)
+    p = frames[-1][:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        z, o = frames[i][:3, 2], frames[i][:3, 3]
+        J[:3, i] = np.cross(z, p - o)
+        J[3:, i] = z
+    return J
+
+
+def numeric_jacobian(f, q, h=1e-6):
+    q = np.asarray(q, dtype=float)
+    columns = []
+    for j in range(q.size):
+        step = np.zeros_like(q)
+        step[j] = h
+        columns.append((np.asarray(f(q + step)) - np.asarray(f(q - step))) / (2 * h))
+    return np.column_stack(columns)
+
+
+def singularities(robot, q, tol=1e-9):
+    q2, q3, q4, q5 = q[1], q[2], q[3], q[4]
+    shoulder = robot.a2 * np.cos(q2) + robot.a3 * np.cos(q2 + q3) + robot.d5 * np.sin(q2 + q3 + q4)
+    found = set()
+    if abs(shoulder) < tol:
+        found.add("shoulder")
+    if abs(np.sin(q3)) < tol:
+        found.add("elbow")
+    if abs(np.sin(q5)) < tol:
+        found.add("wrist")
+    return found
+
+
 SOLUTIONS = {
     "0.1": deg_to_rad,
     "0.2": base_link_pose,
@@ -86,6 +159,13 @@ SOLUTIONS = {
     "2.1": dh_transform,
     "2.2": forward_kinematics,
     "2.3": ur5_position,
+    "3.1": screw_axis,
+    "3.2": twist_exp,
+    "3.3": fk_space,
+    "3.4": fk_body,
+    "4.1": geometric_jacobian,
+    "4.2": numeric_jacobian,
+    "4.3": singularities,
 }
 
 
@@ -165,7 +245,70 @@ WRONG = {
         (lambda robot, q: _fk_with(dh_transform, robot, q, reverse=True), "reverse order"),
     ],
     "2.3": [(_seed002_position, "seed 002")],
+    "3.1": [
+        (lambda w, q: np.concatenate([w, np.cross(w, q)]), "wrong sign"),
+        (lambda w, q: np.roll(screw_axis(w, q), 3), "(v, ω) order"),
+    ],
+    "3.2": [
+        (lambda S, t: _with_translation(twist_exp(S, t), np.asarray(S[3:]) * t), "not v·θ"),
+        (lambda S, t: _transposed(twist_exp(S, t)), "transposed"),
+    ],
+    "3.3": [
+        (lambda M, S, q: M @ fk_space(np.eye(4), S, q), "M multiplied first"),
+        (lambda M, S, q: fk_space(np.eye(4), S[:, ::-1], q[::-1]) @ M, "reverse order"),
+    ],
+    "3.4": [(lambda M, B, q: fk_body(np.eye(4), B, q) @ M, "M multiplied last")],
+    "4.1": [
+        (lambda r, q: np.roll(geometric_jacobian(r, q), 3, axis=0), "twist order"),
+        (lambda r, q: _jacobian_from_frame(r, q, 1), "frame i − 1"),
+        (lambda r, q: _jacobian_from_frame(r, q, 0, flip=True), "wrong way"),
+    ],
+    "4.2": [
+        (lambda f, q, h=1e-6: _forward_difference(f, q, h), "forward differences"),
+        (lambda f, q, h=1e-6: 2 * numeric_jacobian(f, q, h), "divided by h"),
+    ],
+    "4.3": [
+        (lambda r, q: _elbow_with_cos(r, q), "cos q3"),
+        (lambda r, q: _wrist_only_at_zero(r, q), "±π too"),
+    ],
 }
+
+
+def _with_translation(T, p):
+    T = T.copy()
+    T[:3, 3] = p
+    return T
+
+
+def _jacobian_from_frame(robot, q, shift, flip=False):
+    frames = _frames(robot, q)
+    p = frames[-1][:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        z, o = frames[i + shift][:3, 2], frames[i + shift][:3, 3]
+        J[:3, i] = np.cross(z, o - p) if flip else np.cross(z, p - o)
+        J[3:, i] = z
+    return J
+
+
+def _forward_difference(f, q, h):
+    q = np.asarray(q, dtype=float)
+    f0 = np.asarray(f(q))
+    return np.column_stack([(np.asarray(f(q + h * e)) - f0) / h for e in np.eye(q.size)])
+
+
+def _wrist_only_at_zero(robot, q):
+    found = singularities(robot, q) - {"wrist"}
+    if abs(q[4]) < 1e-9:
+        found.add("wrist")
+    return found
+
+
+def _elbow_with_cos(robot, q):
+    found = singularities(robot, q) - {"elbow"}
+    if abs(np.cos(q[2])) < 1e-9:
+        found.add("elbow")
+    return found
 
 
 def _transposed(T):

@@ -4,7 +4,7 @@ import pytest
 from tests.solutions_reference import SOLUTIONS, WRONG
 from urkin.exercises import check, exercise, exercises_for_lesson, run_exercise
 
-ALL_IDS = [e.id for lesson in ("00", "01", "02") for e in exercises_for_lesson(lesson)]
+ALL_IDS = [e.id for lesson in ("00", "01", "02", "03", "04") for e in exercises_for_lesson(lesson)]
 SEEDS = [0, 1, 20261121]
 
 

@@ -9,7 +9,13 @@ The autograder (:mod:`urkin.grading`) runs the same checks with fresh random inp
 Importing this package registers every lesson's exercises.
 """
 
-from urkin.exercises import lesson00, lesson01, lesson02  # noqa: F401  (registration)
+from urkin.exercises import (  # noqa: F401  (importing registers the exercises)
+    lesson00,
+    lesson01,
+    lesson02,
+    lesson03,
+    lesson04,
+)
 from urkin.exercises.framework import (
     VISIBLE_SEED,
     Check,
