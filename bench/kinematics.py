@@ -1,4 +1,4 @@
-"""Benchmark: import time, single-pose and batched FK and Jacobian cost.
+"""Benchmark: import time, single-pose and batched FK and Jacobian cost, DH and PoE.
 
     python bench/kinematics.py            # or: make bench
 
@@ -19,10 +19,13 @@ import timeit
 import numpy as np
 
 import urkin
+from urkin import poe
 from urkin.kinematics import dh_transform
 
 SIZES = (1_000, 10_000, 100_000)
 ROBOT = urkin.robot("ur5")
+S, M = poe.space_screws(ROBOT)
+B, _ = poe.body_screws(ROBOT)
 
 
 def best_time(statement, number: int, repeat: int = 5) -> float:
@@ -77,6 +80,10 @@ def main() -> None:
         ("urkin.jacobian", lambda: urkin.jacobian(ROBOT, q)),
         ("urkin.position_jacobian", lambda: urkin.position_jacobian(ROBOT, q)),
         ("urkin.fk_frames", lambda: urkin.fk_frames(ROBOT, q)),
+        ("urkin.poe.fk_space (PoE)", lambda: poe.fk_space(M, S, q)),
+        ("urkin.poe.fk_body (PoE)", lambda: poe.fk_body(M, B, q)),
+        ("urkin.poe.jacobian_space (PoE)", lambda: poe.jacobian_space(S, q)),
+        ("urkin.poe.jacobian_body (PoE)", lambda: poe.jacobian_body(B, q)),
         ("plain DH product (6 × 4×4 matmul)", lambda: plain_dh_fk(q)),
     ]
     ur5_rtb = toolbox()
@@ -87,7 +94,8 @@ def main() -> None:
         ]
     print("## One configuration\n\n| function | µs per call |\n|---|---|")
     for name, call in rows:
-        print(f"| {name} | {best_time(call, 20_000 if 'plain' not in name else 2_000) * 1e6:.2f} |")
+        number = 20_000 if name.startswith("urkin.") and "poe" not in name else 2_000
+        print(f"| {name} | {best_time(call, number) * 1e6:.2f} |")
     if ur5_rtb is None:
         print("\n(roboticstoolbox-python is not installed: its rows are skipped)")
 
@@ -99,6 +107,10 @@ def main() -> None:
         ("urkin.jacobian", lambda Q: urkin.jacobian(ROBOT, Q)),
         ("urkin.position_jacobian", lambda Q: urkin.position_jacobian(ROBOT, Q)),
         ("urkin.fk_frames", lambda Q: urkin.fk_frames(ROBOT, Q)),
+        ("urkin.poe.fk_space (PoE)", lambda Q: poe.fk_space(M, S, Q)),
+        ("urkin.poe.fk_body (PoE)", lambda Q: poe.fk_body(M, B, Q)),
+        ("urkin.poe.jacobian_space (PoE)", lambda Q: poe.jacobian_space(S, Q)),
+        ("urkin.poe.jacobian_body (PoE)", lambda Q: poe.jacobian_body(B, Q)),
         ("plain DH product", plain_dh_fk),
     ]
     if ur5_rtb is not None:
@@ -107,7 +119,7 @@ def main() -> None:
         cells = []
         for n in SIZES:
             Q = rng.uniform(-np.pi, np.pi, (n, 6))
-            number = max(1, 200_000 // n)
+            number = max(1, 100_000 // n)
             cells.append(
                 f"{best_time(lambda Q=Q, call=call: call(Q), number, repeat=3) / n * 1e9:.0f}"
             )

@@ -8,12 +8,14 @@ The public API::
     Ts = urkin.fk_frames(ur5, q)      # (7, 4, 4): the base, then DH frames 1 … 6
     J = urkin.jacobian(ur5, q)        # (6, 6): [v; ω] of the tool origin, base frame
     Jp = urkin.position_jacobian(ur5, q)  # (3, 6): ∂p/∂q
+    S, M = urkin.poe.space_screws(ur5)    # screw axes (6, 6) and home pose (product of exps)
 
 Units are metres and radians; poses are 4×4 homogeneous transforms in DH frame 0 (UR's
 ``base``).  ``import urkin`` loads numpy only: SymPy stays in :mod:`urkin.symbolic` and
 matplotlib in :mod:`urkin.plot`.
 """
 
+from urkin import kinematics, poe, robots, transforms
 from urkin.kinematics import fk, fk_frames, jacobian, position_jacobian
 from urkin.robots import ROBOTS, T_BASE_LINK_BASE, Robot, robot
 
@@ -24,8 +26,12 @@ __all__ = [
     "fk",
     "fk_frames",
     "jacobian",
+    "kinematics",
+    "poe",
     "position_jacobian",
     "robot",
+    "robots",
+    "transforms",
 ]
 
 __version__ = "0.1.0"

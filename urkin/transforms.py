@@ -576,9 +576,18 @@ def adjoint(T: ArrayLike) -> np.ndarray:
     array = _float_array(T, "T")
     if array.shape[-2:] != (4, 4):
         raise ValueError(f"T must have shape (4, 4) or (N, 4, 4); got {array.shape}")
-    R, p = array[..., :3, :3], array[..., :3, 3]
-    Ad = np.zeros((*array.shape[:-2], 6, 6))
+    return _adjoint(array)
+
+
+def _adjoint(T: np.ndarray) -> np.ndarray:
+    """:func:`adjoint` without input checks, for inner loops."""
+    R, p = T[..., :3, :3], T[..., :3, 3]
+    P = np.zeros((*T.shape[:-2], 3, 3))
+    P[..., 0, 1], P[..., 0, 2] = -p[..., 2], p[..., 1]
+    P[..., 1, 0], P[..., 1, 2] = p[..., 2], -p[..., 0]
+    P[..., 2, 0], P[..., 2, 1] = -p[..., 1], p[..., 0]
+    Ad = np.zeros((*T.shape[:-2], 6, 6))
     Ad[..., :3, :3] = R
     Ad[..., 3:, 3:] = R
-    Ad[..., 3:, :3] = skew(p) @ R
+    Ad[..., 3:, :3] = P @ R
     return Ad
