@@ -384,9 +384,11 @@ def singularity_factors(robot: Robot, q: ArrayLike) -> np.ndarray:
 
     For every UR arm the determinant of the geometric Jacobian factors into
 
-    * **shoulder**: ``a2 cos q2 + a3 cos(q2 + q3) + d5 sin(q2 + q3 + q4)`` (metres): zero
-      when the wrist centre lies on the plane through the base axis that the shoulder cannot
-      move it out of, so joint 1 loses its effect on it;
+    * **shoulder**: ``a2 cos q2 + a3 cos(q2 + q3) + d5 sin(q2 + q3 + q4)`` (metres): the
+      distance of the wrist centre from the plane that holds the base axis and is parallel to
+      the shoulder axis.  When it is zero, turning joint 1 moves the wrist centre only in a
+      direction joints 2 and 3 already provide, and no joint can move it along the shoulder
+      axis;
     * **elbow**: ``sin q3``: zero when the upper arm and forearm are aligned;
     * **wrist**: ``sin q5``: zero when the axes of joints 4 and 6 are parallel.
 

@@ -15,6 +15,7 @@ from urkin.exercises.framework import (
     require_transform,
 )
 from urkin.exercises.inputs import random_arm, random_q
+from urkin.kinematics import dh_chain
 from urkin.poe import body_screws, fk_body, fk_space, screw_axis, space_screws
 from urkin.transforms import se3_exp
 
@@ -178,6 +179,19 @@ def _reversed_product(M, axes, q, space: bool):
     return T @ M if space else M @ T
 
 
+def _other_arm(rng) -> tuple[np.ndarray, np.ndarray]:
+    """A random revolute arm with 3 or 7 joints (a DH table) and a configuration for it."""
+    n = int(rng.choice([3, 7]))
+    table = np.column_stack(
+        [
+            rng.uniform(-0.3, 0.3, n),
+            rng.uniform(-0.5, 0.5, n),
+            rng.choice([0.0, np.pi / 2, -np.pi / 2], n),
+        ]
+    )
+    return table, rng.uniform(-np.pi, np.pi, n)
+
+
 def _space_hypotheses(M, S, q):
     return {
         "M multiplied first: M e^[S1]q1 ⋯ is the body form, which needs body screw axes": (
@@ -216,6 +230,20 @@ def _space_matches(student, rng):
         )
 
 
+def _space_any_joint_count(student, rng):
+    for _ in range(4):
+        table, q = _other_arm(rng)
+        S, M = space_screws(table)
+        got = as_array(student(M.copy(), S.copy(), q.copy()), (4, 4), "fk_space(M, S, q)")
+        compare(
+            got,
+            dh_chain(table, q),
+            what=f"an arm with {len(q)} joints: S has one column per joint, (6, {len(q)})",
+            inputs={"S": S, "q": q},
+            hypotheses=_space_hypotheses(M, S, q),
+        )
+
+
 register(
     Exercise(
         id="3.3",
@@ -223,7 +251,8 @@ register(
         title="forward kinematics, space form",
         checks=(
             Check("gives M at q = 0", 1, _space_at_zero),
-            Check("matches the arm's flange pose for random arms and q", 3, _space_matches),
+            Check("matches the arm's flange pose for random arms and q", 2, _space_matches),
+            Check("works for any number of joints", 1, _space_any_joint_count),
         ),
         forbidden=_FK_FUNCTIONS,
         builds_on=("3.2",),
@@ -272,6 +301,20 @@ def _body_matches(student, rng):
         )
 
 
+def _body_any_joint_count(student, rng):
+    for _ in range(4):
+        table, q = _other_arm(rng)
+        B, M = body_screws(table)
+        got = as_array(student(M.copy(), B.copy(), q.copy()), (4, 4), "fk_body(M, B, q)")
+        compare(
+            got,
+            dh_chain(table, q),
+            what=f"an arm with {len(q)} joints: B has one column per joint, (6, {len(q)})",
+            inputs={"B": B, "q": q},
+            hypotheses=_body_hypotheses(M, B, q),
+        )
+
+
 register(
     Exercise(
         id="3.4",
@@ -279,7 +322,8 @@ register(
         title="forward kinematics, body form",
         checks=(
             Check("gives M at q = 0", 1, _body_at_zero),
-            Check("matches the arm's flange pose for random arms and q", 3, _body_matches),
+            Check("matches the arm's flange pose for random arms and q", 2, _body_matches),
+            Check("works for any number of joints", 1, _body_any_joint_count),
         ),
         forbidden=_FK_FUNCTIONS,
         builds_on=("3.2",),

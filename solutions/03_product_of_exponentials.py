@@ -1,0 +1,973 @@
+# %% [markdown]
+# # Lesson 03 — The product of exponentials
+#
+# Lesson 02 computed the flange pose as a product of six DH link transforms. This lesson does
+# the same job a second way, the *product of exponentials* (PoE) of Lynch and Park's
+# *Modern Robotics*:
+#
+# $$T(q) = e^{[S_1]q_1}\, e^{[S_2]q_2} \cdots e^{[S_6]q_6}\, M .$$
+#
+# Each factor is the motion of one joint, described by a *screw axis* $S_i$: the joint's axis
+# written in one fixed frame. $M$ is where the flange is when every joint is at zero. That is
+# all PoE needs — no frame per link, no table tied to a convention. You will
+#
+# * meet twists and screw axes, and learn their ordering (ω, v) — which is *not* the ordering
+#   of the course's geometric Jacobian;
+# * build the screw axes of a UR3 by hand from the axes and points that seed report 001 read
+#   out of a robot simulator, and check its printed numbers;
+# * derive the exponential $e^{[S]\theta}$ of a screw axis, and see why its translation is not
+#   simply $v\theta$;
+# * write PoE forward kinematics in the *space* form and the *body* form, and check them
+#   against lesson 02 on all seven UR arms;
+# * get screw axes automatically from a DH table, and reproduce a worked UR5 example from
+#   *Modern Robotics*.
+#
+# **Time:** about 90 minutes. **You need:** lesson 01 (transforms, skew matrices, Rodrigues'
+# formula, the exponential map) and lesson 02 (DH frames and forward kinematics).
+
+# %%
+import matplotlib.pyplot as plt
+import numpy as np
+
+import urkin
+import urkin.plot
+import urkin.poe
+from urkin.exercises import check
+from urkin.transforms import (
+    adjoint,
+    inv_transform,
+    make_transform,
+    rot_z,
+    se3_exp,
+    skew,
+    so3_exp,
+    twist_matrix,
+)
+
+np.set_printoptions(precision=4, suppress=True)
+
+# %% [markdown]
+# Three of `urkin.poe`'s functions — `screw_axis`, `fk_space` and `fk_body` — have the names
+# of this lesson's exercises. Once you have run an exercise cell, the bare name means *your*
+# function, so every demonstration spells urkin's version in full: `urkin.poe.fk_space`.
+#
+# ## 1. Why another formulation?
+#
+# The DH recipe of lesson 02 works, but it asks a lot. You must attach a frame to every link
+# by a set of rules, the rules come in two conventions whose tables look alike and mean
+# different arms, and where two joint axes are parallel (UR's joints 2, 3 and 4) the rules
+# leave a choice that has to be settled by convention.
+#
+# The product of exponentials asks for much less:
+#
+# 1. choose **one** fixed frame — the *space frame*, here the robot's base;
+# 2. put the arm at $q = 0$ and, for each joint, write down the direction of its axis and any
+#    point on it, both in that one frame;
+# 3. write down **M**, the pose of the end effector (for us the flange) at $q = 0$.
+#
+# Nothing else: no link frames, no four-number rules. The price is the maths of twists,
+# which the rest of this section introduces.
+#
+# ### Twists
+#
+# A rigid body moving in space has, at each instant, an angular velocity ω and a velocity for
+# each of its points. Those velocities are not independent: a point at position $r$ moves with
+# $\dot r = v + \omega \times r$, where $v$ is the velocity of the body point that is
+# *currently at the origin* of the frame (the body may not even cover the origin — imagine it
+# extended rigidly). The pair
+#
+# $$\mathcal{V} = (\omega, v) \in \mathbb{R}^6$$
+#
+# is the body's **twist**, expressed in that frame. Both parts matter, and $v$ is easy to
+# misread: it is not the velocity of the body's centre or of the tool, but of the point at the
+# origin.
+#
+# ### Screw axes of revolute joints
+#
+# A revolute joint turns everything beyond it about a fixed line: unit direction ω through a
+# point $q$. (Modern Robotics calls this point $q$; it is a position in metres, not a joint
+# angle.) At a joint rate of 1 rad/s a point $r$ of the moving part travels with
+# $\omega \times (r - q)$, so the point at the origin has velocity $-\omega \times q$. The
+# **screw axis** of the joint is the twist at unit joint rate:
+#
+# $$S = (\omega,\ v) = (\omega,\ -\omega \times q) .$$
+#
+# Any point of the line gives the same $S$: sliding $q$ along ω adds a multiple of
+# $\omega \times \omega = 0$. (A general screw also slides along its line, $v = -\omega \times
+# q + h\omega$ with a *pitch* $h$, and a prismatic joint has $\omega = 0$ and $v$ equal to its
+# direction; UR arms have only revolute joints, $h = 0$.) In matrix form a twist becomes the
+# 4×4 matrix $[S]$, the twist analogue of lesson 01's skew matrix:
+#
+# $$[S] = \begin{bmatrix} [\omega] & v \\ 0\;0\;0 & 0 \end{bmatrix} .$$
+#
+# **Orderings — read this twice.** Modern Robotics, this lesson and `urkin.poe` write every
+# twist and screw axis as **(ω, v): angular part first**. The course's geometric Jacobian,
+# `urkin.jacobian` (lesson 04), stacks its rows the other way round, **[v; ω]: linear part
+# first**, and its v is the velocity of the *flange origin*, not of the point at the base
+# origin. A 6-vector does not say which order it uses, and a (v, ω) vector read as (ω, v)
+# describes a plausible and completely different motion. The check of exercise 3.1
+# recognises that slip. When you need to go from one to the other,
+# `urkin.poe.space_from_geometric` and `urkin.poe.geometric_from_space` convert.
+#
+# A small example: a vertical axis, ω = (0, 0, 1), through the point (0.5, 0, 0) m.
+
+# %%
+S_vertical = urkin.poe.screw_axis([0.0, 0.0, 1.0], [0.5, 0.0, 0.0])
+print(f"S = (ω, v) = {S_vertical}")
+print("[S] =")
+print(twist_matrix(S_vertical) + 0.0)
+
+# v is the velocity of the body point at the origin: differentiate e^[S]θ at θ = 0
+h = 1e-6
+origin = np.array([0.0, 0.0, 0.0, 1.0])
+velocity = (se3_exp(h * S_vertical) @ origin - origin)[:3] / h
+print(f"velocity of the point at the origin, by finite differences: "
+      f"{velocity.round(4) + 0.0} m/s per rad/s")
+
+swapped = np.r_[S_vertical[3:], S_vertical[:3]]  # the same numbers, read as (v, ω)
+for name, V in [("(ω, v), right", S_vertical), ("(v, ω), swapped", swapped)]:
+    moved = (se3_exp(V * np.pi / 2) @ origin)[:3]
+    print(f"{name:<16}: a quarter turn takes the origin to {moved.round(4) + 0.0} m")
+
+# %% [markdown]
+# The origin sits 0.5 m from the axis, so turning about it at 1 rad/s moves the origin at
+# 0.5 m/s along −y, exactly $v$. A quarter turn carries it round to (0.5, −0.5, 0). The swapped
+# vector, read as (ω, v), is a turn at 0.5 rad/s about a horizontal line parallel to y through
+# (−2, 0, 0): the same six numbers, a different motion altogether.
+#
+# ## 2. Screw axes by hand: seed report 001
+#
+# Seed report 001 simulated a UR3 in the robot simulator V-REP and used exactly this recipe.
+# It placed the robot at the world origin, read the position $q_n$ of every joint from the
+# simulator, took the axis directions $a_n$ from a drawing of the arm in its zero
+# configuration (standing straight up), and printed the resulting screw-axis matrix with one
+# column per joint. Let us rebuild that matrix column by column.
+
+# %%
+seed_axes = np.array(  # a_n: unit joint axes, in the seed's world frame
+    [
+        [0.0, 0.0, 1.0],
+        [-1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [-1.0, 0.0, 0.0],
+    ]
+)
+seed_points = np.array(  # q_n: a point on each axis, metres, read from the simulator
+    [
+        [0.0, 0.0, 0.1045],
+        [-0.116, 0.0, 0.109],
+        [-0.117, 0.0, 0.353],
+        [-0.118, 0.0, 0.566],
+        [-0.112, 0.0, 0.65],
+        [-0.112, 0.0, 0.651],
+    ]
+)
+S_seed_hand = np.zeros((6, 6))
+for joint in range(6):  # column i is the screw axis of joint i + 1
+    S_seed_hand[:, joint] = urkin.poe.screw_axis(seed_axes[joint], seed_points[joint])
+
+S_seed_printed = np.array(  # the matrix as the report prints it
+    [
+        [0.0, -1.0, -1.0, -1.0, 0.0, -1.0],
+        [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, -0.109, -0.352, -0.566, 0.112, -0.651],
+        [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    ]
+)
+print("S from the listed axes and points (one column per joint):")
+print(S_seed_hand + 0.0)
+difference = S_seed_hand - S_seed_printed
+for row, col in zip(*np.nonzero(np.abs(difference) > 1e-12)):
+    print(f"differs from the printed S in row {row + 1}, column {col + 1}: "
+          f"{S_seed_hand[row, col]:.3f} computed, {S_seed_printed[row, col]:.3f} printed, "
+          f"{1000 * abs(difference[row, col]):.0f} mm apart")
+
+# %% [markdown]
+# Five columns match exactly; column 3 says −0.352 where the listed point gives −0.353.
+# That is a rounding of 1 mm somewhere between the simulator and the page, harmless but worth
+# knowing when you compare numbers later.
+#
+# Work one column through by hand to see where the numbers come from. Joint 2 turns about
+# ω = (−1, 0, 0) through q = (−0.116, 0, 0.109):
+#
+# $$\omega \times q = (0\cdot 0.109 - 0\cdot 0,\ \ 0\cdot(-0.116) - (-1)\cdot 0.109,\ \
+# (-1)\cdot 0 - 0\cdot(-0.116)) = (0,\ 0.109,\ 0),$$
+#
+# so $v = -\omega \times q = (0, -0.109, 0)$. For every horizontal axis along −x (all the
+# points have y = 0), $v$ is
+# $(0, -h, 0)$ with $h$ the axis' height; for the vertical joint 5 it is $(q_y, -q_x, 0) =
+# (0, 0.112, 0)$. Two things are *absent* from S, and rightly so: the height of $q_1$ (joint 1's
+# axis passes through the origin, whatever point of it you quote, so $v = 0$) and the x
+# coordinates −0.116, −0.117, −0.118 of the horizontal axes, which only say where along each
+# axis the simulator put its joint. A screw axis describes a line, not a point on it.
+#
+# ### Exercise 3.1 — `screw_axis` (3 points)
+#
+# Write `screw_axis(w, q)`: the screw axis of a revolute joint turning about the unit
+# direction `w` through the point `q` (metres), as a numpy array of shape `(6,)` in the order
+# **(ω, v)**, with $v = -\omega \times q$ (`np.cross` computes cross products). The check
+# compares with random axes and points, tests that moving `q` along the axis changes nothing,
+# and recognises a wrong sign, the point used as `v`, and the (v, ω) order. Calling
+# `urkin.poe.screw_axis` earns no points.
+
+# %%
+def screw_axis(w, q):
+    """Screw axis of a revolute joint, in Modern Robotics' order (ω, v).
+
+    Parameters
+    ----------
+    w : array_like, shape (3,)
+        Unit vector along the joint axis; the joint turns positively about it (right-hand
+        rule).
+    q : array_like, shape (3,)
+        Any point on the joint axis, in metres (a position, not a joint angle).
+
+    Returns
+    -------
+    ndarray, shape (6,)
+        S = (ω, v): first ω = w (rad/s per rad/s of joint rate), then v = −ω × q (metres per
+        radian), the velocity of the body point at the origin.
+    """
+    ### BEGIN SOLUTION
+    omega = np.asarray(w, dtype=float)
+    point = np.asarray(q, dtype=float)
+    return np.concatenate([omega, -np.cross(omega, point)])
+    ### END SOLUTION
+
+
+# %%
+check("3.1", screw_axis)
+
+# %% [markdown]
+# ## 3. The exponential of a twist
+#
+# Turning a joint by θ moves everything beyond it by a rigid motion. In lesson 01 a rotation
+# by θ about a unit axis ω was the matrix exponential $e^{[\omega]\theta}$; in the same way the
+# motion along a screw axis is the exponential of its 4×4 matrix,
+#
+# $$e^{[S]\theta} = I + [S]\theta + \frac{([S]\theta)^2}{2!} + \frac{([S]\theta)^3}{3!} +
+# \cdots$$
+#
+# This is the motion you get by following the twist $S$ for θ seconds at unit rate — exactly
+# like $e^{at}$ solves $\dot x = a x$. The series has a closed form. Powers of $[S]$ keep its
+# block shape,
+#
+# $$[S]^k = \begin{bmatrix} [\omega]^k & [\omega]^{k-1} v \\ 0 & 0 \end{bmatrix}
+# \quad (k \ge 1),$$
+#
+# so the top-left block of the sum is the series of $e^{[\omega]\theta}$: the rotation by θ
+# about ω, Rodrigues' formula from lesson 01,
+#
+# $$R = e^{[\omega]\theta} = I + \sin\theta\,[\omega] + (1 - \cos\theta)\,[\omega]^2 .$$
+#
+# The top-right block is $\sum_{k \ge 1} \frac{\theta^k}{k!} [\omega]^{k-1} v$. For a unit ω,
+# $[\omega]^2 = \omega\omega^\mathsf{T} - I$ and therefore $[\omega]^3 = -[\omega]$: the powers
+# cycle through $[\omega]$ and $[\omega]^2$ with alternating signs. Collecting them,
+#
+# $$\sum_{k\ge1} \frac{\theta^k}{k!}[\omega]^{k-1} = I\theta
+# + \Big(\frac{\theta^2}{2!} - \frac{\theta^4}{4!} + \cdots\Big)[\omega]
+# + \Big(\frac{\theta^3}{3!} - \frac{\theta^5}{5!} + \cdots\Big)[\omega]^2
+# = I\theta + (1 - \cos\theta)[\omega] + (\theta - \sin\theta)[\omega]^2,$$
+#
+# and the whole motion is
+#
+# $$e^{[S]\theta} = \begin{bmatrix} e^{[\omega]\theta} &
+# \big(I\theta + (1 - \cos\theta)[\omega] + (\theta - \sin\theta)[\omega]^2\big)\, v \\
+# 0\;0\;0 & 1 \end{bmatrix} .$$
+#
+# **Why the translation is not $v\theta$.** $v$ is the velocity of the point at the origin
+# *at the start*. That point swings round the joint axis on a circle, and its velocity turns
+# with it; $v\theta$ is where it would be had it kept flying straight along its first
+# tangent. The first term, $I\theta$, is exactly that straight-line guess; the other two bend
+# the line into the circle. They are of order θ² and θ³, so for small angles the mistake hides
+# — one more reason to test with large ones. (Only for a pure translation, ω = 0, is the
+# displacement $v\theta$.)
+#
+# There is a second, geometric way to see the result. A turn about the line through $q$ is:
+# shift $q$ to the origin, rotate, shift back, $T = \mathrm{Trans}(q)\,\mathrm{Rot}(\omega,
+# \theta)\,\mathrm{Trans}(-q)$, whose translation is $(I - R)\,q$. With $v = -\omega \times q$
+# the formula above gives the same vector. Let us check all three ways — the series summed
+# term by term, the closed form (urkin's `se3_exp`, which takes the product $S\theta$) and the
+# geometric one — and compare with $v\theta$.
+
+# %%
+def difference_text(worst):
+    """A largest difference as text: "below 1e-12" when it is only round-off."""
+    return "below 1e-12" if worst < 1e-12 else f"{worst:.3g}"
+
+
+w_demo = np.array([0.3, -0.2, 1.0]) / np.linalg.norm([0.3, -0.2, 1.0])
+q_demo = np.array([0.35, 0.15, 0.0])
+S_demo = urkin.poe.screw_axis(w_demo, q_demo)
+theta = 2.0  # radians, about 115°
+
+series, term = np.eye(4), np.eye(4)
+for k in range(1, 40):  # I + A + A²/2! + …, with A = [S]θ; 40 terms are plenty here
+    term = term @ (twist_matrix(S_demo) * theta) / k
+    series = series + term
+closed = se3_exp(S_demo * theta)
+R = so3_exp(w_demo * theta)
+geometric = (np.eye(3) - R) @ q_demo
+
+print(f"translation, series summed:      {series[:3, 3].round(4) + 0.0} m")
+print(f"translation, closed form:        {closed[:3, 3].round(4) + 0.0} m")
+print(f"translation, (I − R) q:          {geometric.round(4) + 0.0} m")
+print(f"v·θ, the straight-line guess:    {(S_demo[3:] * theta).round(4) + 0.0} m")
+gap = max(np.abs(series - closed).max(), np.abs(geometric - closed[:3, 3]).max())
+print(f"series, closed form and (I − R) q differ by: {difference_text(gap)}")
+
+# %% [markdown]
+# The figure follows a frame — the space frame itself, starting at the origin — as θ grows
+# from 0 to 270° about the same screw axis. Every pose is $e^{[S]\theta}$. The origin runs
+# round a circle about the axis; the straight dashed line is where $v\theta$ would take it.
+
+# %%
+dense = np.linspace(0.0, 2 * np.pi, 181)
+circle = se3_exp(dense[:, None] * S_demo)[:, :3, 3]  # the origin of every pose e^[S]θ
+straight = np.linspace(0.0, 1.2, 50)[:, None] * S_demo[3:]  # v·θ for θ up to 1.2 rad
+centre = q_demo + np.dot(-q_demo, w_demo) * w_demo  # the point of the axis nearest the origin
+
+ax = urkin.plot.axes3d(center=(0.28, 0.0, 0.0), half_width=0.48, figsize=(8, 8),
+                       title="A frame carried round a screw axis: poses e^[S]θ, θ = 0° … 270°")
+axis_line = np.array([q_demo - 0.35 * w_demo, q_demo + 0.45 * w_demo])
+ax.plot(*axis_line.T, color="tab:purple", linewidth=2.5, label="screw axis (ω through q)")
+ax.scatter(*q_demo, color="tab:purple", s=30, depthshade=False)
+ax.text(*(q_demo + np.array([0.02, 0.0, -0.05])), "q", color="tab:purple", fontsize=11)
+ax.plot(*circle.T, color="tab:orange", linewidth=1.8, label="path of the origin: a circle")
+ax.plot(*straight.T, "--", color="0.3", linewidth=1.5, label="v·θ: straight on along v")
+ax.plot(*np.column_stack([centre, np.zeros(3)]), ":", color="tab:orange", linewidth=1.2,
+        label="radius, from the axis to the start")
+for step in range(7):  # every 45°
+    angle = step * np.pi / 4
+    urkin.plot.draw_frame(ax, se3_exp(angle * S_demo), length=0.09, linewidth=2.0,
+                          label=f"{np.degrees(angle):.0f}°", tips=step == 0)
+for colour, axis in zip(urkin.plot.AXIS_COLOURS, "xyz"):
+    ax.plot([], [], color=colour, label=f"{axis} axis of the moving frame")
+ax.view_init(elev=28, azim=-62)
+ax.legend(loc="upper left", fontsize=8)
+plt.show()
+
+# %% [markdown]
+# The frame turns *and* travels: at 90° it has moved round a quarter of the circle and turned
+# by a quarter, as a door turns on its hinge. Near θ = 0 the dashed line and the circle agree;
+# by 1.2 rad the straight-line guess is already far off.
+#
+# ### Exercise 3.2 — `twist_exp` (4 points)
+#
+# Write `twist_exp(S, theta)`: the 4×4 homogeneous transform $e^{[S]\theta}$ of a revolute
+# screw axis `S = (ω, v)` (shape `(6,)`, unit ω, ordered as in exercise 3.1) and an angle
+# `theta` in radians. Use the closed form derived above: Rodrigues' formula for the rotation
+# block and $(I\theta + (1 - \cos\theta)[\omega] + (\theta - \sin\theta)[\omega]^2)\,v$ for the
+# translation. Build $[\omega]$ yourself or with urkin's `skew`; calling urkin's `se3_exp`
+# earns no points. The check tests that your result is a rigid transform, matches
+# $e^{[S]\theta}$, leaves the points of the axis where they are, and recognises the $v\theta$
+# translation, a transposed rotation and degrees.
+
+# %%
+def twist_exp(S, theta):
+    """Rigid motion e^([S]θ) of turning by θ about a revolute screw axis S = (ω, v).
+
+    Parameters
+    ----------
+    S : array_like, shape (6,)
+        Screw axis (ω, v), angular part first, with a unit ω (a revolute joint); v in metres
+        per radian.
+    theta : float
+        Joint angle in radians.
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+        [[R, p], [0, 0, 0, 1]] with R = I + sin θ [ω] + (1 − cos θ) [ω]² and
+        p = (Iθ + (1 − cos θ) [ω] + (θ − sin θ) [ω]²) v, in metres.
+    """
+    ### BEGIN SOLUTION
+    screw = np.asarray(S, dtype=float)
+    W = skew(screw[:3])
+    W2 = W @ W
+    s, c = np.sin(theta), np.cos(theta)
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + s * W + (1.0 - c) * W2
+    T[:3, 3] = (theta * np.eye(3) + (1.0 - c) * W + (theta - s) * W2) @ screw[3:]
+    return T
+    ### END SOLUTION
+
+
+# %%
+check("3.2", twist_exp)
+
+# %% [markdown]
+# ## 4. Forward kinematics: the space form
+#
+# Put the arm at $q = 0$; the end effector is at $M$. Now reach any configuration $q$ by
+# turning the joints **one at a time, from the last to the first**:
+#
+# * turn joint 6 by $q_6$. It carries only the end effector, about its screw axis $S_6$:
+#   the end effector is now at $e^{[S_6]q_6}M$;
+# * turn joint 5 by $q_5$. Its axis has not moved — only joints *beyond* it have — so it is
+#   still $S_5$, and it carries everything beyond it rigidly, including the end effector as
+#   joint 6 left it: $e^{[S_5]q_5}e^{[S_6]q_6}M$;
+# * and so on down to joint 1:
+#
+# $$T(q) = e^{[S_1]q_1}\, e^{[S_2]q_2} \cdots e^{[S_6]q_6}\, M .$$
+#
+# Turning from the last joint backwards means every joint turns while its own axis is still in
+# its home place, so the home axes $S_i$, written once in the space frame, are all we need.
+# The final pose does not depend on the order in which we imagined the joints turning; this
+# order is just the one in which the bookkeeping is easy. It is the **space form** of the
+# product of exponentials.
+#
+# **What M is.** $M$ is the pose of the end effector at $q = 0$. It is *not* the base frame:
+# the base frame is the space frame itself, the identity. Seed 001 describes its M as the pose
+# of the robot's base in the world, but its own numbers tell another story:
+
+# %%
+M_seed = np.array(  # the report's M, as printed
+    [
+        [0.0, 0.0, -1.0, -0.194],
+        [0.0, 1.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0, 0.651],
+        [0.0, 0.0, 0.0, 1.0],
+    ]
+)
+print(f"M's position: {M_seed[:3, 3]} m — 0.651 m up, the height of joint 6's point "
+      f"{seed_points[5]}")
+print(f"M's z axis (third column): {M_seed[:3, 2] + 0.0}, joint 6's axis a_6: {seed_axes[5]}")
+
+# %% [markdown]
+# M sits 65 cm above the world origin, at the top of the upright arm, and its z axis is joint
+# 6's axis: it is the flange at θ = 0, where PoE needs it.
+#
+# ### Does the seed's S and M describe a UR3?
+#
+# urkin's UR3 is the DH model of lesson 02. The simulator's model is the same arm seen with
+# different conventions; comparing the two, four differences turn up:
+#
+# * the simulator's zero is UR's upright "home" pose: $q_{\text{DH}} = \theta +
+#   (0, -\pi/2, 0, -\pi/2, 0, 0)$;
+# * its world frame is turned by −90° about z relative to DH frame 0;
+# * DH frame 0 lies 42.9 mm below the simulator's world origin;
+# * its end-effector frame is the flange turned by −90° about the flange's own z axis.
+#
+# So $T_{\text{seed}}(\theta) = T_{w,0}\; T_{0,6}(\theta + \text{offset})\; T_{6,e}$ with
+# $T_{w,0} = (R_z(-\pi/2), (0, 0, -0.0429))$ and $T_{6,e} = R_z(-\pi/2)$. We evaluate the
+# seed's PoE with urkin's `fk_space` on 1000 random configurations, once with the S computed
+# from its listed points and once with the S it prints.
+
+# %%
+ur3 = urkin.robot("UR3")
+offset = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])  # q_DH = θ + offset
+T_world_base = make_transform(rot_z(-np.pi / 2), [0.0, 0.0, -0.0429])
+T_flange_ee = make_transform(rot_z(-np.pi / 2))
+
+print("M, the seed's:")
+print(M_seed)
+print("end effector at θ = 0 from urkin's UR3 DH model:")
+print((T_world_base @ urkin.fk(ur3, offset) @ T_flange_ee).round(4) + 0.0)
+
+thetas = np.random.default_rng(1).uniform(-np.pi, np.pi, (1000, 6))
+T_dh = T_world_base @ urkin.fk(ur3, thetas + offset) @ T_flange_ee
+gaps_mm = {}
+for name, S_try in [("S from the listed points", S_seed_hand),
+                    ("S as printed", S_seed_printed)]:
+    T_poe = urkin.poe.fk_space(M_seed, S_try, thetas)
+    gaps_mm[name] = 1000 * np.linalg.norm(T_poe[:, :3, 3] - T_dh[:, :3, 3], axis=1)
+    turn = np.abs(T_poe[:, :3, :3] - T_dh[:, :3, :3]).max()
+    print(f"{name:<25}: largest position gap {gaps_mm[name].max():.2f} mm, "
+          f"largest rotation-entry difference {difference_text(turn)}")
+
+# %% [markdown]
+# The seed's PoE model *is* a UR3: every orientation is exact (the axis directions are exact)
+# and positions agree within the millimetre to which the report rounded its points and M. The
+# 1 mm slip in column 3 shows up as well — with the printed S the largest gap grows to almost
+# 2 mm. The figure shows the seed's arm at θ = 0, its screw axes and its M, and the spread of
+# the gaps.
+
+# %%
+home_frames = T_world_base @ urkin.fk_frames(ur3, offset)  # DH frames 0 … 6, seed's world
+fig = plt.figure(figsize=(14, 6.5))
+ax = urkin.plot.axes3d(fig.add_subplot(1, 2, 1, projection="3d"), center=(-0.1, 0.0, 0.33),
+                       half_width=0.38, title="Seed 001's UR3 at θ = 0: axes, points and M")
+ax.plot(*home_frames[:, :3, 3].T, "-o", color="0.45", linewidth=3, markersize=4,
+        label="arm (through the DH origins)")
+for joint in range(6):
+    line = np.array([seed_points[joint] - 0.07 * seed_axes[joint],
+                     seed_points[joint] + 0.07 * seed_axes[joint]])
+    ax.plot(*line.T, color="tab:purple", linewidth=2.0,
+            label="joint axes a_n through q_n" if joint == 0 else None)
+    ax.text(*(seed_points[joint] + np.array([-0.05, 0.0, 0.0])), str(joint + 1), color="tab:purple")
+ax.scatter(*seed_points.T, color="tab:purple", s=20, depthshade=False)
+urkin.plot.draw_frame(ax, np.eye(4), length=0.1, label="world (base)", tips=True)
+urkin.plot.draw_frame(ax, M_seed, length=0.1, label="M", tips=True)
+ax.view_init(elev=18, azim=-60)
+ax.legend(loc="upper left", fontsize=8)
+
+right = fig.add_subplot(1, 2, 2)
+bins = np.linspace(0.0, 2.0, 41)
+for (name, gaps), colour in zip(gaps_mm.items(), ["tab:blue", "tab:red"]):
+    right.hist(gaps, bins=bins, alpha=0.6, color=colour, label=name)
+right.set_xlabel("position gap between seed 001's PoE and urkin's UR3 (mm)")
+right.set_ylabel("number of configurations (of 1000)")
+right.set_title("1000 random θ: gaps within the report's rounding")
+right.legend(loc="upper right")
+fig.suptitle("Seed 001: a UR3 described only by six screw axes and M")
+fig.subplots_adjust(wspace=0.3)
+plt.show()
+
+# %% [markdown]
+# In the 3D view notice that most of the seed's points (purple dots) are not on the grey stick
+# figure: the simulator reports where its joint objects sit, offset sideways like the real
+# motors, while the DH origins of joints 1 to 4 sit in one plane. Both lie on the same axis
+# lines, and that is all a screw axis records.
+#
+# ### Exercise 3.3 — `fk_space` (4 points)
+#
+# Write `fk_space(M, S, q)`: the space-form product of exponentials
+# $T = e^{[S_1]q_1} \cdots e^{[S_n]q_n}\, M$, for `M` of shape `(4, 4)`, screw axes `S` of
+# shape `(6, n)` with **one screw axis per column** (`S[:, i]` is joint i + 1's), and joint
+# angles `q` of shape `(n,)` in radians. Return a `(4, 4)` array. Use **your own
+# `twist_exp`** for every factor, and multiply from the left (joint 1) to the right, with M
+# last. Calling `urkin.fk`, `urkin.poe.fk_space`, `urkin.poe.fk_body` or the DH functions
+# earns no points. The check uses the screw axes of random UR arms and compares with their
+# flange poses; it recognises M on the wrong side, the factors in reverse order, and degrees.
+
+# %%
+def fk_space(M, S, q):
+    """Forward kinematics in the space form: T = e^([S1] q1) ⋯ e^([Sn] qn) M.
+
+    Parameters
+    ----------
+    M : array_like, shape (4, 4)
+        Pose of the end effector at q = 0, in the space frame (metres).
+    S : array_like, shape (6, n)
+        Space-frame screw axes, one per column, each ordered (ω, v).
+    q : array_like, shape (n,)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+        Pose of the end effector in the space frame.
+    """
+    ### BEGIN SOLUTION
+    axes = np.asarray(S, dtype=float)
+    T = np.eye(4)
+    for S_i, q_i in zip(axes.T, np.asarray(q, dtype=float)):
+        T = T @ twist_exp(S_i, q_i)
+    return T @ np.asarray(M, dtype=float)
+    ### END SOLUTION
+
+
+# %%
+check("3.3", fk_space)
+
+# %% [markdown]
+# ## 5. Screw axes straight from a DH table
+#
+# Reading axes from a simulator is one way to get S; a DH table is another, and it is what
+# Universal Robots publishes. Recall lesson 02: in standard DH, **joint i turns about the z
+# axis of frame i−1, and that axis passes through frame i−1's origin.** So the frames at
+# $q = 0$, $T_{0,i-1}(0)$, hand us both halves of every screw axis — the direction $\omega_i$
+# is the third column of the rotation, the point $q_i$ is the origin — and M is the last
+# frame:
+#
+# $$S_i = \big(z_{i-1},\ -z_{i-1} \times p_{i-1}\big)\Big|_{q=0}, \qquad M = T_{0,6}(0).$$
+#
+# In modified DH, joint i turns about $z_i$ instead; the recipe is the same, one frame later.
+# `urkin.poe.space_screws(robot)` does this for a `Robot` (honouring its base and tool
+# transforms), and `urkin.poe.space_screws(table, convention=...)` for any table of rows
+# `(d, a, α)`. Here is the UR5, once with `space_screws` and once by hand from `fk_frames`:
+
+# %%
+ur5 = urkin.robot("UR5")
+S_ur5, M_ur5 = urkin.poe.space_screws(ur5)
+print("UR5 space screw axes S (columns = joints 1 … 6; rows ω_x, ω_y, ω_z, v_x, v_y, v_z):")
+print(S_ur5 + 0.0)
+print("M, the flange at q = 0:")
+print(M_ur5 + 0.0)
+
+frames_zero = urkin.fk_frames(ur5, np.zeros(6))  # DH frames 0 … 6 at q = 0
+by_hand = np.column_stack([urkin.poe.screw_axis(frames_zero[i][:3, 2], frames_zero[i][:3, 3])
+                           for i in range(6)])  # joint i + 1 turns about z of frame i
+print("by hand from the frames, the same:", np.allclose(by_hand, S_ur5, rtol=0, atol=1e-15))
+
+q_many = np.random.default_rng(5).uniform(-np.pi, np.pi, (1000, 6))
+worst = np.abs(urkin.poe.fk_space(M_ur5, S_ur5, q_many) - urkin.fk(ur5, q_many)).max()
+print(f"PoE against urkin.fk, 1000 random q, largest entry difference: "
+      f"{difference_text(worst)}")
+
+# %% [markdown]
+# Read the columns. Joint 1 turns about the base z axis through the origin: $v = 0$. Joints
+# 2, 3 and 4 are parallel, along −y; their $v$ are $(d_1, 0, 0)$ plus $(0, 0, x)$ terms that
+# place each one further out along −x (0, 0.425 and 0.817 m). Joint 5 points down, along −z, and
+# joint 6 along −y again, at the flange. M says the stretched-out arm puts the flange at
+# $(a_2 + a_3, -d_4 - d_6, d_1 - d_5)$ with its z axis along −y.
+#
+# ### The space axes stay put
+#
+# A subtle point. $S_i$ is joint i's axis **at q = 0**, and the space form uses it whatever
+# $q$ is. When the arm moves, the real axes of joints 2 to 6 move with it; only joint 1's
+# stays where it was. The axis of joint i *now* is its home axis carried along by the joints
+# before it,
+#
+# $$S_i(q) = \mathrm{Ad}\big(e^{[S_1]q_1}\cdots e^{[S_{i-1}]q_{i-1}}\big)\, S_i ,$$
+#
+# where the adjoint $\mathrm{Ad}(T) = \begin{bmatrix} R & 0 \\ [p]R & R \end{bmatrix}$ maps a
+# twist through the rigid motion $T = (R, p)$ (urkin's `adjoint`). These current axes are the
+# columns of the *space Jacobian*, which `urkin.poe.jacobian_space` computes; Jacobians are
+# the subject of lesson 04. Check them against the axes read off the moved DH frames:
+
+# %%
+q_moved = np.array([0.7, -1.0, 1.3, -0.9, 1.0, 0.0])
+current = urkin.poe.jacobian_space(S_ur5, q_moved)  # column i: joint i + 1's axis now
+frames_moved = urkin.fk_frames(ur5, q_moved)
+from_frames = urkin.poe.screw_axis(frames_moved[:-1, :3, 2], frames_moved[:-1, :3, 3]).T
+worst = np.abs(current - from_frames).max()
+print(f"Ad(…) S against the moved DH frames, largest difference: {difference_text(worst)}")
+unmoved = [i + 1 for i in range(6) if np.allclose(current[:, i], S_ur5[:, i])]
+print(f"joints whose current axis is still their home axis S_i: {unmoved}")
+
+# %% [markdown]
+# The figure draws the screw axes as lines on the arm. A screw axis $(\omega, v)$ with unit ω
+# is the line through $\omega \times v$ (its point nearest the origin) along ω; each segment
+# is drawn around the DH origin that lies on it, in the joint's colour. Left, the UR5 at
+# q = 0. Right, at `q_moved`: the dashed lines are the space axes $S_i$, unchanged, and the
+# solid lines are the joints' current axes $\mathrm{Ad}(\ldots)S_i$, which travel with the arm.
+
+# %%
+def axis_segment(screw, near, half_length=0.12):
+    """Endpoints (2, 3) of the part of a screw axis's line nearest to the point ``near``."""
+    w, v = screw[:3], screw[3:]
+    foot = np.cross(w, v)  # the point of the line nearest the origin (unit w)
+    centre = foot + np.dot(near - foot, w) * w
+    return np.array([centre - half_length * w, centre + half_length * w])
+
+
+joint_colours = plt.cm.tab10(np.arange(6))
+fig = plt.figure(figsize=(14, 7))
+panels = [(np.zeros(6), "UR5 at q = 0: the screw axes S_1 … S_6"),
+          (q_moved, "UR5 at q_moved: S_i stay put, the joints' axes move")]
+for index, (q, title) in enumerate(panels):
+    ax = urkin.plot.axes3d(fig.add_subplot(1, 2, index + 1, projection="3d"),
+                           center=(-0.38, -0.25, 0.15), half_width=0.45, title=title)
+    urkin.plot.draw_robot(ax, ur5, q, frames=False, alpha=0.5, label="arm (DH origins)")
+    for i in range(6):
+        home_line = axis_segment(S_ur5[:, i], frames_zero[i][:3, 3], half_length=0.15)
+        if index == 0:
+            ax.plot(*home_line.T, "-", color=joint_colours[i], linewidth=2.5,
+                    label=f"joint {i + 1}")
+        else:
+            now_line = axis_segment(current[:, i], frames_moved[i][:3, 3], half_length=0.15)
+            ax.plot(*home_line.T, "--", color=joint_colours[i], linewidth=1.8)
+            ax.plot(*now_line.T, "-", color=joint_colours[i], linewidth=2.5)
+    if index == 1:
+        ax.plot([], [], "--", color="0.3", label="space axis S_i (its home line, fixed)")
+        ax.plot([], [], "-", color="0.3", label="current axis Ad(…) S_i")
+    ax.view_init(elev=25, azim=-50)
+    ax.legend(loc="upper left", fontsize=8)
+fig.suptitle("Screw axes of the UR5 drawn as lines (colour = joint)")
+plt.show()
+
+# %% [markdown]
+# Joint 1's dashed and solid lines coincide; every other joint's current axis has left its
+# home line, and the solid lines run through the moved arm. The space form never needs the
+# solid lines: turning the joints from the last to the first, each turns about its dashed line.
+#
+# ## 6. The body form
+#
+# The space form writes everything in the base frame. One can instead write the screw axes in
+# the **end-effector frame at q = 0**, and multiply on the other side of M. For any transform
+# M and matrix A, $M^{-1} e^{A} M = e^{M^{-1} A M}$ (conjugation passes through every term of
+# the series), and $M^{-1}[S]M = [\mathrm{Ad}(M^{-1})S]$. So each factor can hop across M,
+#
+# $$e^{[S_i]q_i} M = M\, e^{[B_i]q_i}, \qquad B_i = \mathrm{Ad}(M^{-1})\, S_i ,$$
+#
+# and moving M from the right end to the left one factor at a time gives the **body form**
+#
+# $$T(q) = M\, e^{[B_1]q_1}\, e^{[B_2]q_2} \cdots e^{[B_n]q_n} .$$
+#
+# $B_i$ is joint i's home axis seen from the end effector's home frame. Read the product from
+# the left: start at M, then turn the joints from the *first* to the last, each about its axis
+# as seen from the end effector. `urkin.poe.body_screws` returns B and M.
+
+# %%
+B_ur5, _ = urkin.poe.body_screws(ur5)
+print("UR5 body screw axes B = Ad(M⁻¹) S:")
+print(B_ur5 + 0.0)
+print("the same as Ad(M⁻¹) S by hand:",
+      np.allclose(adjoint(inv_transform(M_ur5)) @ S_ur5, B_ur5, rtol=0, atol=1e-15))
+
+# what changes when the tool or the mounting changes?
+tool = make_transform(p=[0.0, 0.0, 0.15])  # a 15 cm tool along the flange's z axis
+mount = make_transform(rot_z(0.5), [1.0, 0.2, 0.0])  # the arm bolted elsewhere, turned
+S_tool, M_tool = urkin.poe.space_screws(ur5.with_tool(tool))
+B_mount, _ = urkin.poe.body_screws(ur5.with_base(mount))
+print("with a tool:     S unchanged:", np.allclose(S_tool, S_ur5, rtol=0, atol=1e-15),
+      "  M becomes M @ T_flange_tool:", np.allclose(M_tool, M_ur5 @ tool))
+print("moved base:      B unchanged:", np.allclose(B_mount, B_ur5, rtol=0, atol=1e-15))
+
+# %% [markdown]
+# The last joint of a UR arm turns about the flange's own z axis, so $B_6 = (0, 0, 1, 0, 0,
+# 0)$. And the two forms react differently to changes:
+#
+# * **a new tool** changes only M (to $M\,T_{\text{flange,tool}}$) in the space form — the
+#   joint axes in the base frame are the same — while the body axes, seen from the new tool
+#   frame, change;
+# * **a new mounting** moves the axes in the world frame, so S changes, but not B: seen from
+#   the end effector, the joints have not moved.
+#
+# **Which to prefer?** Both give the same pose; choose the one whose numbers you have, or
+# whose numbers stay fixed. Use the space form when your data lives in the base or world
+# frame: axes measured in a simulator or by calibration (seed 001), velocities wanted in the
+# base frame (the space Jacobian), or an arm whose tool you change often. Use the
+# body form when the end effector's own frame is the natural one: jogging in the tool frame,
+# errors measured in the tool frame by an inverse-kinematics solver, or an arm whose base moves
+# (on a rail or a mobile platform) while its tool stays the same.
+#
+# ### Exercise 3.4 — `fk_body` (4 points)
+#
+# Write `fk_body(M, B, q)`: the body-form product $T = M\, e^{[B_1]q_1} \cdots e^{[B_n]q_n}$
+# for `M` of shape `(4, 4)`, body screw axes `B` of shape `(6, n)` (one per column, ordered
+# (ω, v)) and joint angles `q` of shape `(n,)` in radians, as a `(4, 4)` array. Use your own
+# `twist_exp`; start with M and multiply the exponentials in joint order on its right. The
+# same functions as in exercise 3.3 are off limits, and the check recognises the same slips.
+
+# %%
+def fk_body(M, B, q):
+    """Forward kinematics in the body form: T = M e^([B1] q1) ⋯ e^([Bn] qn).
+
+    Parameters
+    ----------
+    M : array_like, shape (4, 4)
+        Pose of the end effector at q = 0, in the space frame (metres).
+    B : array_like, shape (6, n)
+        Body-frame screw axes (joint axes seen from the end effector at q = 0), one per column,
+        each ordered (ω, v).
+    q : array_like, shape (n,)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+        Pose of the end effector in the space frame.
+    """
+    ### BEGIN SOLUTION
+    axes = np.asarray(B, dtype=float)
+    T = np.asarray(M, dtype=float).copy()
+    for B_i, q_i in zip(axes.T, np.asarray(q, dtype=float)):
+        T = T @ twist_exp(B_i, q_i)
+    return T
+    ### END SOLUTION
+
+
+# %%
+check("3.4", fk_body)
+
+# %% [markdown]
+# ### Three formulations, one arm
+#
+# Space form, body form and DH are three ways of computing the same thing. For each of the
+# seven arms, 1000 random configurations, the largest difference in any entry of T between
+# `urkin.fk` (DH) and each PoE form. The last column goes through a **modified**-DH table
+# (lesson 02's rewriting: the a and α columns shifted down one row) and
+# `urkin.poe.space_screws(table, convention="modified")`: a different table, a different
+# convention, and still the same screw axes.
+
+# %%
+rng = np.random.default_rng(11)
+print("largest difference from urkin.fk (DH) in any entry of T, 1000 random q per arm:")
+print("arm      space form     body form      modified-DH table    same S from both tables")
+for name in urkin.ROBOTS:
+    arm = urkin.robot(name)
+    q = rng.uniform(-np.pi, np.pi, (1000, 6))
+    T_dh = urkin.fk(arm, q)
+    S_arm, M_arm = urkin.poe.space_screws(arm)
+    B_arm, _ = urkin.poe.body_screws(arm)
+    modified = np.column_stack([arm.d, np.r_[0.0, arm.a[:-1]], np.r_[0.0, arm.alpha[:-1]]])
+    S_mod, M_mod = urkin.poe.space_screws(modified, convention="modified")
+    gaps = [np.abs(urkin.poe.fk_space(M_arm, S_arm, q) - T_dh).max(),
+            np.abs(urkin.poe.fk_body(M_arm, B_arm, q) - T_dh).max(),
+            np.abs(urkin.poe.fk_space(M_mod, S_mod, q) - T_dh).max()]
+    same = difference_text(np.abs(S_mod - S_arm).max())
+    print(f"{name:<7}  " + "  ".join(f"{difference_text(g):<13}" for g in gaps[:2])
+          + f"  {difference_text(gaps[2]):<19}  {same}")
+
+# %% [markdown]
+# ## 7. No frame per link: what you gain, what you lose
+#
+# Every DH link needs a frame because the four DH numbers are *relative*: link i is described
+# from frame i−1. PoE describes every joint *absolutely*, as a line in one frame, so the
+# intermediate frames simply are not needed. What that buys:
+#
+# * **Any frame, any data.** Axes measured in a simulator or by a calibration rig go straight
+#   into S, as seed 001 did; a tool or a new mounting changes only M or only S.
+# * **No rules to juggle.** No choice of x axes, no sign conventions for $a_2$, $a_3$, no
+#   standard-versus-modified confusion: the two tables above give the *same* S.
+# * **Smoothness.** A screw axis changes a little when the joint's axis is shifted or tilted a
+#   little. DH parameters need not: for parallel axes DH must pick the common normal by
+#   convention, and for *nearly* parallel ones the common normal can be anywhere. This matters
+#   to anyone calibrating a real arm, whose "parallel" joints are never exactly parallel.
+#
+# The figure makes the last point concrete. Take two parallel joint axes 0.425 m apart, like
+# a UR5's shoulder and elbow, and tilt the second by a tiny angle ε. Where does the DH common
+# normal go, and how much does the screw axis change?
+
+# %%
+def common_normal(p1, z1, p2, z2):
+    """DH view of two skew lines: where the common normal meets line 1, and its length.
+
+    Returns (t, a): the foot of the common normal on line 1 is p1 + t·z1 (t in metres along
+    the unit direction z1), and a is the distance between the lines.
+    """
+    b = np.dot(z1, z2)
+    w0 = p1 - p2
+    d, e = np.dot(z1, w0), np.dot(z2, w0)
+    sin_squared = np.sum(np.cross(z1, z2) ** 2)  # 1 − b², without cancellation
+    t = (b * e - d) / sin_squared
+    s = (e - b * d) / sin_squared
+    return t, np.linalg.norm((p1 + t * z1) - (p2 + s * z2))
+
+
+z_axis = np.array([0.0, 0.0, 1.0])
+p1, p2 = np.zeros(3), np.array([0.425, 0.0, 0.0])  # two parallel axes, 0.425 m apart
+tilt_about = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)
+S_parallel = urkin.poe.screw_axis(z_axis, p2)
+epsilons = np.logspace(-6, -1, 51)
+normal_offset, normal_jump, screw_change = [], [], []
+for eps in epsilons:
+    z2 = so3_exp(eps * tilt_about) @ z_axis
+    t, a = common_normal(p1, z_axis, p2, z2)
+    normal_offset.append(abs(t))
+    normal_jump.append(abs(a - 0.425))
+    screw_change.append(np.abs(urkin.poe.screw_axis(z2, p2) - S_parallel).max())
+
+fig, ax = plt.subplots(figsize=(8, 5))
+ax.loglog(epsilons, normal_offset, label="DH: where the common normal meets axis 1, |d| (m)")
+ax.loglog(epsilons, normal_jump, label="DH: change of the common normal's length, |Δa| (m)")
+ax.loglog(epsilons, screw_change, label="PoE: largest change of any entry of S (m or rad)")
+ax.set_xlabel("tilt ε of the second axis away from parallel (rad)")
+ax.set_ylabel("change of the parameters (m; rad for directions)")
+ax.set_title("Two nearly parallel joint axes: DH parameters jump, the screw axis barely moves")
+ax.legend(loc="upper right", fontsize=8)
+ax.grid(True, which="major", alpha=0.3)
+plt.show()
+
+for index in (0, 30, 50):  # ε = 1e-6, 1e-3 and 1e-1 rad
+    eps, t_value, change = epsilons[index], normal_offset[index], screw_change[index]
+    print(f"ε = {eps:.0e} rad ({np.degrees(eps):.1e}°): DH offset d = {t_value:10.1f} m, "
+          f"screw change {change:.1e}")
+
+# %% [markdown]
+# A tilt of a millionth of a radian moves the DH frame 300 km along the axis, and the
+# common normal's length jumps from 0.425 m to 0.30 m however small the tilt is; the screw axis
+# changes by about ε. A DH model cannot describe the slightly imperfect real arm by slightly
+# changed numbers; a PoE model can.
+#
+# What you give up:
+#
+# * **Six numbers per joint instead of four.** A line in space has four degrees of freedom;
+#   a revolute screw axis spends six numbers on it, tied by $\|\omega\| = 1$ and
+#   $\omega \cdot v = 0$. Identification and calibration must respect those constraints.
+# * **No link frames for free.** If you need the pose of link 3 — to draw it, to put collision
+#   spheres on it, for its mass and inertia — PoE needs one more home pose $M_i$ per link;
+#   DH handed you those frames as a by-product.
+# * **The manufacturers' language.** Universal Robots publishes DH tables, and the closed-form
+#   inverse kinematics of a later lesson is derived in DH frames. Section 5's conversion
+#   bridges the two.
+#
+# ### The Modern Robotics UR5 example
+#
+# *Modern Robotics* works the UR5 as an example of the space form, with rounded lengths
+# $W_1 = 0.109$, $W_2 = 0.082$, $L_1 = 0.425$, $L_2 = 0.392$, $H_1 = 0.089$ and
+# $H_2 = 0.095$ m, and evaluates it at $\theta_2 = -\pi/2$, $\theta_5 = \pi/2$, all other
+# joints 0. The book's space frame is not DH frame 0: it is turned by π about z, the URDF
+# `base_link` frame of lesson 00, `urkin.T_BASE_LINK_BASE`. Its joint angles are UR's, and its
+# end-effector frame is the flange. We type the book's S and M and compare.
+
+# %%
+W1, W2, L1, L2, H1, H2 = 0.109, 0.082, 0.425, 0.392, 0.089, 0.095  # metres
+S_book = np.array(  # rows are the screw axes S_1 … S_6 as (ω, v): transpose to columns
+    [
+        [0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, -H1, 0.0, 0.0],
+        [0.0, 1.0, 0.0, -H1, 0.0, L1],
+        [0.0, 1.0, 0.0, -H1, 0.0, L1 + L2],
+        [0.0, 0.0, -1.0, -W1, L1 + L2, 0.0],
+        [0.0, 1.0, 0.0, H2 - H1, 0.0, L1 + L2],
+    ]
+).T
+M_book = np.array(
+    [
+        [-1.0, 0.0, 0.0, L1 + L2],
+        [0.0, 0.0, 1.0, W1 + W2],
+        [0.0, 1.0, 0.0, H1 - H2],
+        [0.0, 0.0, 0.0, 1.0],
+    ]
+)
+theta_book = np.array([0.0, -np.pi / 2, 0.0, 0.0, np.pi / 2, 0.0])
+T_book_printed = np.array(
+    [[0.0, -1.0, 0.0, 0.095], [1.0, 0.0, 0.0, 0.109], [0.0, 0.0, 1.0, 0.988], [0, 0, 0, 1.0]]
+)
+T_book = urkin.poe.fk_space(M_book, S_book, theta_book)
+print("T from the book's S and M:")
+print(T_book.round(4) + 0.0)
+print("matches the book's printed T:", np.allclose(T_book, T_book_printed, rtol=0, atol=1e-12))
+
+# the same arm in urkin: UR's DH table with the book's rounded lengths, seen from base_link
+ur5_book = urkin.Robot("UR5 (Modern Robotics' lengths)", H1, -L1, -L2, W1, H2, W2)
+S_dh, M_dh = urkin.poe.space_screws(ur5_book)
+Ad_link = adjoint(urkin.T_BASE_LINK_BASE)  # maps twists from base to base_link
+print("book's S = Ad(T_base_link_base) S_DH:",
+      difference_text(np.abs(Ad_link @ S_dh - S_book).max()))
+print("book's M = T_base_link_base M_DH:   ",
+      difference_text(np.abs(urkin.T_BASE_LINK_BASE @ M_dh - M_book).max()))
+print("book's T = T_base_link_base · urkin.fk:",
+      difference_text(np.abs(urkin.T_BASE_LINK_BASE @ urkin.fk(ur5_book, theta_book)
+                             - T_book).max()))
+real_gap = np.linalg.norm((urkin.T_BASE_LINK_BASE @ urkin.fk(ur5, theta_book))[:3, 3]
+                          - T_book[:3, 3])
+print(f"with UR's exact UR5 lengths the flange is {1000 * real_gap:.2f} mm from the book's")
+
+# %% [markdown]
+# The book's numbers, urkin's DH model and the PoE product agree to the last digit once the
+# half turn between `base` and `base_link` is accounted for; UR's unrounded UR5 lengths move
+# the flange by 0.8 mm. At this configuration the upper arm points straight up
+# ($\theta_2 = -\pi/2$), the forearm continues upwards, and after the quarter turn of joint 5
+# the flange points straight up too, $H_1 + L_1 + L_2 + W_2 = 0.988$ m above the base.
+#
+# ## Summary
+#
+# * A **twist** $(\omega, v)$ is a rigid body's angular velocity and the velocity of its point
+#   at the origin. A revolute joint's **screw axis** is $S = (\omega, -\omega \times q)$: unit
+#   axis ω through any point $q$. Modern Robotics and `urkin.poe` order both **(ω, v)**; the
+#   geometric Jacobian of `urkin.jacobian` orders its rows **[v; ω]** and refers v to the
+#   flange. Convert with `space_from_geometric` / `geometric_from_space`.
+# * $e^{[S]\theta}$ turns by θ about the screw axis: rotation $e^{[\omega]\theta}$ (Rodrigues)
+#   and translation $(I\theta + (1 - \cos\theta)[\omega] + (\theta - \sin\theta)[\omega]^2)v =
+#   (I - R)q$ — not $v\theta$, which only holds for pure translation.
+# * **Space form:** $T = e^{[S_1]q_1} \cdots e^{[S_n]q_n} M$, with the home axes $S_i$ in the
+#   base frame and **M the end-effector pose at q = 0** (not the base frame). The current axes
+#   are $\mathrm{Ad}(e^{[S_1]q_1}\cdots)S_i$; the home axes never move.
+# * **Body form:** $T = M e^{[B_1]q_1} \cdots e^{[B_n]q_n}$ with $B = \mathrm{Ad}(M^{-1})S$. A new
+#   tool changes M and B, a new mounting changes S.
+# * From a standard-DH table, $S_i$ is the z axis of frame i−1 through its origin at q = 0
+#   (`urkin.poe.space_screws`); both DH conventions give the same S. Space form, body form and
+#   DH agree to round-off on all seven UR arms.
+# * Seed 001's screw axes and M describe a UR3 to within its 1 mm rounding, once its zero pose,
+#   world frame and end-effector frame are matched to the DH model.
+# * PoE needs no link frames and varies smoothly with the geometry; DH is more compact, gives
+#   link frames for free and is what manufacturers publish.
+#
+# ## What comes next
+#
+# **Lesson 04** is about velocities: how fast, and in which direction, the flange moves when
+# the joints turn. It builds the geometric Jacobian `urkin.jacobian`, rows [v; ω], column by
+# column from the joint axes — the current axes drawn in section 5 — and numerically by finite
+# differences, and it finds the configurations where a UR arm loses a direction of motion.
+#
+# Before you move on: restart the kernel and run the whole notebook. All four check cells
+# should report full marks.

@@ -1,0 +1,1042 @@
+# %% [markdown]
+# # Lesson 04 — Jacobians and singularities
+#
+# Forward kinematics tells you *where* the flange is. Most of what a robot does needs to know
+# how the flange *moves*: jogging the tool along a straight line, tracking a moving target,
+# solving inverse kinematics one small step at a time. All of these rest on one matrix, the
+# **Jacobian**, which turns joint speeds into the velocity of the flange.
+#
+# In this lesson you will
+#
+# * build the geometric Jacobian of a UR arm column by column from its DH frames, and see why
+#   each column is what it is;
+# * derive the position part by differentiating $p(q)$ in SymPy, and use that to audit a
+#   hand-derived Jacobian from a published report;
+# * compute Jacobians numerically, and learn how to choose the step size;
+# * connect the geometric Jacobian to the space and body Jacobians of the product of
+#   exponentials (lesson 03);
+# * find every configuration where a UR arm loses a direction of motion — its
+#   **singularities** — from one factorised determinant;
+# * measure how far a configuration is from trouble: manipulability and the condition
+#   number.
+#
+# **Time:** about 2 hours. **You need:** lesson 01 (rotations, the cross product as a matrix),
+# lesson 02 (DH frames, the UR forward kinematics) and lesson 03 (screw axes $(\omega, v)$,
+# the home pose $M$, space and body forward kinematics).
+
+# %%
+import matplotlib.pyplot as plt
+import numpy as np
+import sympy as sp
+from IPython.display import display
+
+import urkin
+import urkin.kinematics
+import urkin.plot
+import urkin.poe
+import urkin.symbolic
+from urkin.exercises import check
+from urkin.kinematics import dh_chain
+from urkin.symbolic import LENGTHS, Q
+from urkin.transforms import adjoint, so3_log
+
+np.set_printoptions(precision=4, suppress=True)
+
+
+def below(value, limit=1e-12):
+    """A tiny difference as text: "below 1e-12" rather than a number that is only round-off."""
+    return f"below {limit:.0e}" if value < limit else f"{value:.3g}"
+
+
+# %% [markdown]
+# `urkin.kinematics` has a function `singularities`, and so does exercise 4.3. Once you have
+# run the exercise cell, the bare name `singularities` means *your* function, so the
+# demonstrations always spell urkin's in full: `urkin.kinematics.singularities`.
+#
+# ## 1. What a Jacobian is
+#
+# Let the joints turn at rates $\dot q = (\dot q_1, \dots, \dot q_6)$ in rad/s. The flange then
+# moves with some linear velocity $v$ (m/s, the velocity of the flange *origin*) and turns with
+# some angular velocity $\omega$ (rad/s), both written in base coordinates. For a fixed
+# configuration $q$ the relation is **linear** in $\dot q$: doubling every joint speed doubles
+# the flange's speed, and the motions caused by different joints simply add. A linear map is a
+# matrix, and this one is the **geometric Jacobian** $J(q)$:
+#
+# $$\begin{bmatrix} v \\ \omega \end{bmatrix} = J(q)\,\dot q, \qquad
+# J(q) = \begin{bmatrix} J_v(q) \\ J_\omega(q) \end{bmatrix} \in \mathbb{R}^{6\times 6}.$$
+#
+# Column $i$ is the flange velocity when joint $i$ turns at 1 rad/s and every other joint
+# stands still. The top three rows, $J_v$, are in metres per radian (m/s per rad/s); the
+# bottom three, $J_\omega$, are dimensionless (rad/s per rad/s).
+#
+# **Mind the order.** This course stacks the geometric Jacobian as $[v;\ \omega]$, linear part
+# first, as many robotics texts and seed report 000 do. Twists and screw axes (lesson 03) are
+# written the other way round, $(\omega, v)$, as in *Modern Robotics*. Section 5 converts
+# between the two; mixing them up silently swaps the meaning of the rows.
+#
+# `urkin.jacobian(robot, q)` returns $J$. A quick way to see what it means: turn the joints at
+# some rates $\dot q$ for a very short time $\Delta t$, and compare how far the flange moved
+# and turned with $J\dot q\,\Delta t$.
+
+# %%
+ur5 = urkin.robot("UR5")
+q_demo = np.array([0.4, -1.1, 1.3, -1.6, -1.2, 0.5])  # a generic configuration (rad)
+q_dot = np.array([0.2, -0.1, 0.3, 0.0, 0.5, -0.4])  # joint rates (rad/s)
+
+J_demo = urkin.jacobian(ur5, q_demo)
+twist_predicted = J_demo @ q_dot  # [v; ω]
+
+dt = 1e-7  # seconds: a very short motion
+T_now, T_later = urkin.fk(ur5, q_demo), urkin.fk(ur5, q_demo + q_dot * dt)
+v_observed = (T_later[:3, 3] - T_now[:3, 3]) / dt
+omega_observed = so3_log(T_later[:3, :3] @ T_now[:3, :3].T) / dt  # turn in base coordinates
+
+print("J(q) at q_demo, rows [v; ω]:")
+print(J_demo.round(4) + 0.0)
+print(f"\nv = J_v q̇          = {twist_predicted[:3].round(4) + 0.0} m/s")
+print(f"v, flange moved/Δt = {v_observed.round(4) + 0.0} m/s")
+print(f"ω = J_ω q̇          = {twist_predicted[3:].round(4) + 0.0} rad/s")
+print(f"ω, flange turned/Δt = {omega_observed.round(4) + 0.0} rad/s")
+
+# %% [markdown]
+# The angular velocity was read off with lesson 01's log map: over a short time the flange
+# turns by $R(t + \Delta t)R(t)^\mathsf{T} \approx \exp([\omega]\Delta t)$, whose rotation
+# vector is $\omega\,\Delta t$ in base coordinates.
+#
+# ## 2. The geometric Jacobian, column by column
+#
+# Seed report 000 builds $J$ for its UR3 one column at a time, straight from the DH frames,
+# and that construction is exactly right. It rests on two facts from lesson 02:
+#
+# * joint $i$ turns about the $z$ axis of frame $i-1$ — call its direction $z_{i-1}$ — which
+#   passes through that frame's origin $p_{i-1}$ (the base $z$ axis for joint 1);
+# * everything beyond joint $i$ is carried along rigidly.
+#
+# A rigid body turning at 1 rad/s about an axis through $p_{i-1}$ with direction $z_{i-1}$ has
+# angular velocity $z_{i-1}$, and each of its points $x$ moves with velocity
+# $z_{i-1} \times (x - p_{i-1})$: perpendicular to the axis and to the *lever arm* from the
+# axis to the point, and proportional to its length. The flange origin $p$ is such a point, so
+#
+# $$J_i = \begin{bmatrix} z_{i-1} \times (p - p_{i-1}) \\ z_{i-1} \end{bmatrix},
+# \qquad i = 1, \dots, 6.$$
+#
+# When several joints turn at once, their contributions add: angular velocities along a chain
+# add, and so do the velocities they give to a point. That is why the columns can be computed
+# one joint at a time.
+#
+# Everything needed comes from `urkin.fk_frames(robot, q)`: frame $k$'s third column is
+# $z_k$, its last column is $p_k$. The figure draws, for the UR5 at `q_demo`, each joint axis,
+# the lever arm from the axis to the flange, and the velocity that joint alone gives the
+# flange (arrows scaled by 0.3: 0.3 m of arrow per m/s).
+
+# %%
+frames_demo = urkin.fk_frames(ur5, q_demo)  # (7, 4, 4): base, then DH frames 1 … 6
+p_flange = frames_demo[6, :3, 3]
+origins_demo = frames_demo[:, :3, 3]
+colours = plt.cm.tab10(np.arange(6))
+scale = 0.3  # metres of arrow per m/s
+
+ax = urkin.plot.axes3d(center=0.5 * (origins_demo.min(axis=0) + origins_demo.max(axis=0)),
+                       half_width=0.36, figsize=(11, 8),
+                       title="UR5: joint axes, lever arms and the flange velocity of each "
+                             "joint\ncolumn i of J: v_i = z_(i−1) × (p − p_(i−1)), "
+                             "ω_i = z_(i−1)")
+urkin.plot.draw_robot(ax, ur5, q_demo, frames=False, color="0.6", linewidth=3,
+                      label="arm (links between DH origins)")
+for i in range(6):
+    z, origin = frames_demo[i, :3, 2], frames_demo[i, :3, 3]
+    v_i = np.cross(z, p_flange - origin)
+    axis_line = np.array([origin - 0.1 * z, origin + 0.1 * z])
+    ax.plot(*axis_line.T, color=colours[i], linewidth=2.5,
+            label=f"joint {i + 1}: axis z{i} through p{i}")
+    ax.plot(*np.array([origin, p_flange]).T, "--", color=colours[i], linewidth=1.2)
+    ax.quiver(*p_flange, *(scale * v_i), color=colours[i], linewidth=2.0,
+              arrow_length_ratio=0.15)
+ax.plot([], [], "--", color="0.3", label="lever arm p − p_(i−1), in the joint's colour")
+ax.plot([], [], color="0.3", marker=r"$\rightarrow$", linestyle="none", markersize=12,
+        label="v_i: flange velocity, 0.3 m per m/s")
+ax.scatter(*p_flange, color="k", s=30, depthshade=False)
+ax.text(*(p_flange + np.array([0.0, 0.0, 0.03])), "p (flange)", fontsize=9)
+ax.view_init(elev=25, azim=-20)
+ax.legend(loc="center left", bbox_to_anchor=(1.05, 0.5), fontsize=9)
+plt.show()
+
+for i in range(6):
+    v_i = np.cross(frames_demo[i, :3, 2], p_flange - frames_demo[i, :3, 3])
+    print(f"joint {i + 1}: |lever arm| = {np.linalg.norm(p_flange - frames_demo[i, :3, 3]):.4f}"
+          f" m,  |v_i| = {np.linalg.norm(v_i):.4f} m/s per rad/s")
+
+# %% [markdown]
+# Read the figure joint by joint. The lever arm of joint 6 runs *along* its own axis — the
+# flange origin sits $d_6$ further out on the joint-6 axis — so the cross product vanishes and
+# turning the last joint spins the flange in place: column 6 is $[0;\ z_5]$. Joints 2, 3 and 4
+# have parallel axes (all along $z_1$), so their velocity arrows are all perpendicular to that
+# common direction, and their lengths grow with the distance from each axis to the flange.
+# Only the *component* of the lever arm perpendicular to the axis matters: sliding $p_{i-1}$
+# along the axis changes nothing, which is why it does not matter that DH frame origins are
+# not at the physical motors (lesson 02).
+#
+# ### Exercise 4.1 — `geometric_jacobian` (4 points)
+#
+# Write `geometric_jacobian(robot, q)`: the 6×6 geometric Jacobian of the flange origin in the
+# base frame, rows $[v;\ \omega]$, built column by column with
+# $J_i = [z_{i-1} \times (p - p_{i-1});\ z_{i-1}]$. Get the frames from
+# `urkin.fk_frames(robot, q)` (entry `k` is the pose of DH frame `k`; entry 0 is the base and
+# entry 6 the flange). `np.cross` computes the cross product.
+#
+# Calling `urkin.jacobian`, `urkin.kinematics.position_jacobian` or the Jacobians of
+# `urkin.poe` earns no points. The check compares your linear rows with finite differences of
+# the flange position, and the whole matrix with urkin's for random arms; it recognises the
+# rows in twist order, the wrong frame's axis, a reversed lever arm and the space Jacobian.
+
+# %%
+def geometric_jacobian(robot, q):
+    """Geometric Jacobian of the flange origin, in the base frame, from the DH frames.
+
+    Parameters
+    ----------
+    robot : urkin.Robot
+        The arm, for example ``urkin.robot("UR5")``.
+    q : array_like, shape (6,)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (6, 6)
+        ``J`` with ``[v; ω] = J @ q_dot``: rows 0–2 are the linear velocity ``v`` of the flange
+        origin (m/s per rad/s), rows 3–5 the angular velocity ``ω`` of the flange (rad/s per
+        rad/s), both in base coordinates. Column ``i`` belongs to joint ``i + 1``:
+        ``[z_i × (p − p_i); z_i]`` with ``z_i``, ``p_i`` the z axis and origin of DH frame ``i``
+        and ``p`` the flange origin.
+    """
+    ### BEGIN SOLUTION
+    frames = urkin.fk_frames(robot, np.asarray(q, dtype=float))
+    p = frames[6][:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        z, origin = frames[i][:3, 2], frames[i][:3, 3]
+        J[:3, i] = np.cross(z, p - origin)
+        J[3:, i] = z
+    return J
+    ### END SOLUTION
+
+
+# %%
+check("4.1", geometric_jacobian)
+
+# %% [markdown]
+# ## 3. The position Jacobian by differentiation
+#
+# There is a second road to $J_v$. The flange position $p(q)$ is a known function (lesson 02),
+# and its velocity is its time derivative, by the chain rule
+#
+# $$v = \frac{d}{dt}\,p(q(t)) = \frac{\partial p}{\partial q}\,\dot q, \qquad\text{so}\qquad
+# J_v = \frac{\partial p}{\partial q},$$
+#
+# the 3×6 matrix of partial derivatives $\partial p_k / \partial q_i$ — the **position
+# Jacobian**. (There is no such shortcut for $J_\omega$: the orientation is a rotation matrix,
+# not three numbers whose derivative is $\omega$.) SymPy differentiates the symbolic $p$ of
+# *every* UR arm, with the lengths $d_1, a_2, \dots, d_6$ kept as symbols; `ur_t06()` is
+# lesson 02's derivation.
+
+# %%
+def simplify_angles(expr):
+    """Multiply out, then fold sines and cosines into sums of angles such as cos(q2 + q3)."""
+    return sp.trigsimp(sp.expand(expr))
+
+
+p_symbolic = urkin.symbolic.ur_t06()[:3, 3]
+Jp_symbolic = p_symbolic.jacobian(Q).applyfunc(simplify_angles)  # ∂p/∂q, 3 × 6
+J_symbolic = urkin.symbolic.ur_geometric_jacobian()  # column by column, 6 × 6
+
+print("∂p/∂q1 (the first column):")
+display(Jp_symbolic[:, 0])
+print("∂p/∂q6 (the last column):")
+display(Jp_symbolic[:, 5])
+difference = (Jp_symbolic - J_symbolic[:3, :]).applyfunc(simplify_angles)
+print("∂p/∂q equals the linear rows of the column-by-column J:",
+      difference == sp.zeros(3, 6))
+
+# %% [markdown]
+# The two roads meet: all eighteen entries agree symbolically, for every UR arm. The two
+# columns shown are easy to read. Joint 1 turns about the base $z$ axis, so
+# $\partial p/\partial q_1 = z_0 \times p = (-p_y,\ p_x,\ 0)$: compare the entries with
+# lesson 02's $p$. And $\partial p/\partial q_6 = 0$ because the flange origin lies on the
+# joint-6 axis.
+#
+# ### Seed 002's hand-derived Jacobian
+#
+# Seed report 002 (a UR5, in its own convention: positive $a_2$, $a_3$, angles shifted from
+# UR's by $(0, \pi, 0, -\pi, 0, 0)$, lengths in millimetres) differentiates its published
+# $p$ by hand and types the eighteen partial derivatives into its solver. Lesson 02 found
+# that its $p_x$ and $p_y$ lack a factor $\sin q_5$ on the $d_6 \cos(q_2+q_3+q_4)$ terms. What
+# does that do to the Jacobian?
+#
+# Below, the report's position and Jacobian are typed in metres, in its convention, as
+# functions that accept numbers, numpy arrays or SymPy symbols — one transcription for both
+# computing and reasoning.
+
+# %%
+seed002_lengths = (0.0892, 0.425, 0.392, 0.1093, 0.09475, 0.0825)  # d1, a2, a3, d4, d5, d6 (m)
+seed002_table = np.array(  # its standard-DH rows (d_i, a_i, α_i), positive a2 and a3
+    [
+        [0.0892, 0.0, np.pi / 2],
+        [0.0, 0.425, 0.0],
+        [0.0, 0.392, 0.0],
+        [0.1093, 0.0, np.pi / 2],
+        [0.09475, 0.0, -np.pi / 2],
+        [0.0825, 0.0, 0.0],
+    ]
+)
+SHIFT = np.array([0.0, np.pi, 0.0, -np.pi, 0.0, 0.0])  # q_seed = q_UR + SHIFT
+
+
+def seed002_position(q, lengths, cos=np.cos, sin=np.sin):
+    """Seed 002's published flange position [p_x, p_y, p_z] (its convention; wrong in x, y)."""
+    d1, a2, a3, d4, d5, d6 = lengths
+    c1, s1, c2, s2, c3, s3 = cos(q[0]), sin(q[0]), cos(q[1]), sin(q[1]), cos(q[2]), sin(q[2])
+    c5, s5 = cos(q[4]), sin(q[4])
+    c234, s234 = cos(q[1] + q[2] + q[3]), sin(q[1] + q[2] + q[3])
+    arm = a2 * c2 + a3 * c2 * c3 - a3 * s2 * s3  # in-plane reach of upper arm and forearm
+    return [
+        d5 * c1 * s234 + d4 * s1 - d6 * c1 * c234 + d6 * c5 * s1 + c1 * arm,
+        d5 * s1 * s234 - d4 * c1 - d6 * s1 * c234 - d6 * c1 * c5 + s1 * arm,
+        d1 - d6 * s234 * s5 + a3 * sin(q[1] + q[2]) + a2 * s2 - d5 * c234,
+    ]
+
+
+def seed002_jacobian(q, lengths, cos=np.cos, sin=np.sin):
+    """Seed 002's hand-derived 3 × 6 position Jacobian, entry by entry as the report lists it."""
+    _, a2, a3, d4, d5, d6 = lengths  # d1 drops out of every derivative
+    c1, s1, c2, s2, c3, s3 = cos(q[0]), sin(q[0]), cos(q[1]), sin(q[1]), cos(q[2]), sin(q[2])
+    c5, s5 = cos(q[4]), sin(q[4])
+    c23 = cos(q[1] + q[2])
+    c234, s234 = cos(q[1] + q[2] + q[3]), sin(q[1] + q[2] + q[3])
+    zero = 0 * c1  # a zero of the right shape (and type) for arrays and symbols alike
+    # columns 2 to 4 of the x and y rows share the wrist terms (d5, d6), as in the report
+    wrist_x, wrist_y = d5 * c1 * c234 + d6 * c1 * s234, d5 * s1 * c234 + d6 * s1 * s234
+    row_x = [
+        -d5 * s1 * s234 + d4 * c1 + d6 * s1 * c234 - a2 * s1 * c2 + d6 * c5 * c1
+        - a3 * s1 * c2 * c3 + a3 * s1 * s2 * s3,
+        wrist_x - a2 * c1 * s2 - a3 * c1 * s2 * c3 - a3 * c1 * c2 * s3,
+        wrist_x - a3 * c1 * c2 * s3 - a3 * c1 * s2 * c3,
+        wrist_x,
+        -d6 * s5 * s1,
+        zero,
+    ]
+    row_y = [
+        d5 * c1 * s234 + d4 * s1 - d6 * c1 * c234 + d6 * s1 * c5 + a2 * c2 * c1
+        + a3 * c2 * c3 * c1 - a3 * c1 * s2 * s3,
+        wrist_y - a2 * s2 * s1 - a3 * s2 * c3 * s1 - a3 * s1 * c2 * s3,
+        wrist_y - a3 * c2 * s3 * s1 - a3 * s1 * s2 * c3,
+        wrist_y,
+        d6 * c1 * s5,
+        zero,
+    ]
+    row_z = [
+        zero,
+        -d6 * c234 * s5 + a3 * c23 + a2 * c2 + d5 * s234,
+        -d6 * c234 * s5 + a3 * c23 + d5 * s234,
+        -d6 * c234 * s5 + d5 * s234,
+        -d6 * s234 * c5,
+        zero,
+    ]
+    return [row_x, row_y, row_z]
+
+
+# %% [markdown]
+# First question: **was the differentiation right?** Differentiate the report's own $p$ with
+# SymPy and subtract the typed Jacobian.
+
+# %%
+p_published = sp.Matrix(seed002_position(Q, LENGTHS, sp.cos, sp.sin))
+J_published = sp.Matrix(seed002_jacobian(Q, LENGTHS, sp.cos, sp.sin))
+own_error = (J_published - p_published.jacobian(Q)).applyfunc(simplify_angles)
+print("hand-derived Jacobian − SymPy's ∂(published p)/∂q is zero:", own_error == sp.zeros(3, 6))
+
+# %% [markdown]
+# It was: every one of the eighteen entries is the exact derivative of the published $p$.
+# Second question: **is it the Jacobian of the arm?** The arm is the report's own DH chain,
+# which lesson 02 evaluated with `dh_chain`. Its derivative can be estimated without any
+# formula at all, by nudging one joint at a time by a small $h$ either way and dividing the
+# change in position by $2h$ — a *central difference*, which section 4 studies properly. As a
+# cross-check, the estimate is compared with urkin's exact position Jacobian of the same arm,
+# written in UR's convention (the constant shift between the conventions does not change
+# derivatives).
+
+# %%
+rng = np.random.default_rng(4)
+q_seed = rng.uniform(-np.pi, np.pi, (500, 6))  # seed 002's angles
+h = 1e-6
+steps = h * np.eye(6)
+plus = dh_chain(seed002_table, (q_seed[:, None, :] + steps).reshape(-1, 6))[:, :3, 3]
+minus = dh_chain(seed002_table, (q_seed[:, None, :] - steps).reshape(-1, 6))[:, :3, 3]
+J_true = ((plus - minus) / (2 * h)).reshape(500, 6, 3).transpose(0, 2, 1)  # (500, 3, 6)
+
+l1, l2, l3, l4, l5, l6 = seed002_lengths
+seed002_arm = urkin.Robot("UR5 (seed 002's lengths)", l1, -l2, -l3, l4, l5, l6)
+J_exact = urkin.kinematics.position_jacobian(seed002_arm, q_seed - SHIFT)
+print(f"central differences vs urkin's exact ∂p/∂q: largest difference "
+      f"{np.abs(J_true - J_exact).max():.0e} m/rad")
+
+J_seed = np.array(seed002_jacobian(q_seed.T, seed002_lengths)).transpose(2, 0, 1)
+worst = np.abs(J_seed - J_true).max(axis=0)  # (3, 6), m/rad, over the 500 configurations
+wrong = worst > 1e-6
+print(f"\n{wrong.sum()} of 18 entries are wrong; largest error per entry (mm/rad):")
+print("        " + "".join(f"  ∂/∂q{j + 1}" for j in range(6)))
+for row, name in enumerate(["p_x", "p_y", "p_z"]):
+    print(f"{name:>6}  " + "".join(f"{1000 * worst[row, j]:8.1f}" for j in range(6)))
+
+# %% [markdown]
+# Ten entries are wrong — the $x$ and $y$ rows in columns 1 to 5 — by up to 165 mm/rad, while
+# the $z$ row and column 6 are right. The error Jacobian is the derivative of the position
+# error lesson 02 found, $e = d_6(\sin q_5 - 1)\cos(q_2+q_3+q_4)\,(\cos q_1,\ \sin q_1,\ 0)$:
+
+# %%
+p_true_general = urkin.symbolic.ur_t06()[:3, 3]  # right for the report's convention too
+error_jacobian = (p_published - p_true_general).jacobian(Q).applyfunc(
+    lambda entry: sp.factor(simplify_angles(entry)))
+display(error_jacobian)
+
+q_blind = np.array([0.35, 0.35, 0.35, np.pi / 2 - 0.70, 0.35, 0.35])  # q2 + q3 + q4 = 90°
+blind_plus = dh_chain(seed002_table, q_blind + steps)[:, :3, 3]
+blind_minus = dh_chain(seed002_table, q_blind - steps)[:, :3, 3]
+J_blind_true = ((blind_plus - blind_minus) / (2 * h)).T
+J_blind_seed = np.array(seed002_jacobian(q_blind, seed002_lengths), dtype=float)
+print(f"where q2 + q3 + q4 = 90°, as at the report's test: p is right, but ∂p_x/∂q2 is off by "
+      f"{1000 * abs(J_blind_seed[0, 1] - J_blind_true[0, 1]):.1f} mm/rad")
+
+# %% [markdown]
+# Columns 2 to 4 carry $\sin(q_2+q_3+q_4)$, so they are wrong *even at poses like the
+# report's test pose*, where the position itself happens to be right: a wrong function can
+# agree with the right one at a point without agreeing in slope. The figure maps the largest
+# error of each entry over the 500 configurations, against the true chain and against the
+# report's own formula.
+
+# %%
+J_own = np.array(  # central differences of the *published* p: what the report differentiated
+    [
+        (np.array(seed002_position((q_seed + steps[j]).T, seed002_lengths))
+         - np.array(seed002_position((q_seed - steps[j]).T, seed002_lengths))) / (2 * h)
+        for j in range(6)
+    ]
+).transpose(2, 1, 0)  # (500, 3, 6)
+worst_own = np.abs(J_seed - J_own).max(axis=0)
+
+fig, axes = plt.subplots(1, 2, figsize=(13, 4.2), constrained_layout=True)
+panels = [(worst, "against the true DH chain: 10 entries wrong"),
+          (worst_own, "against its own published p: all 18 right")]
+for ax, (errors, title) in zip(axes, panels):
+    image = ax.imshow(1000 * errors, cmap="Reds", vmin=0.0, vmax=170.0)
+    for row in range(3):
+        for col in range(6):
+            value = 1000 * errors[row, col]
+            ax.text(col, row, f"{value:.1f}", ha="center", va="center", fontsize=10,
+                    color="white" if value > 100 else "black")
+    ax.set_xticks(range(6), [f"∂/∂q{j + 1}" for j in range(6)])
+    ax.set_yticks(range(3), ["p_x", "p_y", "p_z"])
+    ax.set_xlabel("joint (column of the Jacobian)")
+    ax.set_ylabel("flange coordinate (row)")
+    ax.set_title(title)
+fig.colorbar(image, ax=axes, shrink=0.9, label="largest |error| over 500 poses (mm/rad)")
+fig.suptitle("Seed 002's hand-derived UR5 position Jacobian, entry by entry")
+plt.show()
+
+# %% [markdown]
+# The differentiation was flawless; the formula it differentiated was not. A Jacobian that is
+# the exact derivative of a wrong position is *consistent*, which is the dangerous part:
+# Newton–Raphson inverse kinematics driven by the pair converges happily — to joint angles
+# where the *formula* reaches the target, while the real arm is up to 165 mm away. The
+# defence is the one lesson 02 drew: check formulas against an independent computation at
+# random configurations. For Jacobians, finite differences are that independent computation.
+#
+# ## 4. Numeric Jacobians and the step size
+#
+# The derivative of any function $f: \mathbb{R}^n \to \mathbb{R}^m$ can be estimated from
+# values of $f$ alone. Nudge input $j$ by $h$ along the unit vector $e_j$; Taylor's theorem
+# says (with $f''$, $f'''$ the higher derivatives along $e_j$)
+#
+# $$f(q + h e_j) = f(q) + h\,\frac{\partial f}{\partial q_j} + \frac{h^2}{2}\,f'' +
+# \frac{h^3}{6}\,f''' + \dots$$
+#
+# * **forward difference**: $\dfrac{f(q + h e_j) - f(q)}{h} = \dfrac{\partial f}{\partial q_j}
+#   + \dfrac{h}{2} f'' + \dots$ — its error shrinks like $h$ (first order);
+# * **central difference**: $\dfrac{f(q + h e_j) - f(q - h e_j)}{2h} =
+#   \dfrac{\partial f}{\partial q_j} + \dfrac{h^2}{6} f''' + \dots$ — the even terms cancel, so
+#   its error shrinks like $h^2$ (second order), for $2n$ evaluations of $f$ instead of $n + 1$.
+#
+# Each difference is one column of the Jacobian: row $k$, column $j$ holds
+# $\partial f_k / \partial q_j$, so the result has shape $(m, n)$ — one row per output, one
+# column per input, like $J$.
+#
+# Why not take $h$ as small as possible? Because $f$ is computed in floating point: each value
+# carries a rounding error of about $\varepsilon |f|$ with $\varepsilon \approx 2.2\cdot
+# 10^{-16}$, and the difference divides that by $h$. The total error is roughly
+#
+# $$\text{forward: } \frac{h}{2}|f''| + \frac{\varepsilon|f|}{h}, \qquad
+# \text{central: } \frac{h^2}{6}|f'''| + \frac{\varepsilon|f|}{h},$$
+#
+# smallest near $h \approx \sqrt{\varepsilon} \approx 10^{-8}$ for forward differences and
+# $h \approx \varepsilon^{1/3} \approx 10^{-5}$ for central ones (for $f$ and its derivatives
+# of order 1, as here: metres and radians).
+#
+# ### Exercise 4.2 — `numeric_jacobian` (4 points)
+#
+# Write `numeric_jacobian(f, q, h=1e-6)`: the Jacobian of any function `f` at `q` by
+# **central differences**, as an array of shape `(m, n)`, where `q` has `n` entries and
+# `f(q)` returns `m` numbers. Column `j` is `(f(q + h e_j) − f(q − h e_j)) / (2h)`. Do not
+# change `q` in place (build the nudged inputs as new arrays). You saw the idea for the seed
+# chain above; here it must work for any `f`, `n` and `m`.
+#
+# The check tries linear functions (where the answer is exact), a smooth function with a large
+# `h` (which tells central from forward differences) and the UR flange position.
+
+# %%
+def numeric_jacobian(f, q, h=1e-6):
+    """Jacobian of a function by central differences.
+
+    Parameters
+    ----------
+    f : callable
+        ``f(q)`` takes an array of shape ``(n,)`` and returns ``m`` numbers (array_like,
+        shape ``(m,)``).
+    q : array_like, shape (n,)
+        The point at which to differentiate (for a UR arm: joint angles in radians).
+    h : float
+        Step size, in the units of ``q``.
+
+    Returns
+    -------
+    ndarray, shape (m, n)
+        Entry ``[k, j]`` is ∂f_k/∂q_j ≈ (f_k(q + h e_j) − f_k(q − h e_j)) / (2h): one row per
+        output, one column per input. For the flange position of a UR arm, ``m = 3``,
+        ``n = 6`` and the entries are in metres per radian.
+    """
+    ### BEGIN SOLUTION
+    q = np.asarray(q, dtype=float)
+    columns = []
+    for j in range(q.size):
+        step = np.zeros_like(q)
+        step[j] = h
+        forward = np.asarray(f(q + step), dtype=float).ravel()
+        backward = np.asarray(f(q - step), dtype=float).ravel()
+        columns.append((forward - backward) / (2.0 * h))
+    return np.column_stack(columns)
+    ### END SOLUTION
+
+
+# %%
+check("4.2", numeric_jacobian)
+
+# %% [markdown]
+# ### How small should $h$ be?
+#
+# Here is the trade-off measured on the UR5's flange position, against urkin's exact
+# $\partial p/\partial q$ (generated from the SymPy derivation), for step sizes from
+# $10^{-16}$ to $10^{-1}$ rad. A third method joins in: the **complex step**. Evaluate $f$ at
+# a *complex* point $q + \mathrm{i}h e_j$; for a function built from analytic operations,
+# $f(q + \mathrm{i}h e_j) = f(q) + \mathrm{i}h\,\partial f/\partial q_j - \tfrac{h^2}{2}f''
+# + \dots$, so
+#
+# $$\frac{\partial f}{\partial q_j} \approx \frac{\operatorname{Im} f(q + \mathrm{i}h e_j)}{h}$$
+#
+# with an error of order $h^2$ and **no subtraction** at all — nothing cancels, so $h$ can be
+# as small as we like. It needs an $f$ that accepts complex numbers: `urkin.fk` converts its
+# input to real numbers, dropping the imaginary part, so we use the SymPy formula turned into
+# numpy code with `lambdify`, which works with complex arrays as it is.
+
+# %%
+rng = np.random.default_rng(11)
+q_fd = rng.uniform(-np.pi, np.pi, 6)
+exact = urkin.kinematics.position_jacobian(ur5, q_fd)  # (3, 6), m/rad
+p_ur5 = sp.lambdify(Q, list(p_symbolic.subs(dict(zip(LENGTHS, ur5.lengths)))), "numpy")
+gap = np.abs(np.array(p_ur5(*q_fd)) - urkin.fk(ur5, q_fd)[:3, 3]).max()
+print(f"lambdified SymPy p vs urkin.fk: largest difference {below(gap)}")
+
+steps_h = np.logspace(-16, -1, 61)
+nudged = q_fd + steps_h[:, None, None] * np.eye(6)  # (61, 6, 6): every h, every joint
+p_plus = urkin.fk(ur5, nudged.reshape(-1, 6))[:, :3, 3].reshape(61, 6, 3)
+p_minus = urkin.fk(ur5, (2 * q_fd - nudged).reshape(-1, 6))[:, :3, 3].reshape(61, 6, 3)
+p_here = urkin.fk(ur5, q_fd)[:3, 3]
+forward = ((p_plus - p_here) / steps_h[:, None, None]).transpose(0, 2, 1)  # (61, 3, 6)
+central = ((p_plus - p_minus) / (2 * steps_h[:, None, None])).transpose(0, 2, 1)
+complex_step = np.array(
+    [[np.imag(p_ur5(*(q_fd + 1j * step * e))) / step for e in np.eye(6)] for step in steps_h]
+).transpose(0, 2, 1)
+
+errors = {name: np.abs(estimate - exact).max(axis=(1, 2))
+          for name, estimate in [("forward", forward), ("central", central),
+                                 ("complex step", complex_step)]}
+
+floor = 1e-18  # exact answers (error 0) are drawn here, so that they show on a log axis
+eps = np.finfo(float).eps
+fig, ax = plt.subplots(figsize=(8.5, 5.5))
+styles = {"forward": "o-", "central": "s-", "complex step": "^-"}
+for name, error in errors.items():
+    ax.loglog(steps_h, np.maximum(error, floor), styles[name], markersize=4, linewidth=1.2,
+              label=f"{name} differences" if name != "complex step" else "complex step")
+ax.loglog(steps_h, steps_h, ":", color="0.5", linewidth=1, label="slopes: h, h², ε/h")
+ax.loglog(steps_h, steps_h**2, ":", color="0.5", linewidth=1)
+ax.loglog(steps_h, eps / steps_h, ":", color="0.5", linewidth=1)
+ax.axhline(eps, color="0.7", linewidth=0.8, linestyle="--", label="machine precision ε")
+ax.set_xlabel("step size h (rad)")
+ax.set_ylabel("largest error of ∂p/∂q entries (m/rad)")
+ax.set_title("UR5 flange position Jacobian: error against step size")
+ax.set_ylim(floor / 3, 10.0)
+ax.legend(loc="upper center", fontsize=9)
+plt.show()
+
+for name, error in errors.items():
+    best = int(np.argmin(error))
+    print(f"{name:>12}: smallest error {error[best]:.0e} m/rad at h = {steps_h[best]:.0e}")
+print(f"{'at h = 1e-6':>12}: forward {errors['forward'][40]:.0e}, central "
+      f"{errors['central'][40]:.0e} m/rad")
+
+# %% [markdown]
+# The V shapes are the trade-off. To the right of each V the truncation error dominates and
+# falls with slope 1 (forward) or 2 (central and complex step); to the left, rounding takes
+# over and grows like $\varepsilon/h$ — at $h = 10^{-16}$ the nudge vanishes entirely and the
+# difference is 0. The best forward difference is only about $10^{-8}$ accurate; the best
+# central difference is about a thousand times better, near $h \approx 10^{-5}$; the default
+# $h = 10^{-6}$ of exercise 4.2 is close to that optimum. The complex step has no left arm:
+# below $h \approx 10^{-8}$ it is exact to machine precision.
+#
+# (The check of exercise 4.1 compares your linear rows with central differences at
+# $h = 10^{-6}$ and a tolerance of $10^{-7}$ m/rad: comfortably above both kinds of error.)
+#
+# ## 5. Space and body Jacobians
+#
+# Lesson 03 wrote the forward kinematics as a product of exponentials,
+# $T(q) = e^{[S_1]q_1}\cdots e^{[S_6]q_6}M = M e^{[B_1]q_1}\cdots e^{[B_6]q_6}$. Its
+# Jacobians map joint rates to **twists** $(\omega, v)$, angular part first:
+#
+# * the **space Jacobian** $J_s$: column $i$ is the screw axis $S_i$ carried to where the
+#   joints before it have put it, $J_{s,i} = \mathrm{Ad}_{e^{[S_1]q_1}\cdots
+#   e^{[S_{i-1}]q_{i-1}}} S_i$. It gives the *spatial twist* $(\omega, v_s)$, both in base
+#   coordinates — where $v_s$ is **not** the velocity of the flange origin but of the point of
+#   the (extended) flange body that is passing through the *base origin*;
+# * the **body Jacobian** $J_b$ gives the *body twist* $(\omega_b, v_b)$, both in flange
+#   coordinates, with $v_b$ the velocity of the flange origin.
+#
+# Each column of $J_s$ is the current joint axis as a screw, $(z_{i-1},\ p_{i-1} \times
+# z_{i-1})$. Compare with the geometric column: velocities of two points of one rigid body
+# differ by $\omega \times$ (the vector between them), so
+#
+# $$v_s = v + \omega \times (0 - p) = v + p \times \omega .$$
+#
+# That is `urkin.poe.space_from_geometric`, and `geometric_from_space` undoes it. And because
+# a twist changes frames through the adjoint of lesson 03, the space and body Jacobians are
+# related by $J_s = \mathrm{Ad}_{T}\,J_b$ with $T = T_{0,6}(q)$. Seed 000 calls its column-by-
+# column $J$ a "spatial velocity" Jacobian; by these definitions it is the geometric one.
+#
+# Check all of it numerically on 200 random UR5 configurations:
+
+# %%
+S, M = urkin.poe.space_screws(ur5)
+B, _ = urkin.poe.body_screws(ur5)
+q_many = np.random.default_rng(5).uniform(-np.pi, np.pi, (200, 6))
+
+J_s = urkin.poe.jacobian_space(S, q_many)  # (200, 6, 6), rows (ω; v_s)
+J_b = urkin.poe.jacobian_body(B, q_many)  # (200, 6, 6), rows (ω_b; v_b)
+J_geo = urkin.jacobian(ur5, q_many)  # (200, 6, 6), rows [v; ω]
+T_many = urkin.fk(ur5, q_many)
+R_many = T_many[:, :3, :3]
+
+checks = {
+    "J_s = Ad_T J_b": np.abs(J_s - adjoint(T_many) @ J_b).max(),
+    "J_s = space_from_geometric(J, T)": np.abs(
+        J_s - urkin.poe.space_from_geometric(J_geo, T_many)).max(),
+    "J = geometric_from_space(J_s, T)": np.abs(
+        J_geo - urkin.poe.geometric_from_space(J_s, T_many)).max(),
+    "J_b = (Rᵀ J_ω ; Rᵀ J_v)": np.abs(
+        J_b - np.concatenate([np.swapaxes(R_many, 1, 2) @ J_geo[:, 3:],
+                              np.swapaxes(R_many, 1, 2) @ J_geo[:, :3]], axis=1)).max(),
+}
+for name, gap in checks.items():
+    print(f"{name:<34} largest difference over 200 poses: {below(gap)}")
+
+print("\ncolumn 1 (joint 1) at q_demo, twist order (ω, v):")
+print("  space twist (ω, v_s):", urkin.poe.jacobian_space(S, q_demo)[:, 0].round(4) + 0.0)
+print("  geometric [v; ω]:    ", J_demo[:, 0].round(4) + 0.0)
+
+# %% [markdown]
+# Look at column 1. Joint 1 turns about the base $z$ axis, which passes through the base
+# origin, so the body point there does not move: $v_s = 0$. The flange origin, 0.67 m from
+# the base axis, does move, and the geometric column says how fast. The body Jacobian is the
+# geometric one seen from the flange: the same $\omega$ and $v$, rotated into flange
+# coordinates by $R^\mathsf{T}$ and stacked in twist order.
+#
+# Which one to use? The geometric Jacobian answers "how fast does my tool point move, in the
+# base frame" — the question jogging and Cartesian control ask. Space and body Jacobians fit
+# the product-of-exponentials machinery and the log-map pose errors of lesson 03; the IK
+# lessons use both. All three carry the same information, and the conversions are exact.
+#
+# ## 6. Singularities
+#
+# A square Jacobian can be inverted — $\dot q = J^{-1}\,[v;\ \omega]$ gives the joint rates
+# for any desired flange motion — unless $\det J = 0$. Configurations where that happens are
+# **singular**: some flange velocity cannot be produced at all, and close to them the joint
+# rates needed for ordinary flange velocities become huge. For a UR arm we can find every one
+# of them, because the determinant factors.
+#
+# SymPy can take the 6×6 symbolic determinant head-on, but simplifying the result takes
+# about ten times longer than it needs to. First remove what cannot matter:
+#
+# * $J$ does not depend on $q_6$ at all: the last joint only spins the flange about its own
+#   axis, which moves none of the axes or origins in the formula;
+# * $q_1$ turns the whole arm about the base axis, which rotates every column:
+#   $J(q) = \mathrm{diag}(R_z(q_1), R_z(q_1))\,J(q)|_{q_1=0}$, and that block-diagonal factor has
+#   determinant 1.
+#
+# So we may set $q_1 = 0$ before taking the determinant.
+
+# %%
+q1, q2, q3, q4, q5, q6 = Q
+d1, a2, a3, d4, d5, d6 = LENGTHS
+print("J depends on q6:", J_symbolic.has(q6))
+det_J = sp.factor(simplify_angles(J_symbolic.subs(q1, 0).det(method="berkowitz")))
+print("det J =")
+display(det_J)
+
+shoulder_factor = a2 * sp.cos(q2) + a3 * sp.cos(q2 + q3) + d5 * sp.sin(q2 + q3 + q4)
+expected = a2 * a3 * sp.sin(q3) * sp.sin(q5) * shoulder_factor
+print("equal to a2·a3·sin q3·sin q5·(a2 cos q2 + a3 cos(q2+q3) + d5 sin(q2+q3+q4)):",
+      sp.expand(det_J - expected) == 0)
+
+# %% [markdown]
+# One formula for all seven arms. It is worth confirming numerically with urkin's Jacobian,
+# including the claim that $q_1$ and $q_6$ do not matter:
+
+# %%
+rng = np.random.default_rng(6)
+largest = 0.0
+for name in urkin.ROBOTS:
+    arm = urkin.robot(name)
+    qs = rng.uniform(-np.pi, np.pi, (300, 6))
+    numeric = np.linalg.det(urkin.jacobian(arm, qs))
+    factor = arm.a2 * np.cos(qs[:, 1]) + arm.a3 * np.cos(qs[:, 1] + qs[:, 2]) \
+        + arm.d5 * np.sin(qs[:, 1:4].sum(axis=1))
+    formula = arm.a2 * arm.a3 * np.sin(qs[:, 2]) * np.sin(qs[:, 4]) * factor
+    largest = max(largest, np.abs(numeric - formula).max())
+print(f"det J vs the factorised formula, 7 arms × 300 poses: largest difference {below(largest)}")
+
+qs = rng.uniform(-np.pi, np.pi, (300, 6))
+turned = qs.copy()
+turned[:, [0, 5]] = rng.uniform(-np.pi, np.pi, (300, 2))  # new q1 and q6, same q2 … q5
+spread = np.abs(np.linalg.det(urkin.jacobian(ur5, qs))
+                - np.linalg.det(urkin.jacobian(ur5, turned))).max()
+print(f"det J with q1 and q6 changed: largest change {below(spread)}")
+
+# %% [markdown]
+# Since $a_2 a_3 \neq 0$, $\det J = 0$ exactly when one of three factors vanishes. Each is a
+# **singular family**, with its own geometry:
+#
+# * **shoulder**: $a_2\cos q_2 + a_3\cos(q_2+q_3) + d_5\sin(q_2+q_3+q_4) = 0$. The wrist
+#   centre lies in the vertical plane through the base axis that is parallel to the shoulder
+#   axis.
+# * **elbow**: $\sin q_3 = 0$. The upper arm and the forearm are in one line, stretched out
+#   or folded back.
+# * **wrist**: $\sin q_5 = 0$. The axes of joints 4 and 6 are parallel.
+#
+# The **wrist centre** is the origin of frame 5, where the axes of joints 5 and 6 cross. The
+# shoulder factor is its horizontal distance from the base axis, measured in the arm's own
+# vertical plane (lesson 02's reading of $p$: the reach $a_2 c_2 + a_3 c_{23}$ plus the
+# wrist's $d_5 s_{234}$). When it is zero, the wrist centre sits off the base axis only by the
+# sideways offset $d_4$, in the plane the figure shades. Turning joint 1 then moves it
+# straight towards or away from the base axis — a direction the shoulder and elbow can
+# already produce — and no joint can move it along the shoulder axis.
+#
+# The elbow condition is the stretched arm of the classic two-link example: the wrist can move
+# towards or away from the shoulder only to second order. The wrist condition makes joints 4
+# and 6 turn about parallel axes: the three wrist joints can then turn the flange about only
+# two independent directions instead of three, and the arm as a whole loses one direction of
+# motion.
+
+# %%
+def view_from(ax, direction, elev):
+    """Look at a 3D axes from the horizontal direction of `direction`, `elev` degrees up."""
+    ax.view_init(elev=elev, azim=np.degrees(np.arctan2(direction[1], direction[0])))
+
+
+reach = ur5.a2 * np.cos(-1.0) + ur5.a3 * np.cos(-2.0)  # q2 = −1, q3 = −1: the arm's reach
+families = {  # q4 puts the wrist centre's d5 s234 exactly against the reach
+    "shoulder": np.array([0.3, -1.0, -1.0, np.arcsin(-reach / ur5.d5) + 2.0, 1.0, 0.4]),
+    "elbow": np.array([0.3, -0.9, 0.0, -1.2, 1.1, 0.4]),
+    "wrist": np.array([0.3, -1.3, 1.6, -0.8, 0.0, 0.4]),
+}
+conditions = {"shoulder": "a2 c2 + a3 c23 + d5 s234 = 0", "elbow": "sin q3 = 0",
+              "wrist": "sin q5 = 0"}
+
+fig = plt.figure(figsize=(16, 7.2))
+for index, (family, q) in enumerate(families.items()):
+    frames = urkin.fk_frames(ur5, q)
+    origins, axes_z = frames[:, :3, 3], frames[:, :3, 2]
+    ax = urkin.plot.axes3d(fig.add_subplot(1, 3, index + 1, projection="3d"),
+                           center=0.5 * (origins.min(axis=0) + origins.max(axis=0)),
+                           half_width=0.42, title=f"{family}: {conditions[family]}")
+    urkin.plot.draw_robot(ax, ur5, q, frames=False, color="0.45", linewidth=3, label="UR5")
+    radial = np.array([np.cos(q[0]), np.sin(q[0]), 0.0])  # horizontal, in the arm's plane
+    sideways = axes_z[1]  # the shoulder axis: horizontal, across the arm's plane
+    if family == "shoulder":
+        ax.plot([0, 0], [0, 0], [0, 0.9], color="tab:blue", linewidth=1.5, label="base axis")
+        across, up = np.meshgrid([-0.3, 0.3], [0.0, 0.9])
+        ax.plot_surface(across * sideways[0], across * sideways[1], up, color="tab:blue",
+                        alpha=0.15)
+        ax.plot([], [], color="tab:blue", alpha=0.3, linewidth=8,
+                label="plane through the base axis, parallel to the shoulder axis")
+        ax.scatter(*origins[5], color="tab:red", s=60, depthshade=False,
+                   label="wrist centre (frame 5 origin), in that plane")
+        foot = np.array([0.0, 0.0, origins[5, 2]])
+        ax.plot(*np.array([foot, origins[5]]).T, ":", color="tab:red", linewidth=2,
+                label=f"its distance from the base axis: d4 = {ur5.d4:.3f} m")
+        view_from(ax, 0.6 * radial - 0.8 * sideways, elev=18)
+    elif family == "elbow":
+        ahead = origins[3] - origins[1]
+        line = np.array([origins[1] - 0.15 * ahead, origins[3] + 0.15 * ahead])
+        ax.plot(*line.T, "--", color="tab:red", linewidth=1.5,
+                label="frames 1, 2, 3 (shoulder, elbow, wrist 1) in one line")
+        ax.scatter(*origins[1:4].T, color="tab:red", s=40, depthshade=False)
+        view_from(ax, -sideways, elev=10)
+    else:
+        for k, name, colour in ((3, "joint 4 axis (z3, through frame 3)", "tab:red"),
+                                (5, "joint 6 axis (z5, through frame 5)", "tab:purple")):
+            axis_line = np.array([origins[k] - 0.3 * axes_z[k], origins[k] + 0.3 * axes_z[k]])
+            ax.plot(*axis_line.T, color=colour, linewidth=2.0, label=name)
+        view_from(ax, np.cross(axes_z[3], axes_z[4]) + 0.5 * axes_z[3], elev=15)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, 0.02), fontsize=8)
+fig.suptitle("The three singular families of a UR arm, each on a UR5")
+fig.subplots_adjust(left=0.02, right=0.98, top=0.92, bottom=0.14, wspace=0.08)
+plt.show()
+
+print("family     urkin.kinematics.singularities     factors (shoulder m, sin q3, sin q5)")
+for family, q in families.items():
+    factors = urkin.kinematics.singularity_factors(ur5, q).round(4) + 0.0
+    print(f"{family:<10} {urkin.kinematics.singularities(ur5, q)!s:<34} {factors}")
+
+# %% [markdown]
+# UR's "home" configuration, $q = (0, -\pi/2, 0, -\pi/2, 0, 0)$ with the arm pointing straight
+# up, is about as singular as a configuration can be: all three factors vanish at once. The
+# elbow is straight ($q_3 = 0$), the wrist has $q_5 = 0$, and the wrist centre stands
+# straight above the base, off its axis only by the sideways offset $d_4$, so the shoulder
+# factor is zero too. Each family costs one dimension here, and the singular values of $J$
+# show it: three of the six are zero, so from home the flange's twist $[v;\ \omega]$ can
+# only move in a three-dimensional set of directions.
+
+# %%
+home = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])
+print("families at home:", urkin.kinematics.singularities(ur5, home))
+sigma = np.linalg.svd(urkin.jacobian(ur5, home), compute_uv=False)
+print("singular values of J at home:",
+      ", ".join(f"{s:.4f}" if s > 1e-12 else "<1e-12" for s in sigma))
+print("rank of J at home:", np.linalg.matrix_rank(urkin.jacobian(ur5, home), tol=1e-9))
+
+# %% [markdown]
+# Seed 000 starts its UR3 inverse kinematics from exactly this pose, so its very first
+# Newton step works with a Jacobian of rank 3: three directions of flange motion are simply
+# not available there, and its damped least-squares inverse (see "What comes next") is what
+# keeps that step finite. Starting an iterative solver at a singular configuration is asking for
+# trouble; the IK lessons start elsewhere.
+#
+# ### Exercise 4.3 — `singularities` (4 points)
+#
+# Write `singularities(robot, q)`: the set of singular families present at `q`, a subset of
+# `{"shoulder", "elbow", "wrist"}` (the empty set when `q` is regular). A family is present
+# when its factor is zero up to a tolerance `tol = 1e-9`: $|\sin q_3| \le$ `tol` for the elbow,
+# $|\sin q_5| \le$ `tol` for the wrist, and
+# $|a_2\cos q_2 + a_3\cos(q_2+q_3) + d_5\sin(q_2+q_3+q_4)| \le$ `tol` (metres) for the
+# shoulder. The lengths are `robot.a2`, `robot.a3` and `robot.d5` (metres, $a_2, a_3 < 0$).
+#
+# Use the factors, not the determinant: $\det J$ is a product, and a product can be tiny
+# because one factor is small or because several are moderately small — it cannot say which
+# family is present. Calling `urkin.kinematics.singularities`, `singular_families`,
+# `singularity_factors`, `manipulability` or `condition_number` earns no points. The check
+# tests regular configurations (including $\cos q_3 = 0$), each family alone, and their
+# intersections.
+
+# %%
+def singularities(robot, q, tol=1e-9):
+    """The singular families of a UR arm present at a configuration.
+
+    Parameters
+    ----------
+    robot : urkin.Robot
+        The arm; ``robot.a2``, ``robot.a3`` and ``robot.d5`` are its lengths in metres.
+    q : array_like, shape (6,)
+        Joint angles in radians.
+    tol : float
+        A factor of magnitude at most ``tol`` counts as zero (metres for the shoulder factor,
+        dimensionless for the others).
+
+    Returns
+    -------
+    set of str
+        A subset of ``{"shoulder", "elbow", "wrist"}``: "shoulder" when
+        a2 cos q2 + a3 cos(q2 + q3) + d5 sin(q2 + q3 + q4) = 0, "elbow" when sin q3 = 0,
+        "wrist" when sin q5 = 0. Empty when ``q`` is not singular.
+    """
+    ### BEGIN SOLUTION
+    angles = np.asarray(q, dtype=float)
+    shoulder = (robot.a2 * np.cos(angles[1]) + robot.a3 * np.cos(angles[1] + angles[2])
+                + robot.d5 * np.sin(angles[1] + angles[2] + angles[3]))
+    found = set()
+    if abs(shoulder) <= tol:
+        found.add("shoulder")
+    if abs(np.sin(angles[2])) <= tol:
+        found.add("elbow")
+    if abs(np.sin(angles[4])) <= tol:
+        found.add("wrist")
+    return found
+    ### END SOLUTION
+
+
+# %%
+check("4.3", singularities)
+
+# %% [markdown]
+# ## 7. How far from trouble? Manipulability and the condition number
+#
+# "Singular or not" is a yes/no answer, and a robot gets into trouble well *before*
+# $\det J = 0$. Two numbers measure how close a configuration is.
+#
+# **The velocity ellipsoid.** Let the joint rates range over all vectors of length 1,
+# $\|\dot q\| \le 1$. The flange velocities $v = J_v \dot q$ they produce fill an ellipsoid,
+# whose semi-axes point along the eigenvectors of $J_v J_v^\mathsf{T}$ and whose lengths are
+# the singular values $\sigma_1 \ge \sigma_2 \ge \sigma_3$ of $J_v$ (m/s per rad/s). A round
+# ellipsoid means the flange moves equally easily in every direction; a flat one means some
+# direction costs large joint rates.
+#
+# **Manipulability** (Yoshikawa) is $w = \sqrt{\det(J J^\mathsf{T})}$, the product of the
+# singular values, proportional to the ellipsoid's volume. For the full square $J$ it equals
+# $|\det J|$ and vanishes exactly at singularities; `urkin.kinematics.manipulability(robot, q,
+# part="position")` uses $J_v$ alone, for the velocity ellipsoid of the flange origin (m³/rad³).
+#
+# **The condition number** $\kappa = \sigma_{\max}/\sigma_{\min}$ of $J$ measures how
+# *unequal* the directions are, whatever the arm's size; it grows without bound towards a
+# singularity, and it is also the factor by which relative errors in a flange velocity can be
+# amplified in the joint rates computed from it.
+#
+# The figure follows a UR5 as its elbow straightens from $q_3 = -1.6$ rad (bent at about a
+# right angle) to the elbow singularity $q_3 = 0$, with the shoulder fixed and the wrist
+# keeping the tool's direction ($q_2 + q_3 + q_4 = -\pi/2$). At five points it draws the
+# flange's velocity ellipsoid, scaled by 0.15 (0.15 m of drawing per m/s).
+
+# %%
+path_s = np.linspace(0.0, 1.0, 101)  # path parameter
+path = np.zeros((101, 6))
+path[:, 1] = -0.6
+path[:, 2] = -1.6 * (1.0 - path_s)  # the elbow opens from about 90° to straight, q3 = 0
+path[:, 3] = -np.pi / 2 - path[:, 1] - path[:, 2]  # keeps q2 + q3 + q4 = −π/2
+path[:, 4] = np.pi / 2
+
+w_position = urkin.kinematics.manipulability(ur5, path, part="position")
+w_full = urkin.kinematics.manipulability(ur5, path)
+kappa = urkin.kinematics.condition_number(ur5, path)
+Jv_path = urkin.jacobian(ur5, path)[:, :3, :]
+sigma_v = np.linalg.svd(Jv_path, compute_uv=False)  # (101, 3), m/s per rad/s
+
+ellipsoid_scale = 0.15
+u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 30), np.linspace(0, np.pi, 16))
+sphere = np.stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)])  # (3, 16, 30)
+shown = [0, 25, 50, 75, 100]
+shades = plt.cm.viridis(np.linspace(0.0, 0.85, len(shown)))
+
+fig = plt.figure(figsize=(15, 8))
+grid = fig.add_gridspec(3, 2, width_ratios=(1.15, 1.0))
+ax3 = urkin.plot.axes3d(fig.add_subplot(grid[:, 0], projection="3d"),
+                        center=(-0.4, -0.1, 0.45), half_width=0.5,
+                        title="velocity ellipsoids of the flange (×0.15) as the elbow "
+                              "straightens")
+for k, colour in zip(shown, shades):
+    U, semi_axes, _ = np.linalg.svd(Jv_path[k])  # directions and lengths of the semi-axes
+    surface = (U * (ellipsoid_scale * semi_axes)) @ sphere.reshape(3, -1)
+    centre = urkin.fk(ur5, path[k])[:3, 3]
+    x, y, z = (surface + centre[:, None]).reshape(3, 16, 30)
+    ax3.plot_surface(x, y, z, color=colour, alpha=0.35, linewidth=0)
+    degrees = round(np.degrees(path[k, 2])) + 0
+    urkin.plot.draw_robot(ax3, ur5, path[k], frames=False, color=colour, linewidth=2.5,
+                          label=f"s = {path_s[k]:.2f}  (q3 = {degrees}°)")
+ax3.view_init(elev=18, azim=-62)
+ax3.legend(loc="upper left", fontsize=8)
+
+top = fig.add_subplot(grid[0, 1])
+top.plot(path_s, w_position, label="position part: √det(J_v J_vᵀ) (m³/rad³)")
+top.plot(path_s, w_full, label="full J: |det J| (units mixed)")
+top.set_ylabel("manipulability w")
+top.set_title("measures along the path")
+top.legend(loc="lower left", fontsize=8)
+
+middle = fig.add_subplot(grid[1, 1], sharex=top)
+for axis_index, style in enumerate(["-", "--", ":"]):
+    middle.plot(path_s, sigma_v[:, axis_index], style, color="tab:green",
+                label=f"σ{axis_index + 1}")
+middle.set_ylabel("semi-axes of the\nellipsoid (m/s per rad/s)")
+middle.legend(loc="center left", fontsize=8, title="singular values of J_v", title_fontsize=8)
+
+bottom = fig.add_subplot(grid[2, 1], sharex=top)
+bottom.semilogy(path_s[:-1], kappa[:-1], color="tab:red", label="κ = σ_max / σ_min of J")
+bottom.annotate("κ → ∞ at s = 1", xy=(0.99, kappa[-2]), xytext=(0.62, 3e2),
+                arrowprops={"arrowstyle": "->"})
+bottom.set_ylabel("condition number κ")
+bottom.set_xlabel("path parameter s (0: q3 = −1.6 rad, 1: q3 = 0, the elbow singularity)")
+bottom.legend(loc="upper left", fontsize=8)
+for panel in (top, middle, bottom):
+    panel.grid(True, alpha=0.3)
+fig.suptitle("A UR5 approaching the elbow singularity")
+fig.subplots_adjust(left=0.02, right=0.97, top=0.92, bottom=0.08, hspace=0.3)
+plt.show()
+
+print("   s    q3 (rad)   w position   w full      κ     smallest semi-axis (m/s per rad/s)")
+for k in shown:
+    condition = f"{kappa[k]:7.1f}" if kappa[k] < 1e6 else "  >1e15"
+    print(f"{path_s[k]:5.2f}  {path[k, 2] + 0.0:8.2f}   {w_position[k]:9.4f}  {w_full[k]:8.4f}"
+          f"  {condition}   {sigma_v[k, 2]:.4f}")
+
+# %% [markdown]
+# Follow the smallest semi-axis, $\sigma_3$. It points along the arm — from shoulder towards
+# wrist — and shrinks steadily as the elbow opens, from 0.22 to 0.016 m/s per rad/s: near a
+# stretched elbow, moving the flange towards or away from the shoulder takes large joint
+# rates. The other two axes grow at the same time, so manipulability, their product, first
+# *rises* (the best configuration on this path has the elbow bent by about 50°) and only then
+# falls. The condition number sees the imbalance all along: it starts to climb from s ≈ 0.2
+# and is infinite at the end, where the full manipulability $|\det J|$ is exactly zero.
+#
+# The position part does *not* reach zero. With the wrist bent ($q_5 = \pi/2$) the wrist
+# joints can still nudge the flange origin along the arm, at the cost of turning the tool: the
+# direction lost at this singularity is a combination of linear and angular velocity, not a
+# pure translation. A position-only task can therefore pass closer to an elbow singularity
+# than a full-pose task — but not through it comfortably: 0.016 m/s per rad/s means about
+# 6 rad/s of joint speed for every 0.1 m/s along the arm.
+#
+# Manipulability has units and grows with the size of the arm, so compare it only between
+# configurations of one arm; the condition number is dimensionless but mixes metres and
+# radians when it uses the full $J$. Both are cheap, and both are worth logging along any
+# planned path.
+#
+# ## Summary
+#
+# * The geometric Jacobian maps joint rates to the flange's $[v;\ \omega]$ in the base frame,
+#   linear part first. Column $i$ is $[z_{i-1} \times (p - p_{i-1});\ z_{i-1}]$, read off the DH
+#   frames: joint $i$'s axis and the lever arm from it to the flange.
+# * Its linear rows are $\partial p/\partial q$: differentiating the symbolic $p$ gives the
+#   same eighteen entries. Seed 002 differentiated correctly, but its $p$ was wrong, so ten
+#   entries of its Jacobian are wrong — six of them even where $q_2 + q_3 + q_4 = 90°$, the
+#   kind of pose at which its $p$ is right.
+# * Finite differences check any Jacobian. Central differences are second order; with
+#   $h \approx 10^{-6}$ to $10^{-5}$ they are accurate to about $10^{-10}$ or better, while
+#   forward differences stop near $10^{-8}$. The complex step avoids cancellation altogether.
+# * Space and body Jacobians map to twists $(\omega, v)$; $J_s = \mathrm{Ad}_T J_b$, and
+#   $v_s = v + p \times \omega$ connects the space Jacobian to the geometric one.
+# * For every UR arm, $\det J = a_2 a_3 \sin q_3 \sin q_5\,(a_2 c_2 + a_3 c_{23} + d_5 s_{234})$:
+#   the elbow, wrist and shoulder singular families. Home is all three at once, rank 3.
+# * Manipulability and the condition number measure the distance to trouble before it arrives.
+#
+# ## What comes next
+#
+# **Numerical inverse kinematics** runs this lesson backwards: to reach a target pose, take
+# the pose error, solve $J\,\Delta q = $ error for a joint step, and repeat — Newton–Raphson,
+# as seeds 000 and 002 do. Near singularities $J^{-1}$ produces enormous steps, so the solvers
+# use the pseudo-inverse, **damped least squares** $J^\mathsf{T}(JJ^\mathsf{T} +
+# \lambda^2 I)^{-1}$ and Levenberg–Marquardt, and watch the condition number.
+#
+# Before you move on: restart the kernel and run the whole notebook. All three check cells
+# should report full marks.
