@@ -156,7 +156,13 @@ CLASS = {
         ["standard DH"],
     ),
     "exits_at_top_level_02.ipynb": (
-        notebook(HEADER, DH, FK, POSITION, "import os\nstatus = os._exit(3)"),
+        notebook(
+            HEADER,
+            DH,
+            FK,
+            POSITION,
+            "import os\nstatus = os._exit(3)\n\ndef report():\n    return status",
+        ),
         FULL,
         ["graded again with its imports, functions and classes only"],
     ),
@@ -321,7 +327,8 @@ def test_the_guard_does_not_disturb_the_reference(tmp_path):
 
 def test_a_slow_setup_falls_back_to_definitions_only(tmp_path):
     path = tmp_path / "slow_02.ipynb"
-    slow = "def spin():\n    while True:\n        pass\n\n\nstuck = spin()"
+    slow = "def spin():\n    while True:\n        pass\n\n\nstuck = spin()\nlog = [stuck]\n\n\n"
+    slow += "def show():\n    print(log)"
     path.write_text(notebook(HEADER, DH, FK, POSITION, slow), encoding="utf-8")
     result = grade_notebook(path, seed=3, setup_limit=2)
     assert result.earned == 13
@@ -351,3 +358,22 @@ def test_the_urkin_grade_command(tmp_path):
     rows = list(csv.DictReader(open(out / "gradebook.csv", encoding="utf-8")))
     assert sorted(float(r["total"]) for r in rows) == [0.0, float(rows[0]["max"])]
     assert len(list((out / "feedback").glob("*.md"))) == 2
+
+
+def test_only_the_assignments_the_definitions_need_are_executed(tmp_path):
+    from urkin.grading.notebook import needed_statements, read_submission
+
+    path = tmp_path / "02_pruned.ipynb"
+    path.write_text(
+        notebook(
+            HEADER,
+            "SCALE = 2.0\nOFFSET = SCALE + 1\nfig = make_a_slow_figure()",
+            "def dh_transform(theta, d, a, alpha):\n    return OFFSET * np.eye(4)",
+        ),
+        encoding="utf-8",
+    )
+    statements = read_submission(path).statements
+    kept = needed_statements(statements, {"dh_transform"})
+    bound = set().union(*(s.binds for s in kept))
+    assert {"SCALE", "OFFSET", "dh_transform", "np", "urkin"} <= bound
+    assert "fig" not in bound

@@ -1,10 +1,10 @@
 """Reading a submitted notebook safely: its lesson, and the definitions it makes.
 
 A submission is never run top to bottom.  Only its *definitions* are executed: imports,
-``def`` and ``class`` statements, and assignments to plain names.  Calls at the top level of a
-cell (``check(...)``, ``print``, plotting, loops, ``sys.exit()``) are skipped, so demonstrations
-and stray statements cannot hang or end the grader, and answers cannot be computed outside the
-exercise function.
+``def`` and ``class`` statements, and those assignments to plain names that the exercise
+functions need (directly or through other definitions).  Calls at the top level of a cell
+(``check(...)``, ``print``, plotting, loops, ``sys.exit()``) are skipped, so demonstrations and
+stray statements cannot hang or end the grader, and slow demonstrations cost nothing.
 """
 
 from __future__ import annotations
@@ -15,7 +15,14 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Statement", "Submission", "lesson_from_filename", "lesson_of", "read_submission"]
+__all__ = [
+    "Statement",
+    "Submission",
+    "lesson_from_filename",
+    "lesson_of",
+    "needed_statements",
+    "read_submission",
+]
 
 _KEPT = (ast.Import, ast.ImportFrom, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)
 _MAGIC = re.compile(r"^\s*[%!?]")
@@ -33,6 +40,26 @@ class Statement:
     @property
     def filename(self) -> str:
         return f"<submission cell {self.cell}>"
+
+    @property
+    def binds(self) -> set[str]:
+        """Names the statement binds at the top level."""
+        node = self.node
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            return {node.name}
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            return {(a.asname or a.name).split(".")[0] for a in node.names}
+        targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+        return {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+
+    @property
+    def uses(self) -> set[str]:
+        """Names the statement reads (anywhere inside it: a generous over-estimate)."""
+        return {
+            n.id
+            for n in ast.walk(self.node)
+            if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)
+        }
 
     def compile(self):
         module = ast.Module(body=[self.node], type_ignores=[])
@@ -154,3 +181,22 @@ def read_submission(path: str | Path, lesson: str | None = None) -> Submission:
             elif _is_plain_assignment(node):
                 submission.statements.append(Statement(number, source, node, "assignment"))
     return submission
+
+
+def needed_statements(statements: list[Statement], roots: set[str]) -> list[Statement]:
+    """The statements to execute for functions named ``roots``: every import, ``def`` and
+    ``class``, and the assignments those (transitively) read, in their original order."""
+    needed = set(roots)
+    for statement in statements:
+        if statement.kind == "definition":
+            needed |= statement.uses
+    changed = True
+    while changed:
+        changed = False
+        for statement in statements:
+            if statement.kind == "assignment" and statement.binds & needed:
+                new = statement.uses - needed
+                if new:
+                    needed |= new
+                    changed = True
+    return [s for s in statements if s.kind == "definition" or s.binds & needed]

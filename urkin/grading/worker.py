@@ -8,8 +8,10 @@
             └── exercise process (forked): runs the checks with a wall-clock and a memory
                 limit and sends back one result
 
-A hang, a crash, ``sys.exit()``, ``os._exit()`` or a huge allocation inside an exercise ends only
-that exercise's process.  If executing the definitions themselves hangs or ends the setup
+The setup process executes the submission's imports, functions and classes, and only the
+top-level assignments those need (:func:`urkin.grading.notebook.needed_statements`).  A hang, a
+crash, ``sys.exit()``, ``os._exit()`` or a huge allocation inside an exercise ends only that
+exercise's process.  If executing the definitions themselves hangs or ends the setup
 process, the worker starts again with imports, functions and classes only.
 
 POSIX only (it forks).
@@ -30,7 +32,7 @@ from pathlib import Path
 from urkin.exercises import Exercise, ExerciseResult, exercises_for_lesson, run_exercise
 from urkin.exercises.framework import link_dependencies
 from urkin.grading import sandbox
-from urkin.grading.notebook import Submission, read_submission
+from urkin.grading.notebook import Submission, needed_statements, read_submission
 
 __all__ = ["grade_in_subprocesses", "main"]
 
@@ -147,7 +149,8 @@ def _setup_process(submission, exercises, seed, time_limit, memory_bytes, defini
     sandbox.set_active(())
     namespace: dict = {"__name__": "__main__"}
     notes = list(submission.notes)
-    for statement in submission.statements:
+    statements = needed_statements(submission.statements, {ex.function for ex in exercises})
+    for statement in statements:
         if definitions_only and statement.kind != "definition":
             continue
         try:
