@@ -377,3 +377,34 @@ def test_only_the_assignments_the_definitions_need_are_executed(tmp_path):
     bound = set().union(*(s.binds for s in kept))
     assert {"SCALE", "OFFSET", "dh_transform", "np", "urkin"} <= bound
     assert "fig" not in bound
+
+
+@pytest.mark.parametrize(
+    ("lesson", "cells", "exercise_id", "words"),
+    [
+        (
+            "03",
+            [inspect.getsource(ref.screw_axis).replace(
+                "return np.concatenate([w, -np.cross(w, q)])",
+                "return np.concatenate([-np.cross(w, q), w])")],
+            "3.1",
+            "(v, ω) order",
+        ),
+        (
+            "04",
+            [inspect.getsource(ref.dh_transform), inspect.getsource(ref._frames),
+             inspect.getsource(ref.geometric_jacobian).replace(
+                 "return J", "return J[[3, 4, 5, 0, 1, 2]]")],
+            "4.1",
+            "twist order (ω; v)",
+        ),
+    ],
+)  # fmt: skip
+def test_a_wrong_convention_loses_points_with_a_named_mistake(tmp_path, lesson, cells,
+                                                              exercise_id, words):  # fmt: skip
+    path = tmp_path / f"{lesson}_wrong_convention.ipynb"
+    path.write_text(notebook(HEADER, *cells, lesson=lesson), encoding="utf-8")
+    result = grade_notebook(path, seed=8)
+    outcome = result.exercise(exercise_id)
+    assert result.status == "graded" and 0 <= outcome.earned < outcome.points
+    assert words in outcome.report(), outcome.report()
