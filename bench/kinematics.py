@@ -4,7 +4,7 @@
 
 Prints markdown tables.  Side by side with urkin: a plain numpy product of DH matrices (the
 way the course reports compute FK, one 4×4 product per link) and, when installed,
-Robotics Toolbox for Python (``pip install roboticstoolbox-python``).  Times are the best of
+Robotics Toolbox for Python (``pip install -e ".[peers]"``).  Times are the best of
 several repeats, on whatever machine runs this; nothing here is asserted by tests.
 """
 
