@@ -9,6 +9,7 @@ The public API::
     J = urkin.jacobian(ur5, q)        # (6, 6): [v; ω] of the tool origin, base frame
     Jp = urkin.position_jacobian(ur5, q)  # (3, 6): ∂p/∂q
     S, M = urkin.poe.space_screws(ur5)    # screw axes (6, 6) and home pose (product of exps)
+    res = urkin.ik(ur5, T, q0=q0)         # IKResult(q, success, residual, iterations, ...)
 
 Units are metres and radians; poses are 4×4 homogeneous transforms in DH frame 0 (UR's
 ``base``).  ``import urkin`` loads numpy only: SymPy stays in :mod:`urkin.symbolic` and
@@ -17,14 +18,17 @@ matplotlib in :mod:`urkin.plot`.
 
 from urkin import kinematics, poe, robots, transforms
 from urkin.kinematics import fk, fk_frames, jacobian, position_jacobian
+from urkin.numerical_ik import IKResult, ik
 from urkin.robots import ROBOTS, T_BASE_LINK_BASE, Robot, robot
 
 __all__ = [
     "ROBOTS",
     "T_BASE_LINK_BASE",
+    "IKResult",
     "Robot",
     "fk",
     "fk_frames",
+    "ik",
     "jacobian",
     "kinematics",
     "poe",

@@ -1,0 +1,185 @@
+"""Numerical IK: verified success, reproducibility, failures that say why, and the blind spot."""
+
+import numpy as np
+import pytest
+
+import urkin
+from tests.reference import OFFICIAL_DH, dh_fk
+from urkin.numerical_ik import IK_METHODS, orientation_error
+from urkin.transforms import make_transform, rot_x, rot_z, rpy_to_rotation
+
+HOME = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])
+
+
+def pose_error(lengths, q, T_target):
+    """Position (m) and rotation angle (rad) between the reference FK of q and a target."""
+    T = dh_fk(lengths, q)
+    frob = np.linalg.norm(T[:3, :3] - T_target[:3, :3])
+    return np.linalg.norm(T[:3, 3] - T_target[:3, 3]), 2 * np.arcsin(min(frob / np.sqrt(8), 1))
+
+
+@pytest.mark.parametrize("name", ["UR5", "UR3"])
+def test_default_method_from_zeros_succeeds_on_random_reachable_poses(name):
+    arm = urkin.robot(name)
+    Q = np.random.default_rng(2026).uniform(-np.pi, np.pi, (1000, 6))
+    targets = np.array([dh_fk(OFFICIAL_DH[name], q) for q in Q])
+    result = urkin.ik(arm, targets, q0=np.zeros(6))
+    verified = np.array([max(pose_error(OFFICIAL_DH[name], q, T)) < 1e-9
+                         for q, T in zip(result.q, targets)])  # fmt: skip
+    assert verified.mean() >= 0.999
+    # success is claimed only where the pose error really is within tolerance
+    assert not np.any(result.success & ~verified)
+
+
+def test_a_seed_reproduces_the_result_exactly():
+    ur5 = urkin.robot("ur5")
+    targets = urkin.fk(ur5, np.random.default_rng(5).uniform(-np.pi, np.pi, (50, 6)))
+    first, again = urkin.ik(ur5, targets, seed=7), urkin.ik(ur5, targets, seed=7)
+    np.testing.assert_array_equal(first.q, again.q)
+    np.testing.assert_array_equal(first.iterations, again.iterations)
+    single, single_again = urkin.ik(ur5, targets[3], seed=7), urkin.ik(ur5, targets[3], seed=7)
+    np.testing.assert_array_equal(single.q, single_again.q)
+
+
+@pytest.mark.parametrize("method", IK_METHODS)
+def test_every_method_converges_and_never_overclaims(method):
+    ur10 = urkin.robot("ur10")
+    Q = np.random.default_rng(11).uniform(-np.pi, np.pi, (200, 6))
+    targets = urkin.fk(ur10, Q)
+    result = urkin.ik(ur10, targets, method=method)
+    assert result.success.mean() >= (0.95 if method == "dls" else 0.995)
+    for q, T, ok in zip(result.q, targets, result.success):
+        assert ok == (max(pose_error(OFFICIAL_DH["UR10"], q, T)) <= 1e-10 * 1.0000001)
+
+
+def test_single_and_batched_solves_agree_on_what_they_claim():
+    ur5 = urkin.robot("ur5")
+    targets = urkin.fk(ur5, np.random.default_rng(3).uniform(-np.pi, np.pi, (20, 6)))
+    batch = urkin.ik(ur5, targets)
+    for i, T in enumerate(targets):
+        one = urkin.ik(ur5, T)
+        assert one.success and batch[i].success
+        assert isinstance(one.q, np.ndarray) and one.q.shape == (6,)
+        assert max(pose_error(OFFICIAL_DH["UR5"], one.q, T)) < 1e-9
+
+
+def test_position_only_targets():
+    ur3 = urkin.robot("ur3")
+    points = urkin.fk(ur3, np.random.default_rng(4).uniform(-np.pi, np.pi, (100, 6)))[:, :3, 3]
+    result = urkin.ik(ur3, points, method="nr")
+    assert result.success.all()
+    reached = np.array([dh_fk(OFFICIAL_DH["UR3"], q)[:3, 3] for q in result.q])
+    np.testing.assert_allclose(reached, points, atol=1e-9)
+    np.testing.assert_array_equal(result.orientation_error, 0.0)
+
+
+def test_unreachable_positions_fail_fast_with_the_distance():
+    ur5 = urkin.robot("ur5")
+    d1, a2, a3, d4, d5, d6 = OFFICIAL_DH["UR5"]
+    target = np.array([1.5, 0.5, 0.3])
+    reach = abs(a2) + abs(a3) + np.hypot(d4, d5) + d6
+    beyond = np.linalg.norm(target - [0, 0, d1]) - reach
+    result = urkin.ik(ur5, target, q0=HOME)
+    assert not result.success and result.iterations == 0
+    assert f"{beyond:.4f} m beyond" in result.reason
+    np.testing.assert_array_equal(result.q, HOME)  # the guess, flagged as a failure
+
+
+def test_unreachable_poses_fail_fast():
+    ur5 = urkin.robot("ur5")
+    far = make_transform(rot_x(np.pi), [1.2, 0.4, 0.3])
+    inside = make_transform(np.eye(3), [0.02, 0.01, 0.4])  # wrist point within d4 of the axis
+    result = urkin.ik(ur5, np.array([far, inside]))
+    assert not result.success.any()
+    assert "beyond the UR5's reach" in result.reason[0]
+    assert "closer than the UR5's shoulder offset" in result.reason[1]
+    assert np.isfinite(result.q).all()
+
+
+@pytest.mark.parametrize("method", IK_METHODS)
+def test_singular_and_hard_targets_fail_cleanly_or_succeed_honestly(method):
+    ur5 = urkin.robot("ur5")
+    hard = [
+        urkin.fk(ur5, HOME),  # shoulder, elbow and wrist singular at once
+        urkin.fk(ur5, [0.3, -np.pi / 2, 0.0, 0.4, 1.0, 0.2]),  # arm stretched out
+        urkin.fk(ur5, [0.3, -1.0, 1.2, 0.4, 0.0, 0.2]),  # wrist singular
+    ]
+    not_quite = urkin.fk(ur5, HOME)
+    not_quite[:3, :3] = np.eye(3)  # passes the reach test but no configuration reaches it
+    targets = np.array([*hard, not_quite])
+    result = urkin.ik(ur5, targets, method=method, max_restarts=3)
+    assert np.isfinite(result.q).all() and np.isfinite(result.residual).all()
+    for q, T, ok, reason in zip(result.q, targets, result.success, result.reason):
+        assert ok == (max(pose_error(OFFICIAL_DH["UR5"], q, T)) <= 1e-10 * 1.0000001)
+        assert reason == "converged" if ok else reason.startswith("did not converge")
+    assert not result.success[-1]
+
+
+def test_the_cross_product_error_is_blind_at_180_degrees():
+    R = rpy_to_rotation([0.3, -0.4, 1.1])
+    k = np.array([2.0, -1.0, 2.0]) / 3.0
+    for angle in (0.1, 1.0, 2.5):
+        turned = make_transform(np.eye(3))[:3, :3]
+        W = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+        turned = (np.eye(3) + np.sin(angle) * W + (1 - np.cos(angle)) * W @ W) @ R
+        np.testing.assert_allclose(orientation_error(R, turned), angle * k, atol=1e-12)
+        np.testing.assert_allclose(orientation_error(R, turned, "cross"), np.sin(angle) * k,
+                                   atol=1e-12)  # fmt: skip
+    half_turn = rot_z(np.pi) @ R
+    np.testing.assert_allclose(orientation_error(R, half_turn, "cross"), 0.0, atol=1e-15)
+    assert np.linalg.norm(orientation_error(R, half_turn)) == pytest.approx(np.pi)
+
+
+def test_the_blind_spot_stalls_newton_raphson_where_the_log_error_does_not():
+    ur5 = urkin.robot("ur5")
+    start = np.array([0.4, -1.3, 1.1, -0.9, 1.2, 0.3])
+    target = urkin.fk(ur5, start + np.array([0, 0, 0, 0, 0, np.pi]))  # same point, half a turn
+    blind = urkin.ik(ur5, target, q0=start, method="nr", orientation="cross", max_restarts=0)
+    seeing = urkin.ik(ur5, target, q0=start, method="nr", orientation="log", max_restarts=0)
+    assert not blind.success and blind.orientation_error == pytest.approx(np.pi)
+    assert "3.14e+00 rad" in blind.reason
+    assert seeing.success
+
+
+def test_tool_and_base_are_honoured():
+    T_world_base = make_transform(rpy_to_rotation([0.0, 0.1, 0.5]), [0.4, -0.2, 0.05])
+    T_flange_tool = make_transform(rot_x(0.2), [0.0, 0.03, 0.15])
+    arm = urkin.robot("ur5e").with_base(T_world_base).with_tool(T_flange_tool)
+    Q = np.random.default_rng(8).uniform(-np.pi, np.pi, (30, 6))
+    targets = urkin.fk(arm, Q)
+    poses = urkin.ik(arm, targets)
+    assert poses.success.all()
+    np.testing.assert_allclose(urkin.fk(arm, poses.q), targets, atol=1e-9)
+    points = urkin.ik(arm, targets[:, :3, 3])
+    assert points.success.all()
+    np.testing.assert_allclose(urkin.fk(arm, points.q)[:, :3, 3], targets[:, :3, 3], atol=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "message"),
+    [
+        ({"target": np.zeros((2, 2))}, ValueError, "target must be a pose"),
+        ({"target": np.diag([1.0, 1.0, -1.0, 1.0])}, ValueError, "reflection"),
+        ({"target": [np.nan, 0, 0]}, ValueError, "NaN"),
+        ({"target": np.eye(4), "method": "newton"}, ValueError, "method must be one of"),
+        ({"target": np.eye(4), "orientation": "quat"}, ValueError, "orientation"),
+        ({"target": np.tile(np.eye(4), (3, 1, 1)), "q0": np.zeros((2, 6))}, ValueError,
+         "2 configurations for 3 targets"),
+        ({"target": [0.3, 0.1, 0.2], "method": "poe"}, ValueError, "full poses"),
+        ({"target": np.eye(4), "q0": np.full(6, 90.0)}, ValueError, "degrees"),
+    ],
+)  # fmt: skip
+def test_bad_input_names_the_problem(kwargs, error, message):
+    with pytest.raises(error, match=message):
+        urkin.ik(urkin.robot("ur5"), **kwargs)
+
+
+def test_results_index_and_print():
+    ur5 = urkin.robot("ur5")
+    targets = urkin.fk(ur5, np.random.default_rng(9).uniform(-np.pi, np.pi, (3, 6)))
+    batch = urkin.ik(ur5, targets)
+    assert len(batch) == 3 and batch[1].success is True
+    assert "3 succeeded" in repr(batch)
+    assert "success=True" in repr(batch[0])
+    with pytest.raises(TypeError):
+        len(batch[0])
