@@ -149,6 +149,79 @@ def singularities(robot, q, tol=1e-9):
     return found
 
 
+def _rotation_vector(R):
+    """log of a rotation matrix, written out (accurate near 0 and π)."""
+    s = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    theta = np.arctan2(np.linalg.norm(s), 0.5 * (np.trace(R) - 1.0))
+    if theta < 1e-9:
+        return s
+    if np.pi - theta > 1e-3:
+        return theta / np.sin(theta) * s
+    B = 0.5 * (R + R.T) - np.cos(theta) * np.eye(3)
+    k = B[:, np.argmax(np.diag(B))]
+    k = k / np.linalg.norm(k)
+    return theta * (k if k @ s >= 0 else -k)
+
+
+def pose_error(T, T_target):
+    e_p = T_target[:3, 3] - T[:3, 3]
+    return np.concatenate([e_p, _rotation_vector(T_target[:3, :3] @ T[:3, :3].T)])
+
+
+def _fk_reference(robot, q):
+    return _frames(robot, q)[-1]
+
+
+def _jacobian_reference(robot, q):
+    return geometric_jacobian(robot, q)
+
+
+def ik_newton(robot, T_target, q0, tol=1e-12, max_iterations=100):
+    q = np.array(q0, dtype=float)
+    for _ in range(max_iterations):
+        e = pose_error(_fk_reference(robot, q), T_target)
+        if np.linalg.norm(e) < tol:
+            break
+        step = np.linalg.pinv(_jacobian_reference(robot, q)) @ e
+        q = q + step / max(1.0, np.abs(step).max())
+    return q
+
+
+def ik_position(robot, p_target, q0, tol=1e-12, max_iterations=100):
+    q = np.array(q0, dtype=float)
+    for _ in range(max_iterations):
+        e = np.asarray(p_target) - _fk_reference(robot, q)[:3, 3]
+        if np.linalg.norm(e) < tol:
+            break
+        step = np.linalg.pinv(_jacobian_reference(robot, q)[:3]) @ e
+        q = q + step / max(1.0, np.abs(step).max())
+    return q
+
+
+def dls_step(J, e, lam):
+    return J.T @ np.linalg.solve(J @ J.T + lam**2 * np.eye(J.shape[0]), e)
+
+
+def lm_step(J, e, mu):
+    return np.linalg.solve(J.T @ J + mu * np.eye(J.shape[1]), J.T @ e)
+
+
+def ik_lm(robot, T_target, q0, tol=1e-12, max_iterations=200):
+    q, mu = np.array(q0, dtype=float), 1e-2
+    e = pose_error(_fk_reference(robot, q), T_target)
+    for _ in range(max_iterations):
+        if np.linalg.norm(e) < tol:
+            break
+        step = lm_step(_jacobian_reference(robot, q), e, mu)
+        trial = q + step / max(1.0, np.abs(step).max())
+        e_trial = pose_error(_fk_reference(robot, trial), T_target)
+        if e_trial @ e_trial < e @ e:
+            q, e, mu = trial, e_trial, max(mu / 10, 1e-12)
+        else:
+            mu *= 10
+    return q
+
+
 SOLUTIONS = {
     "0.1": deg_to_rad,
     "0.2": base_link_pose,
@@ -166,6 +239,12 @@ SOLUTIONS = {
     "4.1": geometric_jacobian,
     "4.2": numeric_jacobian,
     "4.3": singularities,
+    "5.1": pose_error,
+    "5.2": ik_newton,
+    "5.3": ik_position,
+    "6.1": dls_step,
+    "6.2": lm_step,
+    "6.3": ik_lm,
 }
 
 
@@ -271,7 +350,28 @@ WRONG = {
         (lambda r, q: _elbow_with_cos(r, q), "cos q3"),
         (lambda r, q: _wrist_only_at_zero(r, q), "±π too"),
     ],
+    "5.1": [
+        (
+            lambda T, Tt: np.concatenate([Tt[:3, 3] - T[:3, 3], _cross_error(T, Tt)]),
+            "cross-product",
+        ),
+        (lambda T, Tt: -pose_error(T, Tt), "wrong way"),
+        (lambda T, Tt: np.roll(pose_error(T, Tt), 3), "order"),
+    ],
+    "6.1": [
+        (lambda J, e, lam: (J.T * (J * J.T + lam**2 * I) ** -1) @ e, "seed 000"),  # noqa: F821
+        (lambda J, e, lam: (J.T * (J * J.T + lam**2 * np.eye(len(e))) ** -1) @ e, "seed 000"),
+        (lambda J, e, lam: J.T @ np.linalg.solve(J @ J.T + lam * np.eye(len(e)), e), "λ²"),
+    ],
+    "6.2": [
+        (lambda J, e, mu: np.linalg.inv(J.T @ J + mu * np.eye(6)) - J.T @ e, "seed 001"),
+        (lambda J, e, mu: np.linalg.solve(J.T @ J + mu**2 * np.eye(6), J.T @ e), "μ²"),
+    ],
 }
+
+
+def _cross_error(T, Tt):
+    return 0.5 * sum(np.cross(T[:3, i], Tt[:3, i]) for i in range(3))
 
 
 def _with_translation(T, p):

@@ -4,7 +4,8 @@ import pytest
 from tests.solutions_reference import SOLUTIONS, WRONG
 from urkin.exercises import check, exercise, exercises_for_lesson, run_exercise
 
-ALL_IDS = [e.id for lesson in ("00", "01", "02", "03", "04") for e in exercises_for_lesson(lesson)]
+LESSONS = ("00", "01", "02", "03", "04", "05", "06")
+ALL_IDS = [e.id for lesson in LESSONS for e in exercises_for_lesson(lesson)]
 SEEDS = [0, 1, 20261121]
 
 

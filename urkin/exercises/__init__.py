@@ -15,6 +15,8 @@ from urkin.exercises import (  # noqa: F401  (importing registers the exercises)
     lesson02,
     lesson03,
     lesson04,
+    lesson05,
+    lesson06,
 )
 from urkin.exercises.framework import (
     VISIBLE_SEED,
