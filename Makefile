@@ -51,6 +51,7 @@ lessons: $(STAMP)
 
 bench: $(STAMP)
 	$(PY) bench/kinematics.py
+	$(PY) bench/ik.py
 
 clean:
 	rm -rf docs/_build docs/lessons build *.egg-info

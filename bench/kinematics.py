@@ -40,8 +40,9 @@ def import_time(repeat: int = 7) -> tuple[float, bool]:
     )
     times, sympy_loaded = [], False
     for _ in range(repeat):
-        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                             check=True).stdout.split()  # fmt: skip
+        out = subprocess.run(
+            [sys.executable, "-c", code], capture_output=True, text=True, check=True
+        ).stdout.split()
         times.append(float(out[0]))
         sympy_loaded |= out[1] == "True"
     return statistics.median(times), sympy_loaded
@@ -67,8 +68,10 @@ def toolbox():
 def main() -> None:
     rng = np.random.default_rng(0)
     q = rng.uniform(-np.pi, np.pi, 6)
-    print(f"# urkin kinematics benchmark ({platform.processor() or platform.machine()}, "
-          f"Python {platform.python_version()}, numpy {np.__version__})\n")  # fmt: skip
+    print(
+        f"# urkin kinematics benchmark ({platform.processor() or platform.machine()}, "
+        f"Python {platform.python_version()}, numpy {np.__version__})\n"
+    )
 
     seconds, sympy_loaded = import_time()
     print("| measure | value |\n|---|---|")
