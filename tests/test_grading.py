@@ -398,6 +398,21 @@ def test_only_the_assignments_the_definitions_need_are_executed(tmp_path):
             "4.1",
             "twist order (ω; v)",
         ),
+        (
+            "06",
+            ["def dls_step(J, e, lam):\n"
+             "    J_dls = J.T * (J * J.T + lam**2 * I)**-1\n"
+             "    return J_dls @ e\n"],
+            "6.1",
+            "seed 000's first DLS line",
+        ),
+        (
+            "06",
+            ["def lm_step(J, e, mu):\n"
+             "    return np.linalg.inv(J.T @ J + mu * np.eye(6)) - J.T @ e\n"],
+            "6.2",
+            "seed 001's update",
+        ),
     ],
 )  # fmt: skip
 def test_a_wrong_convention_loses_points_with_a_named_mistake(tmp_path, lesson, cells,
