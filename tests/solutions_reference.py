@@ -206,19 +206,25 @@ def lm_step(J, e, mu):
     return np.linalg.solve(J.T @ J + mu * np.eye(J.shape[1]), J.T @ e)
 
 
-def ik_lm(robot, T_target, q0, tol=1e-12, max_iterations=200):
-    q, mu = np.array(q0, dtype=float), 1e-2
-    e = pose_error(_fk_reference(robot, q), T_target)
-    for _ in range(max_iterations):
+def ik_lm(robot, T_target, q0, tol=1e-12, max_iterations=200, restarts=10):
+    rng = np.random.default_rng(0)
+    q = np.array(q0, dtype=float)
+    for _ in range(restarts + 1):
+        mu = 1e-2
+        e = pose_error(_fk_reference(robot, q), T_target)
+        for _ in range(max_iterations):
+            if np.linalg.norm(e) < tol or mu > 1e8:
+                break
+            step = lm_step(_jacobian_reference(robot, q), e, mu)
+            trial = q + step / max(1.0, np.abs(step).max())
+            e_trial = pose_error(_fk_reference(robot, trial), T_target)
+            if e_trial @ e_trial < e @ e:
+                q, e, mu = trial, e_trial, max(mu / 10, 1e-12)
+            else:
+                mu *= 10
         if np.linalg.norm(e) < tol:
-            break
-        step = lm_step(_jacobian_reference(robot, q), e, mu)
-        trial = q + step / max(1.0, np.abs(step).max())
-        e_trial = pose_error(_fk_reference(robot, trial), T_target)
-        if e_trial @ e_trial < e @ e:
-            q, e, mu = trial, e_trial, max(mu / 10, 1e-12)
-        else:
-            mu *= 10
+            return q
+        q = rng.uniform(-np.pi, np.pi, 6)  # a local minimum: start again elsewhere
     return q
 
 

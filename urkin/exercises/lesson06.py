@@ -9,7 +9,7 @@ from urkin.exercises.framework import Check, Exercise, Mismatch, as_array, compa
 from urkin.exercises.inputs import random_arm, random_q
 from urkin.numerical_ik import orientation_error
 
-_fk = urkin.fk  # references, bound before any grading guard is installed
+_fk, _ik = urkin.fk, urkin.ik  # references, bound before any grading guard is installed
 _orientation_error = orientation_error
 
 _IK_FUNCTIONS = (
@@ -202,23 +202,28 @@ def _verify(arm, q, T_target, q0, start: str):
             f"from {start}, fk(robot, q) must reach the target within 1e-8 m and 1e-8 rad; "
             f"it misses by {position:.2e} m and {angle:.2e} rad",
             inputs={"robot": arm.name, "q0": q0},
-            mistake="a fixed damping: it stops short of the target near singularities; adapt μ"
+            mistake="a fixed damping, which stops short of targets near singularities (adapt "
+            "μ), or a local minimum (restart from a random configuration when μ keeps growing)"
             if 1e-8 < max(position, angle) < 1e-3
             else None,
         )
 
 
 def _lm_from(student, rng, q0: np.ndarray | None, start: str, count: int):
-    """Targets around the start (0.5 rad away per joint), away from elbow and wrist
-    singularities; without a start, the start is 0.5 rad from the target instead."""
+    """Targets around the start, away from elbow and wrist singularities, that a plain
+    Levenberg–Marquardt run (urkin's, without restarts) reaches from that start; without a
+    start, the start is 0.5 rad from the target instead."""
     for _ in range(count):
         arm = random_arm(rng)
-        centre = random_q(rng) if q0 is None else q0
-        q_true = centre + rng.uniform(-0.7, 0.7, 6)
-        while abs(np.sin(q_true[2])) < 0.2 or abs(np.sin(q_true[4])) < 0.2:
+        while True:
+            centre = random_q(rng) if q0 is None else q0
             q_true = centre + rng.uniform(-0.7, 0.7, 6)
-        start_q = q_true + rng.uniform(-0.5, 0.5, 6) if q0 is None else q0.copy()
-        T_target = _fk(arm, q_true)
+            if abs(np.sin(q_true[2])) < 0.2 or abs(np.sin(q_true[4])) < 0.2:
+                continue
+            start_q = q_true + rng.uniform(-0.5, 0.5, 6) if q0 is None else q0.copy()
+            T_target = _fk(arm, q_true)
+            if _ik(arm, T_target, q0=start_q, max_restarts=0).success:
+                break
         q = as_array(student(arm, T_target.copy(), start_q.copy()), (6,), "ik_lm(robot, T, q0)")
         _verify(arm, q, T_target, start_q, start)
 
