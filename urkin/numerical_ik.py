@@ -663,8 +663,12 @@ def ik(
         elif not reasons[i]:
             reasons[i] = (
                 f"did not converge: after {restarts[i]} restarts the closest configuration found "
-                f"is {position_error[i]:.2e} m and {rotation_error[i]:.2e} rad from the target "
-                "(out of reach, or only reachable at a singularity?)"
+                f"is {position_error[i]:.2e} m and {rotation_error[i]:.2e} rad from the target"
+                + (
+                    " (the cross-product error is blind to orientations half a turn away)"
+                    if orientation == "cross" and rotation_error[i] > 3.0
+                    else ""
+                )
             )
     residual = np.maximum(position_error, rotation_error)
     result = IKResult(

@@ -1,0 +1,1148 @@
+# %% [markdown]
+# # Lesson 05 — Newton–Raphson inverse kinematics
+#
+# Forward kinematics answers "where is the flange for these joint angles?". A robot is
+# usually asked the opposite: "put the tool *there* — which joint angles do that?" This is
+# **inverse kinematics** (IK). For a UR arm it has a closed-form answer (a later lesson), but
+# the method almost every robotics library reaches for first is numerical: start from a
+# guess, see how far off the flange is, use the Jacobian of lesson 04 to work out a
+# correction, and repeat. That is **Newton–Raphson**, and both seed reports with an IK solver
+# (000 on a UR3, 002 on a UR5) use it.
+#
+# In this lesson you will
+#
+# * derive the Newton–Raphson step from the Jacobian, and see why it uses the pseudo-inverse
+#   and why it needs a step limit;
+# * solve for the position alone, as seed 002 does, and track a square with warm starts —
+#   then find out why seed 002's square came out wrong (it was not its initial guess);
+# * write the 6-vector error between two poses, and full-pose Newton–Raphson on top of it;
+# * watch the error shrink *quadratically*, and measure how far from a solution the method
+#   still finds one;
+# * take apart seed 000's start at "home": a triple singularity and an orientation error
+#   that reads zero when the tool is half a turn away.
+#
+# **Time:** about 2 hours. **You need:** lesson 01 (the log map; the cross-product error
+# and its blind spot at 180°), lesson 02 (forward kinematics; seed 002's position formula)
+# and lesson 04 (the geometric Jacobian $[v;\ \omega]$, singularities).
+
+# %%
+import matplotlib.pyplot as plt
+import numpy as np
+
+import urkin
+import urkin.kinematics
+import urkin.plot
+from urkin.exercises import check
+from urkin.numerical_ik import orientation_error
+from urkin.transforms import make_transform, rotation_angle
+
+np.set_printoptions(precision=4, suppress=True)
+
+
+def below(value, limit=1e-12):
+    """A tiny number as text: "below 1e-12" rather than digits that are only round-off."""
+    return f"below {limit:.0e}" if value < limit else f"{value:.2e}"
+
+
+def wrapped(q):
+    """Joint angles wrapped into [−π, π): the same arm pose, without extra turns."""
+    return (np.asarray(q, dtype=float) + np.pi) % (2.0 * np.pi) - np.pi
+
+
+# %% [markdown]
+# `urkin.ik` is urkin's numerical IK solver; the demonstrations below use it, and the
+# plain functions `urkin.fk`, `urkin.jacobian` and `urkin.numerical_ik.orientation_error`,
+# never the functions you write. None of this lesson's exercise names clashes with urkin's.
+#
+# ## 1. Inverse kinematics as root finding
+#
+# Write $x(q)$ for the pose of the flange at the joint angles $q$ and $x^\*$ for the target.
+# IK asks for a root of the **error** $e(q) = x^\* - x(q)$: six equations (three for the
+# position, three for the orientation) in six unknowns. In general they have several
+# solutions (up to eight for a UR arm reaching a full pose), exactly one, or none.
+#
+# **Newton–Raphson** replaces the hard, nonlinear problem by an easy, linear one. Near the
+# current guess $q$, lesson 04's Jacobian predicts how the flange moves,
+# $x(q + \Delta q) \approx x(q) + J(q)\,\Delta q$, so the error after a step $\Delta q$ is
+# about $e(q) - J(q)\,\Delta q$. Ask for that to be zero:
+#
+# $$J(q)\,\Delta q = e(q), \qquad q \leftarrow q + \Delta q .$$
+#
+# The prediction is not exact — the arm moves on arcs, not straight lines — so the new error
+# is not zero, but it is small, and the recipe is simply repeated: *linearise, solve, repeat*.
+#
+# **Why the pseudo-inverse.** For a full pose $J$ is 6 × 6 and $\Delta q = J^{-1} e$ would
+# do — until $J$ is singular (lesson 04), where $J^{-1}$ does not exist. For the position
+# alone $J$ is 3 × 6 and has no inverse at all: three equations, six unknowns, infinitely many
+# answers. The **Moore–Penrose pseudo-inverse** $J^+$ covers every case. Computed from the
+# singular value decomposition $J = U \Sigma V^\mathsf{T}$, it inverts each singular value
+# $\sigma_i$ that is not (numerically) zero and drops the rest; $\Delta q = J^+ e$ is then
+#
+# * the exact solution when one exists, and among all exact solutions the **shortest** one
+#   (the smallest joint motion) — the natural choice for a redundant 3 × 6 problem;
+# * the least-squares best step when no exact solution exists (at a singularity, some
+#   flange motions are impossible: $J^+$ does what it can and ignores the rest).
+#
+# `np.linalg.pinv` computes it.
+#
+# **Why a step limit.** The linear prediction is only good for *small* steps. Near a
+# singularity some $\sigma_i$ is tiny and $1/\sigma_i$ huge, so the step can come out at tens
+# of radians — several full turns of a joint, far outside the region where the linearisation
+# means anything (section 6 meets exactly that). A cheap guard is to keep the step's
+# *direction* and shrink its *size* so that no joint moves more than about 1 rad per
+# iteration. Far from the solution it costs an iteration or two; near the solution the steps
+# are tiny and the limit never acts, so it does not slow the final convergence.
+#
+# Here is one step, done by hand on a UR3, from starts at distances $\delta$ (radians, all
+# joints together) from a known solution. Watch the error that is *left* after the step:
+
+# %%
+ur3 = urkin.robot("UR3")
+q_solution = np.array([0.4, -1.1, 1.3, -1.5, 1.2, 0.3])
+T_goal = urkin.fk(ur3, q_solution)
+direction = np.random.default_rng(1).normal(size=6)
+direction /= np.linalg.norm(direction)  # a random direction in joint space, length 1
+
+print("distance δ (rad)   |e| before the step   |e| after one step   after / before²")
+for delta in (0.2, 0.1, 0.05, 0.025):
+    q = q_solution + delta * direction
+    T = urkin.fk(ur3, q)
+    e = np.r_[T_goal[:3, 3] - T[:3, 3], orientation_error(T[:3, :3], T_goal[:3, :3])]
+    step = np.linalg.pinv(urkin.jacobian(ur3, q)) @ e  # solve J Δq = e
+    T_new = urkin.fk(ur3, q + step)
+    e_new = np.r_[T_goal[:3, 3] - T_new[:3, 3],
+                  orientation_error(T_new[:3, :3], T_goal[:3, :3])]
+    size, size_new = np.linalg.norm(e), np.linalg.norm(e_new)
+    print(f"{delta:14.3f}   {size:19.2e}   {size_new:18.2e}   {size_new / size**2:15.3f}")
+
+# %% [markdown]
+# (Here $|e|$ is the length of the 6-vector, metres and radians lumped together: good enough
+# to watch a trend, not to decide success — section 3 comes back to this.) Halving the
+# distance quarters what one step leaves behind: the leftover error is proportional to the
+# *square* of the error before the step. That is **quadratic convergence**, and it is why
+# Newton–Raphson is so fast once it is close: an error of 1e-3 becomes about 1e-6, then
+# 1e-12. Far away, the square is no longer small, and nothing is promised.
+#
+# ## 2. The position only: seed 002's square
+#
+# Seed report 002 moves a UR5's tool tip around a square. It solves for the position alone —
+# the three coordinates of the flange, whatever the orientation — with a closed-form $p(q)$
+# and a 3 × 6 Jacobian it differentiated by hand (lessons 02 and 04). Its loop starts from a
+# guess of 20° on every joint and uses each point's answer as the guess for the next point,
+# a **warm start**: neighbouring points of a path have neighbouring solutions, so each solve
+# begins close and takes only a few iterations.
+#
+# Two habits of the report are traps, and this lesson avoids both:
+#
+# * **Millimetres.** Its lengths are in millimetres and its tolerance is the bare number
+#   `1`. Position-only Newton–Raphson happens not to care about the length unit (the error
+#   and the Jacobian scale together, the step in radians does not change), which is exactly
+#   why the habit survives until it bites: the number `1` silently means "1 mm" and would
+#   mean "1 m" in a metre-based library; urkin (and its checks) read lengths in metres, so a
+#   millimetre table gives an arm a thousand times too big; and the moment orientation rows
+#   (radians) join the position rows, millimetres outweigh them a thousand to one in every
+#   step and every norm.
+# * **Two degree factors.** It stores each answer in degrees by dividing by 0.0175 and turns
+#   it back into radians by multiplying by 0.01744, where both should be π/180 = 0.0174533.
+#   Every warm start is therefore its previous answer times 0.01744 / 0.0175 = 0.99657
+#   (lesson 00), and the animation draws angles scaled by that factor too.
+#
+# Here everything is in metres and radians. The arm is the UR5 with the report's own lengths
+# in UR's sign convention, `seed002_arm`, as in lessons 02 and 04 (its numbers differ from
+# UR's UR5 by less than a millimetre); its angles are UR's, and the report's are
+# $q^\text{seed} = q^\text{UR} +$ `SHIFT`. The report does not print its square's corners, so
+# here is one in its spirit: 0.2 m on a side, horizontal, sampled every 10 mm rather than
+# every 1 mm (81 points are plenty to see what happens).
+
+# %%
+seed002_lengths = (0.0892, 0.425, 0.392, 0.1093, 0.09475, 0.0825)  # d1, a2, a3, d4, d5, d6 (m)
+l1, l2, l3, l4, l5, l6 = seed002_lengths
+seed002_arm = urkin.Robot("UR5 (seed 002's lengths)", l1, -l2, -l3, l4, l5, l6)
+SHIFT = np.array([0.0, np.pi, 0.0, -np.pi, 0.0, 0.0])  # q_seed = q_UR + SHIFT
+
+side, spacing = 0.2, 0.01  # metres
+centre = np.array([0.4, 0.3, 0.2])
+corners = centre + 0.5 * side * np.array(
+    [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0], [-1, -1, 0]], dtype=float)
+fractions = np.arange(round(side / spacing)) / round(side / spacing)
+square = np.vstack([corners[k] + fractions[:, None] * (corners[k + 1] - corners[k])
+                    for k in range(4)] + [corners[:1]])  # four sides, then back to the start
+guess_20 = np.radians(np.full(6, 20.0)) - SHIFT  # 20° on every joint, in the report's angles
+p_guess = urkin.fk(seed002_arm, guess_20)[:3, 3]
+print(f"{len(square)} target points; the first is {square[0]} m")
+print(f"the 20° guess puts the flange at {p_guess.round(4)} m, "
+      f"{np.linalg.norm(p_guess - square[0]):.2f} m from the first point")
+
+# %% [markdown]
+# Now track the square with urkin's plain Newton–Raphson, `urkin.ik(..., method="nr",
+# max_restarts=0)`: a 3-vector target means "position only", each solve is warm-started
+# from the previous answer, and no random restarts are allowed — if an attempt fails, we
+# want to see it.
+
+# %%
+q = guess_20
+solved, iterations, failures = [], [], 0
+for point in square:
+    result = urkin.ik(seed002_arm, point, q0=q, method="nr", max_restarts=0)
+    failures += not result.success
+    q = result.q  # warm start for the next point
+    solved.append(q)
+    iterations.append(result.iterations)
+solved = np.array(solved)
+reached = urkin.fk(seed002_arm, solved)[:, :3, 3]
+largest_miss = np.linalg.norm(reached - square, axis=1).max()
+
+print(f"failures: {failures} of {len(square)}")
+print(f"iterations: {iterations[0]} for the first point (from the 20° guess), "
+      f"median {np.median(iterations[1:]):.0f} for the warm-started ones")
+print(f"largest distance between the flange and its target: {below(largest_miss, 1e-10)} m")
+
+# %% [markdown]
+# Every point is reached within urkin's default tolerance of $10^{-10}$ m — including the
+# first, whose guess put the flange more than half a metre away. A far guess costs a few
+# iterations, not accuracy.
+#
+# ### Exercise 5.3 — `ik_position` (3 points)
+#
+# Write `ik_position(robot, p_target, q0)`: position-only Newton–Raphson. Repeat: compute the
+# flange position with `urkin.fk`, the error $e = p^\* - p$ (metres), the 3 × 6 position
+# Jacobian (`urkin.kinematics.position_jacobian(robot, q)`, or the top three rows of
+# `urkin.jacobian`), and the step $\Delta q = J_v^+ e$. Scale the step down so that no joint
+# moves more than 1 rad, wrap the angles into $[-\pi, \pi)$, and stop when $|e|$ is below
+# $10^{-12}$ m (or after 100 iterations).
+#
+# The check asks for the target within $10^{-8}$ m, on every UR arm, from starts up to
+# 0.4 rad per joint away, and makes sure the orientation is really left free: keeping the
+# start's orientation (a 6 × 6 Jacobian with a zero orientation error) is a different, and
+# often impossible, problem. Calling `urkin.ik` earns no points.
+
+# %%
+def ik_position(robot, p_target, q0, tol=1e-12, max_iterations=100, max_step=1.0):
+    """Joint angles that put the flange origin at a point: position-only Newton–Raphson.
+
+    Parameters
+    ----------
+    robot : urkin.Robot
+        The arm.
+    p_target : array_like, shape (3,)
+        Target position of the flange origin in the base frame, metres.
+    q0 : array_like, shape (6,)
+        Initial guess, radians.
+    tol : float
+        Stop when the distance to the target is below ``tol`` metres.
+    max_iterations : int
+        Stop after this many steps in any case.
+    max_step : float
+        Largest change of any joint in one step, radians (the step is scaled down to it).
+
+    Returns
+    -------
+    ndarray, shape (6,)
+        Joint angles in radians, wrapped into [−π, π). The orientation is whatever the
+        iteration arrives at.
+    """
+    ### BEGIN SOLUTION
+    q = np.array(q0, dtype=float)
+    p_target = np.asarray(p_target, dtype=float)
+    for _ in range(max_iterations):
+        e = p_target - urkin.fk(robot, q)[:3, 3]
+        if np.linalg.norm(e) < tol:
+            break
+        step = np.linalg.pinv(urkin.kinematics.position_jacobian(robot, q)) @ e
+        largest = np.abs(step).max()
+        if largest > max_step:
+            step = step * (max_step / largest)  # same direction, shorter
+        q = (q + step + np.pi) % (2.0 * np.pi) - np.pi
+    return q
+    ### END SOLUTION
+
+
+# %%
+check("5.3", ik_position)
+
+# %% [markdown]
+# ### What went wrong in seed 002
+#
+# The report's animation "does not seem to follow the desired square path during the start
+# of its journey", and it blames "the vague initial guess of 20 degrees". The run above
+# started from that same guess and is exact everywhere, so the guess cannot be the whole
+# story. The difference is the *model*. The report's solver does not call a forward
+# kinematics that is known to be right: it iterates on its published $p(q)$, which lacks a
+# factor $\sin q_5$ on the two $d_6 \cos(q_2+q_3+q_4)$ terms (lesson 02), with the Jacobian
+# of that wrong $p$ (lesson 04). The animation, however, draws the *true* DH chain.
+#
+# Newton–Raphson has no way to notice: it drives the model's error to zero, and the model's
+# Jacobian is the exact derivative of the model, so it converges as happily as ever — to
+# angles where the *formula* reaches the target. Below, the report's formula and Jacobian
+# (transcribed in lessons 02 and 04, in its own angles) drive a small Newton–Raphson loop,
+# and the answers are checked with `urkin.fk`.
+
+# %%
+def seed002_position(q, lengths, cos=np.cos, sin=np.sin):
+    """Seed 002's published flange position [p_x, p_y, p_z] (its angles; wrong in x and y)."""
+    d1, a2, a3, d4, d5, d6 = lengths
+    c1, s1, c2, s2, c3, s3 = cos(q[0]), sin(q[0]), cos(q[1]), sin(q[1]), cos(q[2]), sin(q[2])
+    c5, s5 = cos(q[4]), sin(q[4])
+    c234, s234 = cos(q[1] + q[2] + q[3]), sin(q[1] + q[2] + q[3])
+    arm = a2 * c2 + a3 * c2 * c3 - a3 * s2 * s3  # in-plane reach of upper arm and forearm
+    return [
+        d5 * c1 * s234 + d4 * s1 - d6 * c1 * c234 + d6 * c5 * s1 + c1 * arm,
+        d5 * s1 * s234 - d4 * c1 - d6 * s1 * c234 - d6 * c1 * c5 + s1 * arm,
+        d1 - d6 * s234 * s5 + a3 * sin(q[1] + q[2]) + a2 * s2 - d5 * c234,
+    ]
+
+
+def seed002_jacobian(q, lengths, cos=np.cos, sin=np.sin):
+    """Seed 002's hand-derived 3 × 6 Jacobian: the exact derivative of its (wrong) p."""
+    _, a2, a3, d4, d5, d6 = lengths
+    c1, s1, c2, s2, c3, s3 = cos(q[0]), sin(q[0]), cos(q[1]), sin(q[1]), cos(q[2]), sin(q[2])
+    c5, s5 = cos(q[4]), sin(q[4])
+    c23 = cos(q[1] + q[2])
+    c234, s234 = cos(q[1] + q[2] + q[3]), sin(q[1] + q[2] + q[3])
+    zero = 0 * c1
+    wrist_x, wrist_y = d5 * c1 * c234 + d6 * c1 * s234, d5 * s1 * c234 + d6 * s1 * s234
+    row_x = [
+        -d5 * s1 * s234 + d4 * c1 + d6 * s1 * c234 - a2 * s1 * c2 + d6 * c5 * c1
+        - a3 * s1 * c2 * c3 + a3 * s1 * s2 * s3,
+        wrist_x - a2 * c1 * s2 - a3 * c1 * s2 * c3 - a3 * c1 * c2 * s3,
+        wrist_x - a3 * c1 * c2 * s3 - a3 * c1 * s2 * c3,
+        wrist_x,
+        -d6 * s5 * s1,
+        zero,
+    ]
+    row_y = [
+        d5 * c1 * s234 + d4 * s1 - d6 * c1 * c234 + d6 * s1 * c5 + a2 * c2 * c1
+        + a3 * c2 * c3 * c1 - a3 * c1 * s2 * s3,
+        wrist_y - a2 * s2 * s1 - a3 * s2 * c3 * s1 - a3 * s1 * c2 * s3,
+        wrist_y - a3 * c2 * s3 * s1 - a3 * s1 * s2 * c3,
+        wrist_y,
+        d6 * c1 * s5,
+        zero,
+    ]
+    row_z = [
+        zero,
+        -d6 * c234 * s5 + a3 * c23 + a2 * c2 + d5 * s234,
+        -d6 * c234 * s5 + a3 * c23 + d5 * s234,
+        -d6 * c234 * s5 + d5 * s234,
+        -d6 * s234 * c5,
+        zero,
+    ]
+    return [row_x, row_y, row_z]
+
+
+def model_position(q):
+    """The report's p for UR angles q (metres)."""
+    return np.array(seed002_position(q + SHIFT, seed002_lengths))
+
+
+def model_jacobian(q):
+    """The report's Jacobian for UR angles q (m/rad); a constant shift leaves it unchanged."""
+    return np.array(seed002_jacobian(q + SHIFT, seed002_lengths), dtype=float)
+
+
+def newton_on_model(position, jacobian, p_target, q0, tol=1e-10, max_step=1.0,
+                    max_iterations=100):
+    """Position-only Newton–Raphson on a *model* of the arm: position(q) and jacobian(q).
+
+    Stops when every coordinate of p_target − position(q) is within tol (metres), the test
+    seed 002 uses. Returns the joint angles (not wrapped) and the number of iterations.
+    """
+    q = np.array(q0, dtype=float)
+    for iteration in range(max_iterations):
+        error = p_target - position(q)
+        if np.abs(error).max() <= tol:
+            return q, iteration
+        step = np.linalg.pinv(jacobian(q)) @ error
+        q = q + step * min(1.0, max_step / np.abs(step).max())
+    return q, max_iterations
+
+
+def seed002_miss(q):
+    """Where lesson 02's error formula says the true flange is off: d6 |cos q234| (1 − sin q5)."""
+    return l6 * np.abs(np.cos(q[..., 1] + q[..., 2] + q[..., 3])) * (1.0 - np.sin(q[..., 4]))
+
+
+# the same warm-started tracking as before, on the report's model
+q = guess_20
+on_model = []
+for point in square:
+    q, _ = newton_on_model(model_position, model_jacobian, point, q)
+    on_model.append(q)
+on_model = np.array(on_model)
+model_gap = np.abs(np.array([model_position(q) for q in on_model]) - square).max()
+miss_model = np.linalg.norm(urkin.fk(seed002_arm, wrapped(on_model))[:, :3, 3] - square, axis=1)
+
+print(f"the model's own error at its answers: {below(model_gap, 1e-10)} m (converged)")
+print(f"the real flange misses its target by {1000 * miss_model.min():.1f} to "
+      f"{1000 * miss_model.max():.1f} mm")
+print(f"lesson 02's formula d6·|cos(q2+q3+q4)|·(1 − sin q5) predicts the misses within "
+      f"{below(np.abs(seed002_miss(on_model) - miss_model).max())} m")
+
+
+# %% [markdown]
+# Converged, by its own measure, at every point — and 2 to 3 cm off in reality, exactly by
+# the amount lesson 02's error formula predicts. How large the miss is depends on *where*
+# the solver lands: it vanishes where $\cos(q_2+q_3+q_4) = 0$ or $\sin q_5 = 1$ and reaches
+# $2 d_6 = 165$ mm where $|\cos(q_2+q_3+q_4)| = 1$ and $\sin q_5 = -1$.
+#
+# The loop above has this lesson's step limit and a 0.1 nm tolerance. The report's own loop
+# takes unlimited steps, stops at 1 mm per coordinate, passes each answer through its two
+# degree factors before using it as the next guess, and its animation draws angles that
+# have been through the factors once more. The animation also plots the trace from a list
+# whose first entry is never filled in, so the drawn path begins at the base origin,
+# (0, 0, 0). Here is that whole pipeline, in metres — once with the report's formula, and
+# once with the true kinematics in its place.
+
+# %%
+def true_position(q):
+    """The flange position of seed002_arm by urkin.fk, for UR angles q (metres)."""
+    return urkin.fk(seed002_arm, wrapped(q))[:3, 3]
+
+
+def true_jacobian(q):
+    """urkin's exact 3 × 6 position Jacobian of seed002_arm (m/rad)."""
+    return urkin.kinematics.position_jacobian(seed002_arm, wrapped(q))
+
+
+def seed002_pipeline(position, jacobian):
+    """Seed 002's tracking as its code runs it, on a given model: solved and drawn UR angles."""
+    factor = 0.01744 / 0.0175  # radians → degrees by ÷ 0.0175, degrees → radians by × 0.01744
+    guess = np.full(6, 20.0) * 0.0175 - SHIFT  # its "20°", in UR angles
+    solved = []
+    for point in square:
+        q, _ = newton_on_model(position, jacobian, point, guess, tol=1e-3, max_step=np.inf,
+                               max_iterations=200)
+        solved.append(q)
+        guess = (q + SHIFT) * factor - SHIFT  # the factors act on the report's own angles
+    solved = np.array(solved)
+    return solved, (solved + SHIFT) * factor - SHIFT
+
+
+def misses_mm(q):
+    """Distance from the true flange to each target point of the square, millimetres."""
+    return 1000 * np.linalg.norm(urkin.fk(seed002_arm, wrapped(q))[:, :3, 3] - square, axis=1)
+
+
+print("seed 002's pipeline            flange − target (mm)     first point   as drawn (mm)")
+for name, model in (("with its published formula", (model_position, model_jacobian)),
+                    ("with the true kinematics", (true_position, true_jacobian))):
+    solved_angles, drawn_angles = seed002_pipeline(*model)
+    solved_mm, drawn_mm = misses_mm(solved_angles), misses_mm(drawn_angles)
+    print(f"{name:<28} {solved_mm.min():7.1f} to {solved_mm.max():5.1f}"
+          f"        {solved_mm[0]:7.1f}    {drawn_mm.min():6.1f} to {drawn_mm.max():5.1f}")
+    if name.startswith("with its"):
+        seed_solved, seed_drawn = solved_angles, drawn_angles
+
+# %% [markdown]
+# With the true kinematics, the report's own pipeline — its 20° guess, its unlimited steps,
+# its 1 mm tolerance, its degree factors — stays within a millimetre of the square, and
+# within 3 mm as drawn (the factors' share). With the published formula the flange is more
+# than 12 cm off, from the very first point. The figure puts the traces side by side.
+
+# %%
+traces = [
+    (reached, "urkin.ik, true kinematics (exact)", "tab:blue", "-"),
+    (urkin.fk(seed002_arm, wrapped(on_model))[:, :3, 3],
+     "step-limited Newton on the report's formula", "tab:orange", "-"),
+]
+drawn_trace = urkin.fk(seed002_arm, wrapped(seed_drawn))[:, :3, 3]
+drawn_trace[0] = 0.0  # the report's trace list starts with an entry it never sets
+traces.append((drawn_trace, "the report's pipeline, as its animation draws it", "tab:red", "--"))
+
+fig, (top, along) = plt.subplots(1, 2, figsize=(14, 5.5),
+                                 gridspec_kw={"width_ratios": (1.0, 1.3)})
+top.plot(*corners[:, :2].T, color="black", linewidth=6, alpha=0.2, label="target square")
+for trace, name, colour, style in traces:
+    top.plot(*trace[:, :2].T, style, color=colour, linewidth=1.6, label=name)
+top.plot(0.0, 0.0, "k+", markersize=12)
+top.annotate("base origin:\nthe drawn trace\nstarts here", xy=(0.0, 0.0), xytext=(0.05, 0.28),
+             arrowprops={"arrowstyle": "->"}, fontsize=9)
+top.set_aspect("equal")
+top.set_xlabel("x (m)")
+top.set_ylabel("y (m)")
+top.set_title(f"top view (the square is at z = {centre[2]:.1f} m)")
+top.legend(loc="lower right", fontsize=8)
+
+index = np.arange(len(square))
+along.plot(index, misses_mm(solved), color="tab:blue", label="urkin.ik, true kinematics")
+along.plot(index, misses_mm(on_model), color="tab:orange",
+           label="step-limited Newton on the report's formula")
+along.plot(index, misses_mm(seed_solved), color="tab:red", label="the report's pipeline, solved")
+along.plot(index, 1000 * seed002_miss(seed_solved), "o", color="tab:red", markersize=3,
+           fillstyle="none", label="prediction d6·|cos(q2+q3+q4)|·(1 − sin q5)")
+along.axhline(1000 * 2 * l6, color="0.5", linestyle=":",
+              label=f"largest possible: 2·d6 = {2000 * l6:.0f} mm")
+along.set_xlabel("target point along the square (index, 10 mm apart)")
+along.set_ylabel("distance flange − target (mm)")
+along.set_title("how far the real flange is from each target")
+along.set_ylim(-5, 185)
+along.legend(loc="center right", fontsize=8)
+fig.suptitle("Seed 002's square on a UR5: solving the published formula, drawing the true arm")
+fig.tight_layout()
+plt.show()
+
+# %% [markdown]
+# ### The initial guess picks a branch, not the accuracy
+#
+# A position-only problem has a whole family of solutions — the orientation is free, so
+# there are three joints' worth of freedom left over — and even a full pose has up to
+# eight. Which one Newton–Raphson finds depends on where it starts and how it steps. Take
+# the first corner of the square and the report's guess, 20 × 0.0175 = 0.35 rad on every
+# joint. This lesson's loop (steps limited to 1 rad) and the report's loop (unlimited steps)
+# start from that same guess and end with the wrist bent opposite ways:
+
+# %%
+first = square[0]
+guess_report = np.full(6, 20.0) * 0.0175 - SHIFT  # 0.35 rad on every joint, its angles
+answers = {}
+print("model              loop           q (UR angles, rad)                          "
+      "sin q5   miss (mm)")
+for model_name, model in (("true kinematics", (true_position, true_jacobian)),
+                          ("report's formula", (model_position, model_jacobian))):
+    for loop_name, max_step, tol in (("step-limited", 1.0, 1e-10), ("report's", np.inf, 1e-3)):
+        q, _ = newton_on_model(*model, first, guess_report, tol=tol, max_step=max_step)
+        answers[model_name, loop_name] = q = wrapped(q)
+        miss = 1000 * np.linalg.norm(true_position(q) - first)
+        angles = " ".join(f"{v:6.2f}" for v in q)
+        print(f"{model_name:<18} {loop_name:<14} [{angles}]   {np.sin(q[4]):6.2f}   {miss:8.1f}")
+
+# %%
+fig = plt.figure(figsize=(13, 6))
+for panel, model_name in enumerate(("true kinematics", "report's formula")):
+    ax = urkin.plot.axes3d(fig.add_subplot(1, 2, panel + 1, projection="3d"),
+                           center=(0.2, 0.15, 0.12), half_width=0.3,
+                           title=f"solved with the {model_name}")
+    for loop_name, colour in (("step-limited", "tab:blue"), ("report's", "tab:red")):
+        q = answers[model_name, loop_name]
+        miss = 1000 * np.linalg.norm(true_position(q) - first)
+        urkin.plot.draw_robot(ax, seed002_arm, q, frames=False, color=colour, linewidth=3,
+                              label=f"{loop_name} loop: flange {miss:.1f} mm from the target")
+    ax.scatter(*first, color="black", s=60, marker="*", depthshade=False,
+               label="target (first corner)")
+    floor_x, floor_y = np.meshgrid([-0.1, 0.5], [-0.15, 0.45])
+    ax.plot_surface(floor_x, floor_y, 0.0 * floor_x, color="0.5", alpha=0.15)
+    ax.plot([], [], color="0.5", alpha=0.4, linewidth=8, label="the plane the robot stands on")
+    ax.view_init(elev=20, azim=-50)
+    ax.legend(loc="upper left", fontsize=8)
+fig.suptitle("The same 20° guess, two loops, two wrist branches: the formula decides the miss")
+fig.tight_layout()
+plt.show()
+
+# %% [markdown]
+# With the true kinematics both answers reach the corner (the report's loop stops within
+# its 1 mm tolerance); they are simply different arms — the guess and the step rule chose a
+# branch. With the report's formula the same two branches miss by 2 cm and by 13.5 cm,
+# because the formula's error depends on $q_5$ and $q_2+q_3+q_4$, which differ between
+# branches. (All four arms also put the elbow 9 to 14 cm *below* the plane the robot stands
+# on: the solver knows nothing about tables. Choosing a sensible branch is the guess's real
+# job.) Try many guesses to make sure the size of the miss is not bad luck:
+
+# %%
+rng = np.random.default_rng(2)
+guesses = rng.uniform(-np.pi, np.pi, (200, 6))
+exact = urkin.ik(seed002_arm, np.tile(first, (200, 1)), q0=guesses, method="nr",
+                 max_restarts=0)
+formula_misses = np.array([
+    1000 * np.linalg.norm(true_position(newton_on_model(model_position, model_jacobian,
+                                                        first, guess)[0]) - first)
+    for guess in guesses
+])
+print(f"true kinematics:  {int(exact.success.sum())} of 200 random guesses reach the corner "
+      f"within 1e-10 m")
+print(f"report's formula: misses of {formula_misses.min():.1f} to {formula_misses.max():.1f} "
+      f"mm, median {np.median(formula_misses):.1f} mm; over 100 mm for "
+      f"{np.mean(formula_misses > 100):.0%} of the guesses")
+
+# %% [markdown]
+# So the report had the cause backwards. Its 20° guess is far from the square, but
+# Newton–Raphson converges from it in a handful of iterations; the guess only decides which
+# branch the solver settles in. The visible miss comes from iterating on a wrong formula
+# while drawing the true arm — more than 10 cm for a fifth of all guesses, 13.5 cm for
+# the report's own — with a drawn trace that starts at the base and a few millimetres from
+# the degree factors on top. The lesson is lesson 02's, in a new place: **a solver is only as
+# right as the model it iterates on**, and a model must be checked against an independent
+# forward kinematics, not against itself.
+#
+# ## 3. The full pose: seed 000's error vector
+#
+# For a full pose the error needs an orientation part too. The position part is as before,
+# $e_p = p^\* - p$ (metres). For the orientation, the rotation still to go is
+# $R_e = R^\* R^\mathsf{T}$: applied on the left of the current $R$, it gives the target,
+# $R_e R = R^\*$, and it is expressed in the base frame. Its rotation vector (lesson 01's log
+# map) is the orientation error:
+#
+# $$e = \begin{bmatrix} e_p \\ e_o \end{bmatrix}
+#     = \begin{bmatrix} p^\* - p \\ \log(R^\* R^\mathsf{T}) \end{bmatrix}
+#     = \begin{bmatrix} p^\* - p \\ \varphi\, k \end{bmatrix},$$
+#
+# where $\varphi \in [0, \pi]$ is the angle and $k$ the unit axis of $R_e$. Three choices in
+# this formula must match the Jacobian, or Newton's step points the wrong way:
+#
+# * **position first**, because the geometric Jacobian's rows are $[v;\ \omega]$;
+# * **the base frame**, because its $\omega$ rows are in base coordinates. The tool-frame
+#   error $\log(R^\mathsf{T} R^\*)$ has the same length but is the same vector seen from the
+#   tool, and pairs with a body Jacobian instead;
+# * **target minus current**, so that $J\,\Delta q = e$ moves *towards* the target.
+#
+# Seed 000 uses the cross-product error $\tfrac12\sum_i n_i \times n_i^\*$ over the columns
+# of $R$ and $R^\*$. Lesson 01 showed that it equals $\sin\varphi\; k$: the same direction,
+# nearly the same length for small errors, shorter beyond 90°, and *zero* at 180°.
+#
+# **When to stop.** The position error is in metres and the orientation error in radians,
+# and the two are not comparable: whether 1 mm or 1 mrad is "more" depends on the length of
+# the tool and on the task. Seed 000 stops when the length of the whole 6-vector
+# $\|[e_p;\ e_o]\|$ is below $10^{-3}$, which lets the two trade off against each other
+# (a pose 0.9 mm and 0.4 mrad away passes; so would one 0.1 mm and 0.99 mrad away).
+# Test them separately, each against its own tolerance, as `urkin.ik` does
+# (`tol_position` in metres, `tol_orientation` in radians).
+#
+# ### Exercise 5.1 — `pose_error` (3 points)
+#
+# Write `pose_error(T, T_target)`: the 6-vector $[p^\* - p;\ \log(R^\* R^\mathsf{T})]$ for
+# two 4 × 4 poses. Write the log map yourself (calling `urkin.transforms.so3_log` or
+# `urkin.numerical_ik.orientation_error` earns no points), as lesson 01 built it for
+# $R_e = R^\* R^\mathsf{T}$:
+#
+# * $s = \tfrac12 (R_{e,32} - R_{e,23},\ R_{e,13} - R_{e,31},\ R_{e,21} - R_{e,12})
+#   = \sin\varphi\; k$ and $\cos\varphi = (\operatorname{tr} R_e - 1)/2$, so
+#   $\varphi = \operatorname{atan2}(|s|, \cos\varphi)$ — accurate at every angle;
+# * for $\varphi$ not near $\pi$: $e_o = (\varphi / \sin\varphi)\, s$ (and $e_o = s$ when
+#   $\varphi$ is tiny, where the ratio is 1);
+# * near $\varphi = \pi$, $s$ has lost the axis; read it from the symmetric part,
+#   $\tfrac12 (R_e + R_e^\mathsf{T}) - \cos\varphi\, I = (1 - \cos\varphi)\, k k^\mathsf{T}$: its
+#   column with the largest diagonal entry is a multiple of $k$. Normalise it, and pick the
+#   sign that agrees with $s$.
+#
+# The check compares with urkin on random pairs of poses and insists on a half turn being
+# seen as an error of length π.
+
+# %%
+def pose_error(T, T_target):
+    """The error that takes a pose to a target pose: position first, then rotation vector.
+
+    Parameters
+    ----------
+    T : array_like, shape (4, 4)
+        Current pose (of the flange, in the base frame); lengths in metres.
+    T_target : array_like, shape (4, 4)
+        Target pose, in the same frame.
+
+    Returns
+    -------
+    ndarray, shape (6,)
+        ``[p_target − p, φ k]``: the position error (metres), then the rotation vector
+        ``log(R_target Rᵀ)`` (radians, base frame, angle φ in [0, π]) of the rotation that
+        turns R into R_target.
+    """
+    ### BEGIN SOLUTION
+    T, T_target = np.asarray(T, dtype=float), np.asarray(T_target, dtype=float)
+    e_p = T_target[:3, 3] - T[:3, 3]
+    R = T_target[:3, :3] @ T[:3, :3].T  # the rotation still to go, in base coordinates
+    s = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])  # sin φ · k
+    cos_phi = 0.5 * (np.trace(R) - 1.0)
+    phi = np.arctan2(np.linalg.norm(s), cos_phi)
+    if phi < 1e-9:
+        e_o = s  # φ / sin φ = 1 to within 1e-18
+    elif cos_phi > -0.9:
+        e_o = (phi / np.sin(phi)) * s
+    else:  # near a half turn: the axis from the symmetric part, (1 − cos φ) k kᵀ
+        B = 0.5 * (R + R.T) - cos_phi * np.eye(3)
+        k = B[:, np.argmax(np.diag(B))]
+        k = k / np.linalg.norm(k)
+        e_o = phi * (k if k @ s >= 0.0 else -k)
+    return np.concatenate([e_p, e_o])
+    ### END SOLUTION
+
+
+# %%
+check("5.1", pose_error)
+
+# %% [markdown]
+# ### Exercise 5.2 — `ik_newton` (4 points)
+#
+# Write `ik_newton(robot, T_target, q0)`: full-pose Newton–Raphson. Repeat:
+#
+# 1. compute the pose with `urkin.fk(robot, q)` and the error with **your** `pose_error`;
+# 2. stop when the position error is below `tol` metres **and** the orientation error is
+#    below `tol` radians — two separate tests — or after `max_iterations` steps;
+# 3. take the step $\Delta q = J^+ e$ with the geometric Jacobian `urkin.jacobian(robot, q)`
+#    and `np.linalg.pinv`;
+# 4. scale the step down so that no joint moves more than `max_step` radians, add it, and
+#    wrap the angles into $[-\pi, \pi)$.
+#
+# The check runs it on random UR arms from starts 0.1 rad and 0.5 rad per joint away from a
+# solution, and asks for the target within $10^{-8}$ m and $10^{-8}$ rad. Calling `urkin.ik`
+# earns no points.
+
+# %%
+def ik_newton(robot, T_target, q0, tol=1e-12, max_iterations=100, max_step=1.0):
+    """Joint angles that put the flange at a target pose: full-pose Newton–Raphson.
+
+    Parameters
+    ----------
+    robot : urkin.Robot
+        The arm.
+    T_target : array_like, shape (4, 4)
+        Target pose of the flange in the base frame (metres).
+    q0 : array_like, shape (6,)
+        Initial guess, radians.
+    tol : float
+        Stop when the position error is below ``tol`` metres and the orientation error below
+        ``tol`` radians.
+    max_iterations : int
+        Stop after this many steps in any case.
+    max_step : float
+        Largest change of any joint in one step, radians (the step is scaled down to it).
+
+    Returns
+    -------
+    ndarray, shape (6,)
+        Joint angles in radians, wrapped into [−π, π).
+    """
+    ### BEGIN SOLUTION
+    q = np.array(q0, dtype=float)
+    for _ in range(max_iterations):
+        e = pose_error(urkin.fk(robot, q), T_target)
+        if np.linalg.norm(e[:3]) < tol and np.linalg.norm(e[3:]) < tol:
+            break
+        step = np.linalg.pinv(urkin.jacobian(robot, q)) @ e
+        largest = np.abs(step).max()
+        if largest > max_step:
+            step = step * (max_step / largest)  # same direction, shorter
+        q = (q + step + np.pi) % (2.0 * np.pi) - np.pi
+    return q
+    ### END SOLUTION
+
+
+# %%
+check("5.2", ik_newton)
+
+# %% [markdown]
+# ## 4. Watching it converge
+#
+# `urkin.ik(..., method="nr")` runs the same iteration as your `ik_newton`, with more
+# bookkeeping (restarts, joint limits, a verified result). To look inside it, the function
+# below repeats its step for a fixed number of iterations and records the errors; a quick
+# comparison confirms that it lands on the same configuration as `urkin.ik`. It also has two
+# switches used later: the orientation error's `form` (`"log"` or seed 000's `"cross"`),
+# and `frozen`, which keeps the first Jacobian instead of recomputing it every iteration.
+
+# %%
+def newton_history(robot, T_target, q0, iterations, form="log", frozen=False, max_step=1.0):
+    """Plain full-pose Newton–Raphson for a fixed number of iterations, with its history.
+
+    The step is urkin.ik's "nr" step: pinv(J) e, scaled so that no joint moves more than
+    max_step radians, angles wrapped into [−π, π).
+
+    Returns
+    -------
+    q : ndarray, shape (6,)
+        The configuration after the last iteration.
+    history : dict of ndarray
+        Per iteration 0 … iterations: "position" (m) and "angle" (rad, the true angle
+        between the orientations), "seen" (rad, the length of the orientation error the
+        solver uses, in the chosen form); and per step: "step" (rad, the largest joint
+        change before the limit).
+    """
+    q = np.array(q0, dtype=float)
+    J = urkin.jacobian(robot, q)
+    history = {"position": [], "angle": [], "seen": [], "step": []}
+    for iteration in range(iterations + 1):
+        T = urkin.fk(robot, q)
+        e_p = T_target[:3, 3] - T[:3, 3]
+        e_o = orientation_error(T[:3, :3], T_target[:3, :3], form)
+        history["position"].append(np.linalg.norm(e_p))
+        history["angle"].append(np.linalg.norm(orientation_error(T[:3, :3], T_target[:3, :3])))
+        history["seen"].append(np.linalg.norm(e_o))
+        if iteration == iterations:
+            break
+        if not frozen:
+            J = urkin.jacobian(robot, q)
+        step = np.linalg.pinv(J, rcond=1e-12) @ np.r_[e_p, e_o]
+        largest = np.abs(step).max()
+        history["step"].append(largest)
+        q = wrapped(q + step * min(1.0, max_step / max(largest, 1e-300)))
+    return q, {name: np.array(values) for name, values in history.items()}
+
+
+rng = np.random.default_rng(11)
+q_true = rng.uniform(-np.pi, np.pi, (4, 6))
+q_true[:, 2] = rng.choice([-1, 1], 4) * rng.uniform(0.5, 2.5, 4)  # keep the elbow bent
+q_true[:, 4] = rng.choice([-1, 1], 4) * rng.uniform(0.5, 2.5, 4)  # and the wrist
+starts = q_true + rng.uniform(-0.5, 0.5, (4, 6))
+targets = urkin.fk(ur3, q_true)
+results = urkin.ik(ur3, targets, q0=starts, method="nr", max_restarts=0)
+same = all(
+    np.allclose(newton_history(ur3, targets[i], starts[i], results.iterations[i])[0],
+                results.q[i], atol=1e-9)
+    for i in range(4)
+)
+print(f"urkin.ik converged on all four targets: {bool(np.all(results.success))}, in "
+      f"{', '.join(str(n) for n in results.iterations)} iterations")
+print(f"newton_history reproduces urkin.ik's answers: {same}")
+
+# %% [markdown]
+# Now the history of those four solves, iteration by iteration, with a floor at $10^{-17}$
+# so that an error of exactly zero still shows on a logarithmic axis. On the right, the
+# second target again, but with the Jacobian computed once at the start and then kept — a
+# "frozen" Jacobian, which saves work per iteration and is sometimes suggested for that
+# reason.
+
+# %%
+iterations_shown = 8
+floor = 1e-17
+histories = [newton_history(ur3, targets[i], starts[i], iterations_shown)[1] for i in range(4)]
+_, frozen_history = newton_history(ur3, targets[1], starts[1], 30, frozen=True)
+_, fresh_history = newton_history(ur3, targets[1], starts[1], 30)
+colours = ["tab:blue", "tab:orange", "tab:green", "tab:purple"]
+
+fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5))
+steps_axis = np.arange(iterations_shown + 1)
+for i, (history, colour) in enumerate(zip(histories, colours)):
+    left.semilogy(steps_axis, np.maximum(history["position"], floor), "o-", color=colour)
+    left.semilogy(steps_axis, np.maximum(history["angle"], floor), "s--", color=colour,
+                  markersize=4)
+    left.plot([], [], color=colour, linewidth=6, label=f"target {i + 1}")
+left.plot([], [], "o-", color="0.3", label="position error (m)")
+left.plot([], [], "s--", color="0.3", markersize=4, label="orientation error (rad)")
+left.axhline(np.finfo(float).eps, color="0.5", linewidth=0.8, linestyle=":",
+             label="machine precision, 2.2e-16")
+left.set_xlabel("iteration")
+left.set_ylabel("error (m or rad; exact zero drawn at 1e-17)")
+left.set_title("Newton–Raphson: the number of correct digits doubles")
+left.set_ylim(floor / 3, 10)
+left.legend(loc="upper right", fontsize=8)
+
+all_steps = np.arange(31)
+for history, name, colour in ((fresh_history, "Jacobian updated every iteration", "tab:orange"),
+                              (frozen_history, "Jacobian frozen at the start", "tab:brown")):
+    right.semilogy(all_steps, np.maximum(history["position"], floor), "o-", color=colour,
+                   markersize=4, label=f"{name}: position (m)")
+    right.semilogy(all_steps, np.maximum(history["angle"], floor), "s--", color=colour,
+                   markersize=3, label=f"{name}: orientation (rad)")
+right.set_xlabel("iteration")
+right.set_ylabel("error (m or rad; exact zero drawn at 1e-17)")
+right.set_title("target 2: a frozen Jacobian converges only linearly")
+right.set_ylim(floor / 3, 10)
+right.legend(loc="upper right", fontsize=8)
+fig.suptitle("Full-pose Newton–Raphson on a UR3, starts up to 0.5 rad per joint away")
+fig.tight_layout()
+plt.show()
+
+history = histories[0]
+size = np.hypot(history["position"], history["angle"])  # only to watch a trend
+print("target 1: iteration   position (m)   orientation (rad)   |e_k+1| / |e_k|²")
+for k in range(5):
+    ratio = f"{size[k + 1] / size[k] ** 2:10.3f}" if size[k + 1] > 1e-13 else "  (at round-off)"
+    print(f"{k:18d}   {history['position'][k]:12.2e}   {history['angle'][k]:17.2e}   {ratio}")
+
+# %% [markdown]
+# On the left the curves bend downwards ever more steeply: each iteration roughly squares
+# the error (the ratio $|e_{k+1}| / |e_k|^2$ stays of order one), so 1e-2 becomes 1e-4,
+# then 1e-8, then round-off, in five iterations from a start half a radian away per joint.
+# This is the signature of Newton's method, and it depends on using the Jacobian *at the
+# current point*. With the Jacobian frozen, the error only shrinks by a roughly constant
+# factor per iteration — a straight line on this axis, linear convergence — and from the
+# first target's start it does not converge at all (try it: change `targets[1]` to
+# `targets[0]`). Quadratic convergence also explains why a tight tolerance is nearly free:
+# going from 1e-6 to 1e-12 costs one more iteration.
+#
+# ## 5. How far away may the guess be? Basins of attraction
+#
+# The promise of quadratic convergence only holds *near* a solution. The set of starting
+# points from which Newton–Raphson reaches a solution is its **basin of attraction**, and for
+# a 6-joint arm it is a complicated region in six dimensions. One can measure how large it
+# is in practice: pick a reachable target from a random configuration $q_\text{true}$,
+# start at $q_\text{true} + \delta\, u$ with $u$ a random direction of length 1 in joint
+# space, and count successes for growing $\delta$. Each trial is plain Newton–Raphson:
+# `urkin.ik(..., method="nr", max_restarts=0)`, with the step limit of 1 rad, giving up
+# after 100 iterations or when the error stops falling (no 10 % improvement in 6 iterations).
+# A success may find $q_\text{true}$ itself or *another* of the target's solutions; both
+# are counted.
+
+# %%
+rng = np.random.default_rng(5)
+trials = 300
+deltas = np.array([0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 2.5, 3.0])
+q_true = rng.uniform(-np.pi, np.pi, (trials, 6))
+directions = rng.normal(size=(trials, 6))
+directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+targets = urkin.fk(ur3, q_true)
+
+rates = {"log": [], "same": [], "cross": []}
+for delta in deltas:
+    for form in ("log", "cross"):
+        result = urkin.ik(ur3, targets, q0=q_true + delta * directions, method="nr",
+                          orientation=form, max_restarts=0)
+        rates[form].append(np.mean(result.success))
+        if form == "log":
+            home_again = np.all(np.abs(wrapped(result.q - q_true)) < 1e-6, axis=1)
+            rates["same"].append(np.mean(result.success & home_again))
+rates = {name: 100 * np.array(values) for name, values in rates.items()}
+
+fig, ax = plt.subplots(figsize=(9, 5))
+ax.plot(deltas, rates["log"], "o-", label="reaches the target (log-map error)")
+ax.plot(deltas, rates["same"], "s-", label="… and finds q_true itself, not another solution")
+ax.plot(deltas, rates["cross"], "^--", label="reaches the target (seed 000's cross-product error)")
+ax.set_xlabel("distance of the start from q_true, δ = |q0 − q_true| (rad)")
+ax.set_ylabel(f"share of {trials} random targets (%)")
+ax.set_title("Plain Newton–Raphson on a UR3: success against the distance of the initial guess")
+ax.set_ylim(0, 105)
+ax.grid(True, alpha=0.3)
+ax.legend(loc="lower left")
+plt.show()
+
+print(" δ (rad)   reached (log)   q_true itself   reached (cross)")
+for delta, log_rate, same_rate, cross_rate in zip(deltas, rates["log"], rates["same"],
+                                                  rates["cross"]):
+    print(f"{delta:8.2f}   {log_rate:12.1f} %   {same_rate:12.1f} %   {cross_rate:14.1f} %")
+
+# %% [markdown]
+# Three things to read off:
+#
+# * **Close starts almost always work**, but not quite always: a few of the random
+#   configurations lie near a singularity (the four that misbehave at δ = 0.05 rad have
+#   condition numbers in the thousands, against a median of about 50), and there even a
+#   start 0.05 rad away can slip to a neighbouring solution or stall.
+# * **Success degrades gradually**, not at a sharp edge. At δ = 1 rad (about 0.4 rad per
+#   joint) roughly nineteen starts in twenty still reach the target; at δ = 3 rad it is under
+#   three in four. There is no distance below which success is guaranteed.
+# * **"Success" does not mean "the solution you wanted".** The gap between the first two
+#   curves is starts that reached the target with a *different* arm configuration — the
+#   elbow or the wrist flipped. For tracking a path this matters as much as converging: a
+#   warm start keeps consecutive solutions on one branch only because consecutive targets
+#   are close.
+#
+# The two orientation errors behave alike from close starts — near the solution
+# $\sin\varphi \approx \varphi$ — and the cross-product form falls behind only when the start
+# is far enough for large orientation errors to occur. Practical solvers therefore combine a
+# good guess (a warm start, or a closed-form solution) with **restarts** from random
+# configurations when an attempt fails; `urkin.ik` does both by default.
+#
+# ## 6. Seed 000's start: home, a triple singularity and a false zero
+#
+# Seed 000 starts every solve of its UR3 from the "home" configuration
+# $q = (0, -\pi/2, 0, -\pi/2, 0, 0)$, arm pointing straight up, and asks for targets with
+# the identity orientation: the square and the circle of its report, both around
+# (0.25, 0.1, 0.3) m. Two of lesson 04's and lesson 01's findings meet here:
+#
+# * home is singular three times over: the elbow is straight ($\sin q_3 = 0$), the wrist is
+#   straight ($\sin q_5 = 0$), and the wrist centre stands above the base, so the shoulder
+#   factor vanishes too. $J$ has rank 3;
+# * the flange at home is turned by exactly 180° from the identity, and seed 000's
+#   cross-product error is blind there.
+
+# %%
+home = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])
+T_home = urkin.fk(ur3, home)
+seed000_targets = {
+    "square, first corner": make_transform(np.eye(3), (0.25, 0.025, 0.225)),
+    "circle, first point": make_transform(np.eye(3), (0.25, 0.2, 0.3)),
+    "centre of both": make_transform(np.eye(3), (0.25, 0.1, 0.3)),
+}
+T_corner = seed000_targets["square, first corner"]
+
+print("singular families at home:", sorted(urkin.kinematics.singularities(ur3, home)))
+sigma = np.linalg.svd(urkin.jacobian(ur3, home), compute_uv=False)
+print("singular values of J at home:",
+      ", ".join(f"{s:.4f}" if s > 1e-12 else "<1e-12" for s in sigma))
+cross = orientation_error(T_home[:3, :3], T_corner[:3, :3], "cross")
+log = orientation_error(T_home[:3, :3], T_corner[:3, :3], "log")
+print(f"true angle from home to an identity orientation: "
+      f"{rotation_angle(T_home[:3, :3], np.eye(3)):.6f} rad")
+print(f"cross-product error: {cross.round(6) + 0.0}   (length {below(np.linalg.norm(cross))})")
+print(f"log-map error:       {log.round(4) + 0.0}   (length {np.linalg.norm(log):.6f})")
+
+# %% [markdown]
+# So the first step seed 000 computes sees *no* orientation error at all, only the position
+# error. And the Jacobian it is computed with has three singular values of zero. What does
+# the step look like? Below are the first two steps towards the square's first corner,
+# with no step limit, as the report takes them: with the plain pseudo-inverse, with the
+# damped inverse $J^\mathsf{T}(JJ^\mathsf{T} + \lambda^2 I)^{-1}$, $\lambda = 0.01$, that
+# the report actually uses (lesson 06 studies it), and with the log-map error for comparison.
+
+# %%
+def first_steps(form, inverse, count=2):
+    """The largest joint change of the first `count` unlimited steps from home (rad)."""
+    q, sizes, smallest = home.copy(), [], []
+    for _ in range(count):
+        T = urkin.fk(ur3, q)
+        e = np.r_[T_corner[:3, 3] - T[:3, 3],
+                  orientation_error(T[:3, :3], T_corner[:3, :3], form)]
+        J = urkin.jacobian(ur3, q)
+        smallest.append(np.linalg.svd(J, compute_uv=False)[-2:])
+        step = inverse(J) @ e
+        sizes.append(np.abs(step).max())
+        q = q + step
+    return sizes, smallest
+
+
+def pseudo_inverse(J):
+    """J⁺, with singular values below 1e-12 × the largest treated as zero (as urkin.ik)."""
+    return np.linalg.pinv(J, rcond=1e-12)
+
+
+def seed000_damped(J):
+    """Seed 000's damped inverse Jᵀ (J Jᵀ + λ² I)⁻¹ with λ = 0.01."""
+    return J.T @ np.linalg.inv(J @ J.T + 0.01**2 * np.eye(6))
+
+
+print("error form    inverse                step 1 (rad)   step 2 (rad)")
+for form, name, inverse in (("cross", "pseudo-inverse", pseudo_inverse),
+                            ("cross", "seed 000's damped", seed000_damped),
+                            ("log", "pseudo-inverse", pseudo_inverse)):
+    (first_size, second_size), smallest = first_steps(form, inverse)
+    print(f"{form:<12}  {name:<20}  {first_size:12.2f}   {second_size:12.2f}")
+print("two smallest singular values of J after the first (cross, pseudo-inverse) step:",
+      first_steps("cross", pseudo_inverse)[1][1].round(4))
+
+# %% [markdown]
+# The first step is modest — 0.43 rad — because the pseudo-inverse simply drops the three
+# directions the arm cannot move in at home. But it leaves the arm *just off* the
+# singularities ($q_3 \approx -0.09$, $q_5 \approx -0.08$ rad), where $J$ is invertible
+# but two of its singular values are tiny (0.03 and 0.008). The position error still points
+# partly along those nearly lost directions, and inverting 0.008 multiplies by more than a
+# hundred: the second step turns a joint by 34 rad — five and a half turns. The damping of
+# seed 000's inverse tempers it to 13.5 rad, still two full turns in one "small" correction;
+# this is the step of more than 12 rad in seed 000's runs. Without a step limit, such a step
+# lands anywhere; the wound-up joint angles of the report (one reached −865°) come from
+# steps like this one.
+#
+# Now the whole solve, with urkin's plain Newton–Raphson (step limit 1 rad, no restarts),
+# from home to each of seed 000's three targets, with both orientation errors:
+
+# %%
+print("target                 error   success   iterations   position (m)   angle (rad)")
+for name, target in seed000_targets.items():
+    for form in ("cross", "log"):
+        result = urkin.ik(ur3, target, q0=home, method="nr", orientation=form,
+                          max_restarts=0)
+        print(f"{name:<22} {form:<7} {result.success!s:<9} {result.iterations:10d}   "
+              f"{below(result.position_error, 1e-10):>12}   "
+              f"{below(result.orientation_error, 1e-10):>11}")
+
+# %% [markdown]
+# With the log-map error, all three converge in about ten iterations. With the
+# cross-product error, two of the three give up: urkin judges progress by the *true* angle,
+# which stays near 180° while the solver, seeing almost no orientation error, spends its
+# iterations on the position. The figure follows the square's corner, iteration by
+# iteration, with the step limit on.
+
+# %%
+iterations_shown = 20
+runs = {form: newton_history(ur3, T_corner, home, iterations_shown, form=form)[1]
+        for form in ("log", "cross")}
+steps_axis = np.arange(iterations_shown + 1)
+
+fig, (left, middle, right) = plt.subplots(1, 3, figsize=(16, 4.8))
+for form, colour in (("log", "tab:blue"), ("cross", "tab:red")):
+    run = runs[form]
+    left.semilogy(steps_axis, np.maximum(run["position"], floor), "o-", color=colour,
+                  markersize=4, label=f"{form} error")
+    middle.semilogy(steps_axis, np.maximum(run["angle"], floor), "o-", color=colour,
+                    markersize=4, label=f"{form} error: true angle to the target")
+    right.semilogy(steps_axis[:-1], run["step"], "o-", color=colour, markersize=4,
+                   label=f"{form} error")
+middle.semilogy(steps_axis, np.maximum(runs["cross"]["seen"], floor), "x:", color="tab:red",
+                label="cross error: what the solver sees, |sin φ|")
+right.axhline(1.0, color="0.4", linestyle="--", label="step limit: 1 rad")
+left.set_title("position error")
+left.set_ylabel("distance to the target (m)")
+middle.set_title("orientation: a 180° error that reads as zero")
+middle.set_ylabel("angle (rad; exact zero drawn at 1e-17)")
+right.set_title("size of the Newton step before the limit")
+right.set_ylabel("largest joint change asked for (rad)")
+for ax in (left, middle, right):
+    ax.set_xlabel("iteration")
+    ax.set_xticks(range(0, iterations_shown + 1, 5))
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="lower left", fontsize=8)
+middle.legend(loc="center left", bbox_to_anchor=(0.0, 0.32), fontsize=8)
+fig.suptitle("UR3 from home to the square's first corner (identity orientation), plain "
+             "Newton–Raphson with a 1 rad step limit")
+fig.tight_layout()
+plt.show()
+
+# %% [markdown]
+# The red dotted curve is the whole story of the cross-product error. At home it is
+# $10^{-16}$ — the solver believes the orientation is perfect — while the true angle is π.
+# The log-map run brings the angle from π to about 1 rad in its first, limited, step and
+# converges after about ten iterations. The cross-product run has almost no orientation
+# signal, lingers near 180° for seven iterations, asks for a step of 34 rad on the way (the
+# step limit is what keeps it sane), and only escapes because 180° is an *unstable* balance:
+# any small tilt grows, since $\sin\varphi$ points towards the target once $\varphi$ is a
+# little below π. Plain Newton–Raphson with the step limit gets there in the end on this
+# target; urkin's progress test, which watches the true angle, gave up on it first.
+#
+# ### A false zero, exactly
+#
+# Home is a near miss. Here is an exact one. Take any configuration that reaches a target
+# and turn the last joint by half a turn. The flange origin lies on joint 6's axis, so the
+# position does not change, and the tool is turned by exactly 180° about its own axis. The
+# cross-product error of that pose is zero, and so is the position error: seed 000's test
+# $\|[e_p;\ e_o]\| < 10^{-3}$ passes before a single iteration.
+
+# %%
+T_target = urkin.fk(ur3, q_solution)  # the target of section 1
+q_turned = wrapped(q_solution + np.array([0.0, 0.0, 0.0, 0.0, 0.0, np.pi]))
+T_turned = urkin.fk(ur3, q_turned)
+e_cross = np.r_[T_target[:3, 3] - T_turned[:3, 3],
+                orientation_error(T_turned[:3, :3], T_target[:3, :3], "cross")]
+print(f"position error:             {below(np.linalg.norm(e_cross[:3]))} m")
+print(f"cross-product error:        {below(np.linalg.norm(e_cross[3:]))}")
+print(f"seed 000's test |e| < 1e-3: {np.linalg.norm(e_cross) < 1e-3}")
+print(f"true angle to the target:   {rotation_angle(T_turned[:3, :3], T_target[:3, :3]):.6f} rad")
+print("\nurkin.ik from the turned configuration:")
+for form in ("cross", "log"):
+    result = urkin.ik(ur3, T_target, q0=q_turned, method="nr", orientation=form,
+                      max_restarts=0)
+    print(f"  {form:<5} error: success {result.success!s:<5}  after {result.iterations} "
+          f"iterations, position {below(result.position_error, 1e-10)} m, "
+          f"angle {below(result.orientation_error, 1e-10)} rad")
+
+# %% [markdown]
+# With the cross-product error the Newton step is zero (to round-off), so the solver never
+# moves; a solver that trusts its own error measure reports success with the tool turned
+# half a turn the wrong way. urkin measures success by the true angle, so it reports the
+# failure instead — but with that error it cannot *fix* it. With the log-map error the
+# steps turn joint 6 back by π, in four iterations (the step limit cuts the first ones to
+# 1 rad).
+#
+# This is why the course uses the rotation vector $\log(R^\*R^\mathsf{T})$ as the orientation
+# error by default and keeps the cross-product form only by name: it is a fine approximation
+# for small errors, and wrong in exactly the situation — a large reorientation — where an IK
+# solver most needs to know which way to turn.
+#
+# ## Summary
+#
+# * Newton–Raphson IK: linearise $x(q + \Delta q) \approx x(q) + J\,\Delta q$, solve
+#   $J\,\Delta q = e$ with the pseudo-inverse (exact and shortest when possible, least
+#   squares when not), repeat. Near a solution it converges quadratically — the number of
+#   correct digits doubles every iteration — provided the Jacobian is recomputed at the
+#   current point.
+# * Limit the step (no joint more than about 1 rad) and wrap the angles: near singularities
+#   the raw step can be tens of radians.
+# * The full-pose error is $[p^\* - p;\ \log(R^\* R^\mathsf{T})]$: position first, base frame,
+#   target minus current, to match the geometric Jacobian. Test position (m) and orientation
+#   (rad) against separate tolerances, not one mixed norm.
+# * Seed 002: a solver is only as right as its model. Its Newton–Raphson converged on a
+#   position formula missing a factor $\sin q_5$, and the real arm missed the square by up to
+#   13.5 cm (on this lesson's square; up to $2d_6 = 165$ mm in general). The 20° guess only
+#   chose the branch — and with it how large the formula's error was.
+# * Seed 000: home is triply singular and exactly 180° from its identity targets; the
+#   cross-product error $\sin\varphi\, k$ reads zero there. The first step is small, the
+#   second is tens of radians; a half turn of joint 6 is an exact false zero.
+# * Basins of attraction are large but not whole: plain Newton–Raphson succeeds from most
+#   starts within about 1 rad and from fewer and fewer beyond, sometimes on another branch.
+#   Good guesses and restarts make it reliable.
+#
+# ## What comes next
+#
+# **Lesson 06** makes the step itself robust near singularities: **damped least squares**
+# (seed 000's $J^\mathsf{T}(JJ^\mathsf{T} + \lambda^2 I)^{-1}$, and how to choose
+# $\lambda$), **Levenberg–Marquardt**, which adapts the damping as it goes, and the
+# matrix-log solver of the product-of-exponentials world, followed by a comparison of all
+# the methods.
+#
+# Before you move on: restart the kernel and run the whole notebook. All three check cells
+# should report full marks.
