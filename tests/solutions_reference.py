@@ -228,6 +228,36 @@ def ik_lm(robot, T_target, q0, tol=1e-12, max_iterations=200, restarts=10):
     return q
 
 
+LAB = (0.152, 0.120, 0.244, 0.093, 0.213, 0.083, 0.083, 0.082, 0.0535, 0.059)
+
+
+def lab_theta1(x_c, y_c):
+    offset = LAB[1] - LAB[3] + LAB[5]
+    return np.arctan2(y_c, x_c) - np.arcsin(offset / np.hypot(x_c, y_c))
+
+
+def planar_2r(x, y, l1, l2):
+    b = np.arccos(np.clip((x * x + y * y - l1 * l1 - l2 * l2) / (2 * l1 * l2), -1, 1))
+    return np.array([np.arctan2(y, x) - np.arctan2(l2 * np.sin(b), l1 + l2 * np.cos(b)), b])
+
+
+def ik_lab(x_w, y_w, z_w, yaw_w, arctan=False, unsigned=False):
+    L1, L2, L3, L4, L5, L6, L7, L8, L9, L10 = LAB
+    x, y, z = x_w + 0.15, y_w - 0.15, z_w - 0.01  # world → base frame
+    xc, yc = x - L9 * np.cos(yaw_w), y - L9 * np.sin(yaw_w)
+    offset = L2 - L4 + L6
+    heading = np.arctan(yc / xc) if arctan else np.arctan2(yc, xc)
+    t1 = heading - np.arcsin(offset / np.hypot(xc, yc))
+    x3 = xc - L7 * np.cos(t1) + offset * np.sin(t1)
+    y3 = yc - L7 * np.sin(t1) - offset * np.cos(t1)
+    r = np.hypot(x3, y3) if unsigned else x3 * np.cos(t1) + y3 * np.sin(t1)
+    h = z + L8 + L10 - L1
+    t3 = np.arccos((r * r + h * h - L3 * L3 - L5 * L5) / (2 * L3 * L5))
+    t2 = -(np.arctan2(h, r) + np.arctan2(L5 * np.sin(t3), L3 + L5 * np.cos(t3)))
+    lab = np.array([t1, t2, t3, -t2 - t3, -np.pi / 2, np.pi / 2 + t1 - yaw_w])
+    return lab + np.array([np.pi, 0.0, 0.0, -np.pi / 2, 0.0, 0.0])
+
+
 SOLUTIONS = {
     "0.1": deg_to_rad,
     "0.2": base_link_pose,
@@ -251,6 +281,9 @@ SOLUTIONS = {
     "6.1": dls_step,
     "6.2": lm_step,
     "6.3": ik_lm,
+    "7.1": lab_theta1,
+    "7.2": planar_2r,
+    "7.3": ik_lab,
 }
 
 
@@ -368,6 +401,16 @@ WRONG = {
         (lambda J, e, lam: (J.T * (J * J.T + lam**2 * I) ** -1) @ e, "seed 000"),  # noqa: F821
         (lambda J, e, lam: (J.T * (J * J.T + lam**2 * np.eye(len(e))) ** -1) @ e, "seed 000"),
         (lambda J, e, lam: J.T @ np.linalg.solve(J @ J.T + lam * np.eye(len(e)), e), "λ²"),
+    ],
+    "7.1": [
+        (
+            lambda x, y: ik_lab.__globals__["np"].arctan(y / x) - np.arcsin(0.110 / np.hypot(x, y)),
+            "arctan",
+        )
+    ],
+    "7.3": [
+        (lambda x, y, z, yaw: ik_lab(x, y, z, yaw, arctan=True), "arctan"),
+        (lambda x, y, z, yaw: ik_lab(x, y, z, yaw, unsigned=True), "√(x² + y²)"),
     ],
     "6.2": [
         (lambda J, e, mu: np.linalg.inv(J.T @ J + mu * np.eye(6)) - J.T @ e, "seed 001"),

@@ -4,7 +4,7 @@ import pytest
 from tests.solutions_reference import SOLUTIONS, WRONG
 from urkin.exercises import check, exercise, exercises_for_lesson, run_exercise
 
-LESSONS = ("00", "01", "02", "03", "04", "05", "06")
+LESSONS = ("00", "01", "02", "03", "04", "05", "06", "07")
 ALL_IDS = [e.id for lesson in LESSONS for e in exercises_for_lesson(lesson)]
 SEEDS = [0, 1, 20261121]
 

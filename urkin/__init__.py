@@ -10,6 +10,7 @@ The public API::
     Jp = urkin.position_jacobian(ur5, q)  # (3, 6): ∂p/∂q
     S, M = urkin.poe.space_screws(ur5)    # screw axes (6, 6) and home pose (product of exps)
     res = urkin.ik(ur5, T, q0=q0)         # IKResult(q, success, residual, iterations, ...)
+    sols = urkin.ik_analytic(ur5, T)      # (k, 6), k ≤ 8: every exact closed-form solution
 
 Units are metres and radians; poses are 4×4 homogeneous transforms in DH frame 0 (UR's
 ``base``).  ``import urkin`` loads numpy only: SymPy stays in :mod:`urkin.symbolic` and
@@ -17,7 +18,9 @@ matplotlib in :mod:`urkin.plot`.
 """
 
 from urkin import kinematics, poe, robots, transforms
+from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import fk, fk_frames, jacobian, position_jacobian
+from urkin.lab_ik import fk_lab, ik_lab
 from urkin.numerical_ik import IKResult, ik
 from urkin.robots import ROBOTS, T_BASE_LINK_BASE, Robot, robot
 
@@ -28,7 +31,11 @@ __all__ = [
     "Robot",
     "fk",
     "fk_frames",
+    "fk_lab",
     "ik",
+    "ik_analytic",
+    "ik_closest",
+    "ik_lab",
     "jacobian",
     "kinematics",
     "poe",

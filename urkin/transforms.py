@@ -95,8 +95,30 @@ def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R
     array = _float_array(R, name)
     if array.ndim < 2 or array.shape[-2:] != (3, 3):
         raise ValueError(f"{name} must have shape (3, 3) or (N, 3, 3); got {array.shape}")
-    gram_error = np.abs(np.swapaxes(array, -1, -2) @ array - np.eye(3)).max(initial=0.0)
-    det = np.linalg.det(array)
+    # column by column (cheaper than a batched matmul and LU for stacks of small matrices)
+    x, y, z = array[..., :, 0], array[..., :, 1], array[..., :, 2]
+
+    def dot(u, v):
+        return u[..., 0] * v[..., 0] + u[..., 1] * v[..., 1] + u[..., 2] * v[..., 2]
+
+    gram_error = max(
+        (
+            np.abs(d - one).max(initial=0.0)
+            for d, one in (
+                (dot(x, x), 1.0),
+                (dot(y, y), 1.0),
+                (dot(z, z), 1.0),
+                (dot(x, y), 0.0),
+                (dot(x, z), 0.0),
+                (dot(y, z), 0.0),
+            )
+        ),
+    )
+    det = (
+        x[..., 0] * (y[..., 1] * z[..., 2] - y[..., 2] * z[..., 1])
+        - x[..., 1] * (y[..., 0] * z[..., 2] - y[..., 2] * z[..., 0])
+        + x[..., 2] * (y[..., 0] * z[..., 1] - y[..., 1] * z[..., 0])
+    )
     if np.any(det < 0):
         raise ValueError(f"{name} is a reflection, not a rotation: det({name}) = -1")
     if gram_error > tol or np.abs(det - 1.0).max(initial=0.0) > tol:

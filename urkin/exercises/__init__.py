@@ -17,6 +17,7 @@ from urkin.exercises import (  # noqa: F401  (importing registers the exercises)
     lesson04,
     lesson05,
     lesson06,
+    lesson07,
 )
 from urkin.exercises.framework import (
     VISIBLE_SEED,

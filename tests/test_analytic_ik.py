@@ -1,0 +1,280 @@
+"""Closed-form IK: correctness, inclusion, completeness, strictness and range, singular poses
+included, for all seven arms; the lab's top-down solution; choosing the nearest solution."""
+
+import warnings
+import zlib
+
+import numpy as np
+import pytest
+
+import urkin
+from tests.reference import OFFICIAL_DH, dh_fk
+from urkin.analytic_ik import ik_analytic, ik_closest, wrap_angles
+from urkin.kinematics import singularity_factors
+from urkin.lab_ik import LAB_LINKS, fk_lab, ik_lab, lab_robot
+
+N_RANDOM = 10_000
+
+
+def distance_mod_2pi(solutions, q):
+    """Smallest max-joint difference, modulo 2π, between q and any of the solutions."""
+    if len(solutions) == 0:
+        return np.inf
+    return np.abs(wrap_angles(solutions - q)).max(axis=-1).min()
+
+
+@pytest.fixture(scope="module", params=urkin.ROBOTS)
+def solved(request):
+    """IK(FK(q)) for 10 000 random q per arm, batched."""
+    arm = urkin.robot(request.param)
+    Q = np.random.default_rng(31).uniform(-np.pi, np.pi, (N_RANDOM, 6))
+    T = urkin.fk(arm, Q)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no NaN or overflow warnings
+        solutions, mask = ik_analytic(arm, T, return_mask=True)
+    return arm, Q, T, solutions, mask
+
+
+def test_correctness_every_solution_reaches_the_pose(solved):
+    arm, _, T, solutions, mask = solved
+    reached = urkin.fk(arm, solutions[mask])
+    targets = np.repeat(T, mask.sum(axis=1), axis=0)
+    assert np.abs(reached - targets).max() < 1e-9
+    # and by the independent DH product
+    rows = np.flatnonzero(mask.ravel())[:200]
+    for row in rows:
+        np.testing.assert_allclose(dh_fk(OFFICIAL_DH[arm.name], solutions.reshape(-1, 6)[row]),
+                                   T[row // 8], atol=1e-9)  # fmt: skip
+
+
+def test_inclusion_the_generating_configuration_is_among_the_solutions(solved):
+    _, Q, _, solutions, mask = solved
+    gaps = np.abs(wrap_angles(solutions - Q[:, None, :])).max(axis=-1)
+    gaps = np.where(mask, gaps, np.inf).min(axis=1)
+    assert gaps.max() < 1e-9
+
+
+def test_range_nan_rows_and_distinctness(solved):
+    _, _, _, solutions, mask = solved
+    real = solutions[mask]
+    assert np.all((real > -np.pi) & (real <= np.pi))
+    assert np.isnan(solutions[~mask]).all() and not np.isnan(real).any()
+    counts = mask.sum(axis=1)
+    assert set(np.unique(counts)) <= {2, 4, 6, 8}
+    assert (counts == 8).mean() > 0.6  # generic poses: all eight branches
+    for s, m in zip(solutions[:500], mask[:500]):
+        pairwise = np.abs(wrap_angles(s[m][:, None] - s[m][None])).max(axis=-1)
+        assert (pairwise + np.eye(m.sum()) * 10).min() > 1e-9
+
+
+def test_consistency_single_and_batched_agree(solved):
+    arm, _, T, solutions, mask = solved
+    for i in range(0, 300, 7):
+        single = ik_analytic(arm, T[i])
+        np.testing.assert_allclose(single, solutions[i][mask[i]], atol=0)
+
+
+def test_completeness_numerical_search_finds_nothing_else():
+    # many random starts of the numerical solver: every solution it finds is an analytic one
+    ur5 = urkin.robot("ur5")
+    Q = np.random.default_rng(5).uniform(-np.pi, np.pi, (40, 6))
+    T = urkin.fk(ur5, Q)
+    starts = np.random.default_rng(6).uniform(-np.pi, np.pi, (40, 6))
+    numeric = urkin.ik(ur5, np.repeat(T, len(starts), axis=0), q0=np.tile(starts, (40, 1)),
+                       max_restarts=0)  # fmt: skip
+    found = numeric.q[numeric.success].reshape(-1, 6)
+    owners = np.repeat(np.arange(40), len(starts))[numeric.success]
+    for i in range(40):
+        analytic = ik_analytic(ur5, T[i])
+        for q in found[owners == i]:
+            # joint-space agreement is looser than pose agreement near singular configurations
+            assert distance_mod_2pi(analytic, q) < 1e-5
+        distinct = []  # cluster the numerical solutions (they agree to ~1e-8 in joint space)
+        for q in found[owners == i]:
+            if not distinct or distance_mod_2pi(np.array(distinct), q) > 1e-5:
+                distinct.append(q)
+        assert len(distinct) <= len(analytic)
+
+
+def test_strictness_out_of_reach_poses_have_no_solutions():
+    ur10e = urkin.robot("ur10e")
+    T = urkin.fk(ur10e, np.random.default_rng(2).uniform(-np.pi, np.pi, (500, 6)))
+    far = T.copy()
+    far[:, 0, 3] += 3.0  # three metres further along x: beyond the arm's reach
+    inside = T.copy()
+    inside[:, :2, 3] = 0.0  # the flange on the base axis with the tool pointing sideways
+    inside[:, :3, :3] = np.eye(3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        solutions, mask = ik_analytic(ur10e, far, return_mask=True)
+        assert not mask.any() and np.isnan(solutions).all()
+        assert ik_analytic(ur10e, far[0]).shape == (0, 6)
+        _, inside_mask = ik_analytic(ur10e, inside, return_mask=True)
+    assert not inside_mask.any()
+
+
+# ---------------------------------------------------------------------------- singular poses
+
+
+def on_family(arm, family, rng, q=None):
+    q = rng.uniform(-np.pi, np.pi, 6) if q is None else q.copy()
+    if "elbow" in family:
+        q[2] = rng.choice([0.0, np.pi])
+    if "wrist" in family:
+        q[4] = rng.choice([0.0, np.pi])
+    if "shoulder" in family:
+        for _ in range(1000):
+            reach = arm.a2 * np.cos(q[1]) + arm.a3 * np.cos(q[1] + q[2])
+            if abs(reach) <= arm.d5:
+                break
+            q[1] = rng.uniform(-np.pi, np.pi)
+        q[3] = np.arcsin(-reach / arm.d5) - q[1] - q[2]
+    return q
+
+
+FAMILIES = [("shoulder",), ("wrist",), ("elbow",), ("shoulder", "wrist"), ("shoulder", "elbow"),
+            ("elbow", "wrist"), ("shoulder", "elbow", "wrist")]  # fmt: skip
+
+
+@pytest.mark.parametrize("family", FAMILIES, ids=["+".join(f) for f in FAMILIES])
+def test_exact_at_singular_poses(arm, family):
+    rng = np.random.default_rng(zlib.crc32(f"{arm.name}{family}".encode()))
+    Q = np.array([on_family(arm, family, rng) for _ in range(300)])
+    flags = np.abs(singularity_factors(arm, Q)) < 1e-9
+    for name, column in zip(("shoulder", "elbow", "wrist"), flags.T):
+        assert column.all() == (name in family)
+    T = urkin.fk(arm, Q)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        solutions, mask = ik_analytic(arm, T, return_mask=True)
+    assert mask.any(axis=1).all()
+    reached = urkin.fk(arm, solutions[mask])
+    assert np.abs(reached - np.repeat(T, mask.sum(axis=1), axis=0)).max() < 1e-9
+    for q, s, m in zip(Q, solutions, mask):
+        s = s[m]
+        if "wrist" in family:
+            # a one-parameter family reaches the pose: q's family (its θ1 and θ5) is among the
+            # solutions, and every solution reaches the pose (checked above)
+            assert distance_mod_2pi(s[:, [0, 4]], q[[0, 4]]) < 1e-9
+        else:
+            assert distance_mod_2pi(s, q) < 1e-9
+
+
+def test_the_wrist_representatives_have_the_elbow_nearest_a_right_angle():
+    # on a wrist-singular pose, θ234 moves joint 5 on a circle of radius d5 round the wrist
+    # point; the planar reach ρ(θ234) sets cos θ3 = (ρ² − a2² − a3²) / (2 a2 a3)
+    ur5 = urkin.robot("ur5")
+    d1, a2, a3, _, d5, d6 = OFFICIAL_DH["UR5"]
+    rng = np.random.default_rng(12)
+    sweep = np.linspace(-np.pi, np.pi, 20001)
+    for _ in range(40):
+        q = on_family(ur5, ("wrist",), rng)
+        T = urkin.fk(ur5, q)
+        wrist_point = T[:3, 3] - d6 * T[:3, 2]
+        representatives = [s for s in ik_analytic(ur5, T) if abs(np.sin(s[4])) < 1e-12]
+        assert len(representatives) >= 2
+        for rep in representatives:
+            X = wrist_point[0] * np.cos(rep[0]) + wrist_point[1] * np.sin(rep[0])
+            Y = wrist_point[2] - d1
+            rho2 = (X - d5 * np.sin(sweep)) ** 2 + (Y + d5 * np.cos(sweep)) ** 2
+            cos3 = (rho2 - a2**2 - a3**2) / (2 * a2 * a3)
+            best = np.abs(cos3[np.abs(cos3) <= 1]).min()
+            assert abs(np.cos(rep[2])) <= best + 1e-6
+
+
+# ---------------------------------------------------------------------------- ik_closest
+
+
+def test_closest_solution_follows_the_current_configuration():
+    ur5 = urkin.robot("ur5")
+    rng = np.random.default_rng(8)
+    Q = rng.uniform(-2 * np.pi + 0.1, 2 * np.pi - 0.1, (200, 6))  # beyond ±π, within ±2π
+    result = ik_closest(ur5, urkin.fk(ur5, Q), Q + rng.normal(0, 0.01, Q.shape))
+    assert result.success.all()
+    np.testing.assert_allclose(result.q, Q, atol=1e-9)  # the same branch and the same turn
+    lower, upper = -2 * np.pi, 2 * np.pi
+    assert np.all((result.q >= lower) & (result.q <= upper))
+
+
+def test_closest_is_the_nearest_2pi_equivalent_within_the_limits():
+    ur5 = urkin.robot("ur5")
+    rng = np.random.default_rng(9)
+    shifts = np.array(np.meshgrid(*[[-2 * np.pi, 0, 2 * np.pi]] * 6)).reshape(6, -1).T
+    for _ in range(30):
+        q = rng.uniform(-np.pi, np.pi, 6)
+        current = rng.uniform(-2 * np.pi, 2 * np.pi, 6)
+        T = urkin.fk(ur5, q)
+        result = ik_closest(ur5, T, current)
+        # brute force: every solution, every combination of whole turns, inside ±2π
+        candidates = (ik_analytic(ur5, T)[:, None, :] + shifts[None]).reshape(-1, 6)
+        inside = candidates[np.all(np.abs(candidates) <= 2 * np.pi, axis=1)]
+        nearest = np.linalg.norm(inside - current, axis=1).min()
+        assert result.success
+        assert np.linalg.norm(result.q - current) == pytest.approx(nearest, abs=1e-9)
+        assert np.all(np.abs(result.q) <= 2 * np.pi)
+
+
+def test_closest_reports_unreachable_poses():
+    ur3 = urkin.robot("ur3")
+    far = np.eye(4)
+    far[:3, 3] = [2.0, 0.0, 0.3]
+    result = ik_closest(ur3, far, np.zeros(6))
+    assert not result.success and "out of reach" in result.reason
+    assert np.isfinite(result.q).all()
+
+
+# ---------------------------------------------------------------------------- the lab
+
+
+def lab_grid():
+    xs, ys = np.meshgrid(np.linspace(-0.3, 0.5, 33), np.linspace(-0.25, 0.55, 33))
+    return xs.ravel(), ys.ravel()
+
+
+@pytest.mark.parametrize("z", [0.0, 0.06, 0.2])
+@pytest.mark.parametrize("yaw", [-2.5, 0.0, 1.2])
+def test_lab_ik_round_trips_every_reachable_table_target(z, yaw):
+    xs, ys = lab_grid()
+    reached = 0
+    for x, y in zip(xs, ys):
+        try:
+            q = ik_lab(x, y, z, yaw)
+        except ValueError as exc:
+            assert "unreachable" in str(exc)
+            continue
+        reached += 1
+        np.testing.assert_allclose(fk_lab(q), [x, y, z, yaw], atol=1e-9)
+    assert reached > 300
+
+
+def test_lab_ik_is_one_branch_of_the_analytic_solution():
+    robot = lab_robot()
+    xs, ys = lab_grid()
+    behind = 0
+    for x, y in zip(xs[::3], ys[::3]):
+        try:
+            q = ik_lab(x, y, 0.05, 0.7)
+        except ValueError:
+            continue
+        T = urkin.fk(robot, q)
+        solutions = ik_analytic(robot, T)
+        assert distance_mod_2pi(solutions, q) < 1e-9
+        assert q[4] == pytest.approx(-np.pi / 2) and q[2] > 0
+        base = np.array([x, y]) - [-0.15, 0.15]
+        behind += base[0] < 0  # the wrist behind the base axis: where the printed formula fails
+    assert behind > 10
+
+
+def test_the_printed_lab_formula_fails_behind_the_base():
+    offset = LAB_LINKS[1] - LAB_LINKS[3] + LAB_LINKS[5]  # L2 − L4 + L6 = 0.110 m
+    x_c, y_c = -0.20, 0.05  # a wrist point behind the base axis (x < 0 in the base frame)
+    printed = np.arctan(y_c / x_c) - np.arcsin(offset / np.hypot(x_c, y_c))
+    fixed = np.arctan2(y_c, x_c) - np.arcsin(offset / np.hypot(x_c, y_c))
+    assert abs(wrap_angles(printed - fixed)) == pytest.approx(np.pi)
+
+
+def test_lab_ik_refuses_unreachable_targets_with_the_distance():
+    with pytest.raises(ValueError, match=r"stretch .* m further"):
+        ik_lab(1.2, 0.0, 0.05, 0.0)
+    with pytest.raises(ValueError, match="from the base axis"):
+        ik_lab(-0.15, 0.15, 0.05, 0.0)
