@@ -52,6 +52,7 @@ lessons: $(STAMP)
 bench: $(STAMP)
 	$(PY) bench/kinematics.py
 	$(PY) bench/ik.py
+	$(PY) bench/ik_analytic.py
 
 clean:
 	rm -rf docs/_build docs/lessons build *.egg-info
