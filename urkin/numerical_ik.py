@@ -47,7 +47,7 @@ from numpy.typing import ArrayLike
 from urkin._generated import ur_kinematics as _gen
 from urkin.kinematics import _joints, fk, jacobian
 from urkin.robots import Robot
-from urkin.transforms import check_transform, rotation_angle, skew
+from urkin.transforms import check_transform, rotation_angle, rotation_parts, skew
 
 __all__ = ["IK_METHODS", "IKResult", "ik", "orientation_error"]
 
@@ -150,47 +150,20 @@ def orientation_error(R_current: ArrayLike, R_target: ArrayLike, form: str = "lo
         raise ValueError(f"orientation error form must be 'log' or 'cross'; got {form!r}")
     Rc = np.asarray(R_current, dtype=float)
     Rt = np.asarray(R_target, dtype=float)
-    sin_axis, _, omega = _rotation_parts(Rt @ np.swapaxes(Rc, -1, -2))
+    sin_axis, _, omega = rotation_parts(Rt @ np.swapaxes(Rc, -1, -2))
     return omega if form == "log" else sin_axis
 
 
-def _rotation_parts(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(sin φ · k, φ, φ · k)`` of rotation matrices, without input checks.
-
-    ``sin φ · k`` is the axial vector of the antisymmetric part (the course reports' cross-product
-    error); ``φ = atan2(‖sin φ k‖, (trace − 1)/2)`` is accurate at every angle; near π the axis
-    is read from the symmetric part, where the antisymmetric one has lost it.
-    """
-    s = 0.5 * np.stack(
-        [R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]],
-        axis=-1,
-    )
-    sin_theta = np.sqrt(np.sum(s * s, axis=-1))
-    cos_theta = 0.5 * (R[..., 0, 0] + R[..., 1, 1] + R[..., 2, 2] - 1.0)
-    theta = np.arctan2(sin_theta, cos_theta)
-    small = sin_theta < 1e-8
-    scale = np.where(small, 1.0 + theta**2 / 6.0, theta / np.where(small, 1.0, sin_theta))
-    omega = scale[..., None] * s
-    near_pi = cos_theta < -0.9
-    if np.any(near_pi):
-        B = 0.5 * (R + np.swapaxes(R, -1, -2)) - cos_theta[..., None, None] * np.eye(3)
-        column = np.argmax(np.diagonal(B, axis1=-2, axis2=-1), axis=-1)
-        k = np.take_along_axis(B, column[..., None, None], axis=-1)[..., 0]
-        k = k / np.linalg.norm(k, axis=-1, keepdims=True)
-        sign = np.where(np.sum(k * s, axis=-1) < 0.0, -1.0, 1.0)
-        omega = np.where(near_pi[..., None], (sign * theta)[..., None] * k, omega)
-    return s, theta, omega
-
-
 def _rotation_parts_one(R: list[list[float]]) -> tuple[list[float], float, list[float]]:
-    """:func:`_rotation_parts` of one rotation, with Python floats (a single solve's hot path)."""
+    """:func:`urkin.transforms.rotation_parts` of one rotation, with Python floats (the hot path
+    of a single solve)."""
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = R
     s = [0.5 * (r21 - r12), 0.5 * (r02 - r20), 0.5 * (r10 - r01)]
     sin_theta = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
     cos_theta = 0.5 * (r00 + r11 + r22 - 1.0)
     theta = math.atan2(sin_theta, cos_theta)
     if cos_theta < -0.9:  # near π: the rare case, handled by the batched code
-        _, _, omega = _rotation_parts(np.array(R)[None])
+        _, _, omega = rotation_parts(np.array(R)[None])
         return s, theta, omega[0].tolist()
     scale = 1.0 + theta * theta / 6.0 if sin_theta < 1e-8 else theta / sin_theta
     return s, theta, [scale * s[0], scale * s[1], scale * s[2]]
@@ -284,7 +257,7 @@ class _Problem:
         position_error = np.sqrt(np.sum(e_p * e_p, axis=-1))
         if self.R is None:
             return e_p, position_error, np.zeros(len(rows))
-        sin_axis, theta, omega = _rotation_parts(self.R[rows] @ np.swapaxes(T[:, :3, :3], -1, -2))
+        sin_axis, theta, omega = rotation_parts(self.R[rows] @ np.swapaxes(T[:, :3, :3], -1, -2))
         e_o = omega if self.form == "log" else sin_axis
         return np.concatenate([e_p, e_o], axis=-1), position_error, theta
 
@@ -305,7 +278,7 @@ class _Problem:
         p, R = T[..., :3, 3], T[..., :3, :3]
         dR = self.R[rows] @ np.swapaxes(R, -1, -2)
         dp = self.p[rows] - (dR @ p[..., None])[..., 0]
-        _, theta, omega = _rotation_parts(dR)
+        _, theta, omega = rotation_parts(dR)
         W = skew(omega)
         theta = theta[..., None, None]
         small = theta < 1e-4

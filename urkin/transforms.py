@@ -27,6 +27,7 @@ __all__ = [
     "rot_y",
     "rot_z",
     "rotation_angle",
+    "rotation_parts",
     "rotation_to_rpy",
     "rpy_to_rotation",
     "se3_exp",
@@ -369,25 +370,42 @@ def so3_log(R: ArrayLike) -> np.ndarray:
     >>> np.round(so3_log(rot_y(np.pi)), 12)
     array([0.        , 3.14159265, 0.        ])
     """
-    M = check_rotation(R)
-    s = unskew(M)  # sin θ · k
-    sin_theta = np.linalg.norm(s, axis=-1)
-    cos_theta = 0.5 * (np.trace(M, axis1=-2, axis2=-1) - 1.0)
+    return rotation_parts(check_rotation(R))[2]
+
+
+def rotation_parts(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(sin θ · k, θ, θ · k)`` of rotation matrices, without input checks (inner loops).
+
+    ``sin θ · k`` is the axial vector of the antisymmetric part of ``R`` (the course reports'
+    cross-product orientation error); ``θ = atan2(‖sin θ k‖, (trace − 1)/2)`` is accurate at
+    every angle; near π, where the antisymmetric part has lost the axis, the axis is read from
+    the symmetric part ``(R + Rᵀ)/2 − cos θ·I = (1 − cos θ) k kᵀ``.
+
+    Examples
+    --------
+    >>> sin_axis, angle, omega = rotation_parts(rot_z(0.5))
+    >>> float(angle), omega.round(12) + 0.0
+    (0.5, array([0. , 0. , 0.5]))
+    """
+    s = 0.5 * np.stack(
+        [R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]],
+        axis=-1,
+    )
+    sin_theta = np.sqrt(np.sum(s * s, axis=-1))
+    cos_theta = 0.5 * (R[..., 0, 0] + R[..., 1, 1] + R[..., 2, 2] - 1.0)
     theta = np.arctan2(sin_theta, cos_theta)
-    # general case: ω = θ / sin θ · s  (series near θ = 0)
     small = sin_theta < 1e-8
     scale = np.where(small, 1.0 + theta**2 / 6.0, theta / np.where(small, 1.0, sin_theta))
     omega = scale[..., None] * s
-    # near π, sin θ loses the axis: use B = (R + Rᵀ)/2 − cos θ·I = (1 − cos θ) k kᵀ
     near_pi = cos_theta < -0.9
     if np.any(near_pi):
-        B = 0.5 * (M + np.swapaxes(M, -1, -2)) - cos_theta[..., None, None] * np.eye(3)
+        B = 0.5 * (R + np.swapaxes(R, -1, -2)) - cos_theta[..., None, None] * np.eye(3)
         column = np.argmax(np.diagonal(B, axis1=-2, axis2=-1), axis=-1)
         k = np.take_along_axis(B, column[..., None, None], axis=-1)[..., 0]
         k = k / np.linalg.norm(k, axis=-1, keepdims=True)
         sign = np.where(np.sum(k * s, axis=-1) < 0.0, -1.0, 1.0)
         omega = np.where(near_pi[..., None], (sign * theta)[..., None] * k, omega)
-    return omega
+    return s, theta, omega
 
 
 def rotation_angle(R1: ArrayLike, R2: ArrayLike | None = None) -> np.ndarray | float:

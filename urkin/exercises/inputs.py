@@ -26,6 +26,17 @@ def random_q(rng: np.random.Generator) -> np.ndarray:
     return rng.uniform(-np.pi, np.pi, 6)
 
 
+def random_regular_q(
+    rng: np.random.Generator, centre: np.ndarray | None = None, spread: float = np.pi
+) -> np.ndarray:
+    """Joint angles within ``spread`` of ``centre`` (uniform over [−π, π) without one) whose
+    elbow and wrist are at least ~11° from their singularities (|sin q3|, |sin q5| ≥ 0.2)."""
+    while True:
+        q = random_q(rng) if centre is None else centre + rng.uniform(-spread, spread, 6)
+        if abs(np.sin(q[2])) >= 0.2 and abs(np.sin(q[4])) >= 0.2:
+            return q
+
+
 def random_arm(rng: np.random.Generator) -> Robot:
     """One of the seven UR arms."""
     return urkin.robot(urkin.ROBOTS[int(rng.integers(len(urkin.ROBOTS)))])

@@ -6,7 +6,7 @@ import numpy as np
 
 import urkin
 from urkin.exercises.framework import Check, Exercise, Mismatch, as_array, compare, register
-from urkin.exercises.inputs import random_arm, random_pose, random_q
+from urkin.exercises.inputs import random_arm, random_pose, random_q, random_regular_q
 from urkin.numerical_ik import orientation_error
 from urkin.transforms import make_transform, rot_z
 
@@ -101,9 +101,7 @@ def _nearby_problem(rng, spread: float, position_only: bool = False):
     such that plain Newton–Raphson (urkin's, without restarts) converges from that start."""
     arm = random_arm(rng)
     while True:
-        q_true = random_q(rng)
-        if abs(np.sin(q_true[2])) < 0.2 or abs(np.sin(q_true[4])) < 0.2:
-            continue  # keep the answer away from the elbow and wrist singularities
+        q_true = random_regular_q(rng)
         q0 = q_true + rng.uniform(-spread, spread, 6)
         T_target = _fk(arm, q_true)
         target = T_target[:3, 3] if position_only else T_target

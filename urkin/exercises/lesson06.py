@@ -6,7 +6,7 @@ import numpy as np
 
 import urkin
 from urkin.exercises.framework import Check, Exercise, Mismatch, as_array, compare, register
-from urkin.exercises.inputs import random_arm, random_q
+from urkin.exercises.inputs import random_arm, random_q, random_regular_q
 from urkin.numerical_ik import orientation_error
 
 _fk, _ik = urkin.fk, urkin.ik  # references, bound before any grading guard is installed
@@ -217,9 +217,7 @@ def _lm_from(student, rng, q0: np.ndarray | None, start: str, count: int):
         arm = random_arm(rng)
         while True:
             centre = random_q(rng) if q0 is None else q0
-            q_true = centre + rng.uniform(-0.7, 0.7, 6)
-            if abs(np.sin(q_true[2])) < 0.2 or abs(np.sin(q_true[4])) < 0.2:
-                continue
+            q_true = random_regular_q(rng, centre, 0.7)
             start_q = q_true + rng.uniform(-0.5, 0.5, 6) if q0 is None else q0.copy()
             T_target = _fk(arm, q_true)
             if _ik(arm, T_target, q0=start_q, max_restarts=0).success:
