@@ -241,7 +241,7 @@ def planar_2r(x, y, l1, l2):
     return np.array([np.arctan2(y, x) - np.arctan2(l2 * np.sin(b), l1 + l2 * np.cos(b)), b])
 
 
-def ik_lab(x_w, y_w, z_w, yaw_w, arctan=False, unsigned=False):
+def ik_lab(x_w, y_w, z_w, yaw_w, arctan=False, unsigned=False, arctan_hr=False):
     L1, L2, L3, L4, L5, L6, L7, L8, L9, L10 = LAB
     x, y, z = x_w + 0.15, y_w - 0.15, z_w - 0.01  # world → base frame
     xc, yc = x - L9 * np.cos(yaw_w), y - L9 * np.sin(yaw_w)
@@ -253,7 +253,8 @@ def ik_lab(x_w, y_w, z_w, yaw_w, arctan=False, unsigned=False):
     r = np.hypot(x3, y3) if unsigned else x3 * np.cos(t1) + y3 * np.sin(t1)
     h = z + L8 + L10 - L1
     t3 = np.arccos((r * r + h * h - L3 * L3 - L5 * L5) / (2 * L3 * L5))
-    t2 = -(np.arctan2(h, r) + np.arctan2(L5 * np.sin(t3), L3 + L5 * np.cos(t3)))
+    direction = np.arctan(h / r) if arctan_hr else np.arctan2(h, r)
+    t2 = -(direction + np.arctan2(L5 * np.sin(t3), L3 + L5 * np.cos(t3)))
     lab = np.array([t1, t2, t3, -t2 - t3, -np.pi / 2, np.pi / 2 + t1 - yaw_w])
     return lab + np.array([np.pi, 0.0, 0.0, -np.pi / 2, 0.0, 0.0])
 
@@ -411,6 +412,7 @@ WRONG = {
     "7.3": [
         (lambda x, y, z, yaw: ik_lab(x, y, z, yaw, arctan=True), "arctan"),
         (lambda x, y, z, yaw: ik_lab(x, y, z, yaw, unsigned=True), "√(x² + y²)"),
+        (lambda x, y, z, yaw: ik_lab(x, y, z, yaw, arctan_hr=True), "arctan(h/r)"),
     ],
     "6.2": [
         (lambda J, e, mu: np.linalg.inv(J.T @ J + mu * np.eye(6)) - J.T @ e, "seed 001"),

@@ -368,7 +368,9 @@ def test_only_the_assignments_the_definitions_need_are_executed(tmp_path):
         notebook(
             HEADER,
             "SCALE = 2.0\nOFFSET = SCALE + 1\nfig = make_a_slow_figure()",
-            "def dh_transform(theta, d, a, alpha):\n    return OFFSET * np.eye(4)",
+            "def dh_transform(theta, d, a, alpha):\n"
+            "    fig = 1.0\n"
+            "    return OFFSET * fig * np.eye(4)",
         ),
         encoding="utf-8",
     )

@@ -20,6 +20,10 @@ _UNSIGNED = (
     "the lab sheet's r = √(x² + y²): it loses the sign of the reach when the wrist is behind the "
     "base axis, use r = x cos θ1 + y sin θ1"
 )
+_ARCTAN_HR = (
+    "arctan(h/r) in θ2: once r is signed it can be negative, and arctan loses the quadrant; "
+    "use atan2(h, r)"
+)
 
 # ---------------------------------------------------------------------------- 7.1 lab_theta1
 
@@ -150,8 +154,8 @@ register(
 # -------------------------------------------------------------------------------- 7.3 ik_lab
 
 
-def _lab_variant(xw, yw, zw, yaw, arctan=False, unsigned=False, lab_angles=False):
-    """The lab sheet's formulas in metres, with its two mistakes switchable."""
+def _lab_variant(xw, yw, zw, yaw, arctan=False, unsigned=False, arctan_hr=False, lab_angles=False):
+    """The lab sheet's formulas in metres, with its mistakes switchable; also the signed r."""
     L1, _, L3, _, L5, _, L7, L8, L9, L10 = LAB_LINKS
     bx, by, bz = LAB_BASE_IN_WORLD
     x, y, z = xw - bx, yw - by, zw - bz
@@ -161,36 +165,48 @@ def _lab_variant(xw, yw, zw, yaw, arctan=False, unsigned=False, lab_angles=False
     t6 = np.pi / 2 + t1 - yaw
     x3 = xc - L7 * np.cos(t1) + _OFFSET * np.sin(t1)
     y3 = yc - L7 * np.sin(t1) - _OFFSET * np.cos(t1)
-    r = np.hypot(x3, y3) if unsigned else x3 * np.cos(t1) + y3 * np.sin(t1)
+    signed_r = x3 * np.cos(t1) + y3 * np.sin(t1)
+    r = np.hypot(x3, y3) if unsigned else signed_r
     h = z + L8 + L10 - L1
     t3 = np.arccos((r * r + h * h - L3 * L3 - L5 * L5) / (2 * L3 * L5))
-    t2 = -(
-        np.arctan2(h, r)
-        + np.arccos((L5 * L5 - L3 * L3 - r * r - h * h) / (-2 * L3 * np.hypot(r, h)))
-    )
+    direction = np.arctan(h / r) if arctan_hr else np.arctan2(h, r)
+    t2 = -(direction + np.arccos((L5 * L5 - L3 * L3 - r * r - h * h) / (-2 * L3 * np.hypot(r, h))))
     lab = np.array([t1, t2, t3, -t2 - t3, -np.pi / 2, t6])
-    return wrap_angles(lab if lab_angles else lab + LAB_OFFSET)
+    return wrap_angles(lab if lab_angles else lab + LAB_OFFSET), signed_r
 
 
-def _lab_target(rng, behind: bool):
-    """A gripper target on the table that the lab's arm reaches."""
+def _lab_target(rng, kind: str):
+    """A gripper target on the table that the lab's arm reaches: with the wrist point in front
+    of the base axis, behind it, or so close that the arm reaches back over the shoulder (r < 0)."""
     bx = LAB_BASE_IN_WORLD[0]
     while True:
-        xw, yw = rng.uniform(-0.45, 0.15), rng.uniform(-0.15, 0.45)
-        zw, yaw = rng.uniform(0.0, 0.2), rng.uniform(-np.pi, np.pi)
+        if kind == "over the shoulder":  # wrist point just outside the 0.110 m offset circle
+            radius, angle = rng.uniform(0.112, 0.14), rng.uniform(-np.pi, np.pi)
+            yaw = rng.uniform(-np.pi, np.pi)
+            xw = bx + radius * np.cos(angle) + LAB_LINKS[8] * np.cos(yaw)
+            yw = LAB_BASE_IN_WORLD[1] + radius * np.sin(angle) + LAB_LINKS[8] * np.sin(yaw)
+            zw = rng.uniform(0.0, 0.2)
+        else:
+            xw, yw = rng.uniform(-0.45, 0.15), rng.uniform(-0.15, 0.45)
+            zw, yaw = rng.uniform(0.0, 0.2), rng.uniform(-np.pi, np.pi)
         xc = xw - bx - LAB_LINKS[8] * np.cos(yaw)  # the wrist point's x in the base frame
-        if not (xc < -0.05 if behind else xc > 0.05):
-            continue
         try:
             _ik_lab(xw, yw, zw, yaw)
         except ValueError:
             continue
-        return xw, yw, zw, yaw
+        with np.errstate(all="ignore"):
+            _, signed_r = _lab_variant(xw, yw, zw, yaw)
+        if kind == "over the shoulder" and signed_r < -1e-3:
+            return xw, yw, zw, yaw
+        if kind == "behind" and xc < -0.05 and signed_r > 0:
+            return xw, yw, zw, yaw
+        if kind == "front" and xc > 0.05 and signed_r > 0:
+            return xw, yw, zw, yaw
 
 
-def _lab_check(student, rng, behind: bool):
+def _lab_check(student, rng, kind: str):
     for _ in range(6):
-        target = _lab_target(rng, behind)
+        target = _lab_target(rng, kind)
         q = as_array(student(*target), (6,), "ik_lab(x_w, y_w, z_w, yaw_w)")
         reached = _fk_lab(q)
         expected = np.array([*target[:3], wrap_angles(target[3])])
@@ -200,6 +216,7 @@ def _lab_check(student, rng, behind: bool):
             for name, options in (
                 (_ARCTAN, {"arctan": True}),
                 (_UNSIGNED, {"unsigned": True}),
+                (_ARCTAN_HR, {"arctan_hr": True}),
                 (
                     "lab angles returned: UR controller angles are the lab's plus "
                     "[π, 0, 0, −π/2, 0, 0]",
@@ -207,12 +224,12 @@ def _lab_check(student, rng, behind: bool):
                 ),
             ):
                 with np.errstate(all="ignore"):
-                    variant = _lab_variant(*target, **options)
+                    variant, _ = _lab_variant(*target, **options)
                 if np.allclose(wrap_angles(variant - q), 0.0, atol=1e-7):
                     mistake = name
                     break
             raise Mismatch(
-                "fk_lab(ik_lab(x, y, z, yaw)) must give back (x, y, z, yaw)",
+                f"fk_lab(ik_lab(x, y, z, yaw)) must give back (x, y, z, yaw) ({kind})",
                 inputs=dict(zip(("x_w", "y_w", "z_w", "yaw_w"), target)),
                 expected=expected,
                 got=reached,
@@ -221,16 +238,20 @@ def _lab_check(student, rng, behind: bool):
 
 
 def _lab_front(student, rng):
-    _lab_check(student, rng, behind=False)
+    _lab_check(student, rng, "front")
 
 
 def _lab_behind(student, rng):
-    _lab_check(student, rng, behind=True)
+    _lab_check(student, rng, "behind")
+
+
+def _lab_over_the_shoulder(student, rng):
+    _lab_check(student, rng, "over the shoulder")
 
 
 def _lab_branch(student, rng):
     for _ in range(4):
-        target = _lab_target(rng, behind=bool(rng.integers(2)))
+        target = _lab_target(rng, "behind" if rng.integers(2) else "front")
         q = as_array(student(*target), (6,), "ik_lab(x_w, y_w, z_w, yaw_w)")
         if not (np.isclose(wrap_angles(q[4]), -np.pi / 2) and q[2] > 0):
             raise Mismatch(
@@ -247,7 +268,12 @@ register(
         title="the lab's top-down gripper IK, fixed",
         checks=(
             Check("round-trips targets in front of the base", 1, _lab_front),
-            Check("round-trips targets behind the base", 2, _lab_behind),
+            Check("round-trips targets behind the base", 1, _lab_behind),
+            Check(
+                "round-trips targets so close that the arm reaches back (r < 0)",
+                1,
+                _lab_over_the_shoulder,
+            ),
             Check("returns the lab's branch (θ5 = −π/2, θ3 > 0)", 1, _lab_branch),
         ),
         forbidden=(

@@ -54,12 +54,30 @@ class Statement:
 
     @property
     def uses(self) -> set[str]:
-        """Names the statement reads (anywhere inside it: a generous over-estimate)."""
-        return {
+        """Global names the statement may read: for a function or class, the names it reads
+        that it does not bind itself (parameters and local assignments are not globals)."""
+        loaded = {
             n.id
             for n in ast.walk(self.node)
             if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)
         }
+        if not isinstance(self.node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            return loaded
+        declared_global = {
+            name for n in ast.walk(self.node) if isinstance(n, ast.Global) for name in n.names
+        }
+        bound = {
+            n.id
+            for n in ast.walk(self.node)
+            if isinstance(n, ast.Name) and not isinstance(n.ctx, ast.Load)
+        } | {
+            a.arg
+            for n in ast.walk(self.node)
+            if isinstance(n, ast.arguments)
+            for a in (*n.posonlyargs, *n.args, *n.kwonlyargs, n.vararg, n.kwarg)
+            if a
+        }
+        return loaded - (bound - declared_global)
 
     def compile(self):
         module = ast.Module(body=[self.node], type_ignores=[])
