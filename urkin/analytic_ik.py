@@ -86,7 +86,15 @@ def _solve_flange(T: np.ndarray, robot: Robot) -> tuple[np.ndarray, np.ndarray]:
         + np.array([1.0, -1.0]) * shoulder[:, None]
         + np.pi / 2
     )  # (n, 2)
-    s1, c1 = np.sin(theta1), np.cos(theta1)
+    # sin and cos of θ1 = heading ± φ + π/2 from the geometry, without trig calls
+    ch, sh = (
+        c[:, 0] / np.where(radius > 0, radius, 1.0),
+        c[:, 1] / np.where(radius > 0, radius, 1.0),
+    )
+    cphi, sphi = np.cos(shoulder), np.sin(shoulder)
+    side = np.array([1.0, -1.0])
+    s1 = ch[:, None] * cphi[:, None] - sh[:, None] * sphi[:, None] * side  # cos(heading ± φ)
+    c1 = -(sh[:, None] * cphi[:, None] + ch[:, None] * sphi[:, None] * side)  # −sin(heading ± φ)
     theta5, _ = _acos(z[:, 0, None] * s1 - z[:, 1, None] * c1)  # θ5 of the "+" branch, (n, 2)
     # θ6 and θ234 of the "+" branch (sin θ5 > 0); the "−" branch adds π to both
     theta6 = np.arctan2(
@@ -123,9 +131,10 @@ def _solve_flange(T: np.ndarray, robot: Robot) -> tuple[np.ndarray, np.ndarray]:
     theta2 = np.arctan2(py, px)[..., None] - gamma[..., None] * sign
     q = np.empty((n, 2, 2, 2, 6))  # each angle wrapped to (−π, π] on its smallest array
     q[..., 0] = _wrap_near(theta1)[:, :, None, None]
-    q[..., 1] = _wrap_near(theta2)
+    theta2 = _wrap_near(theta2)
+    q[..., 1] = theta2
     q[..., 2] = theta3  # acos: already in [−π, π], and −π only at a removed double root
-    q[..., 3] = wrap_angles(theta234[..., None] - theta2 - theta3)
+    q[..., 3] = _wrap_near(_wrap_near(theta234)[..., None] - theta2 - theta3)
     q[..., 4] = _wrap_near(theta5)[..., None]
     q[..., 5] = _wrap_near(theta6)[..., None]
     # real and distinct: double roots at singular poses give each solution once
@@ -156,10 +165,23 @@ def _wrist_representatives(T, X5, Y5, theta5, robot) -> tuple[np.ndarray, np.nda
     return theta234, np.where(flipped, phi + theta234, phi - theta234)
 
 
+#: Large batches are solved in blocks of this many poses, which keeps temporaries in cache.
+_BLOCK = 2048
+
+
 def _solve(poses: np.ndarray, robot: Robot) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_solve_flange` without floating-point warnings (out-of-reach poses are expected)."""
+    """:func:`_solve_flange` block by block, without floating-point warnings (out-of-reach
+    poses are expected)."""
+    n = len(poses)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return _solve_flange(poses, robot)
+        if n <= _BLOCK:
+            return _solve_flange(poses, robot)
+        q, keep = np.empty((n, 8, 6)), np.empty((n, 8), dtype=bool)
+        for start in range(0, n, _BLOCK):
+            q[start : start + _BLOCK], keep[start : start + _BLOCK] = _solve_flange(
+                poses[start : start + _BLOCK], robot
+            )
+    return q, keep
 
 
 def _flange_targets(robot: Robot, T: ArrayLike) -> tuple[np.ndarray, bool]:
