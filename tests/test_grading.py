@@ -415,6 +415,13 @@ def test_only_the_assignments_the_definitions_need_are_executed(tmp_path):
             "6.2",
             "seed 001's update",
         ),
+        (
+            "07",
+            ["def lab_theta1(x_c, y_c):\n"
+             "    return np.arctan(y_c / x_c) - np.arcsin(0.110 / np.hypot(x_c, y_c))\n"],
+            "7.1",
+            "the lab sheet's arctan(y/x)",
+        ),
     ],
 )  # fmt: skip
 def test_a_wrong_convention_loses_points_with_a_named_mistake(tmp_path, lesson, cells,
