@@ -123,3 +123,9 @@ def test_build_then_check_is_clean(course_copy):
         student.unlink()
     course.build(course_copy)
     assert course.check(course_copy) == []
+
+
+def test_execute_names_an_unknown_lesson(course_copy, capsys):
+    assert course.main(["execute", "99_nothing", "--root", str(course_copy)]) == 2
+    error = capsys.readouterr().err
+    assert "no lesson named 99_nothing" in error and "00_" in error

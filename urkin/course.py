@@ -273,9 +273,15 @@ def execute(root: Path, names: list[str] | None = None, timeout: int = 120) -> l
     import nbformat
     from nbclient import NotebookClient
 
+    pairs = sorted((root / "solutions").glob("[0-9][0-9]_*.py"))
+    wanted = {Path(name).stem for name in names or []}
+    unknown = sorted(wanted - {pair.stem for pair in pairs})
+    if unknown:
+        known = ", ".join(pair.stem for pair in pairs)
+        raise ValueError(f"no lesson named {', '.join(unknown)} in solutions/ (lessons: {known})")
     done = []
-    for pair in sorted((root / "solutions").glob("[0-9][0-9]_*.py")):
-        if names and pair.stem not in names and pair.name not in names:
+    for pair in pairs:
+        if wanted and pair.stem not in wanted:
             continue
         notebook = jupytext.read(pair)
         notebook.metadata["kernelspec"] = dict(KERNELSPEC)
@@ -310,7 +316,12 @@ def main(argv: list[str] | None = None) -> int:
             print(f"wrote {path.relative_to(root)}")
         return 0
     if args.action == "execute":
-        for path in execute(root, args.lessons):
+        try:
+            executed = execute(root, args.lessons)
+        except ValueError as error:
+            print(f"urkin course execute: {error}", file=sys.stderr)
+            return 2
+        for path in executed:
             print(f"executed {path.relative_to(root)}")
         return 0
     problems = check(root)

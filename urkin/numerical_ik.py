@@ -295,8 +295,10 @@ class _Problem:
         wrapped = (q + np.pi) % (2.0 * np.pi) - np.pi
         return wrapped if self.wide_limits else np.clip(wrapped, self.lower, self.upper)
 
-    def random_configuration(self, rng: np.random.Generator) -> np.ndarray:
-        return rng.uniform(np.maximum(self.lower, -np.pi), np.minimum(self.upper, np.pi))
+    def random_configuration(self, rng: np.random.Generator, count: int | None = None):
+        """Uniform joint angles within the limits (and [−π, π)): shape (6,) or (count, 6)."""
+        size = None if count is None else (count, len(self.lower))
+        return rng.uniform(np.maximum(self.lower, -np.pi), np.minimum(self.upper, np.pi), size)
 
 
 def _pinv_step(J: np.ndarray, e: np.ndarray) -> np.ndarray:
@@ -382,14 +384,15 @@ def _iterate_batch(
             | (since_progress[rows] >= _PATIENCE)
             | (mu[rows] >= _MU_GIVE_UP)
         )
-        for i in rows[stalled]:  # restart from a random configuration, or give up
-            if restarts[i] >= settings.max_restarts:
-                active[i] = False
-            else:
-                restarts[i] += 1
-                attempt[i], mu[i], nu[i], since_progress[i] = 0, np.nan, 2.0, 0
-                attempt_best[i] = np.inf
-                q[i] = problem.random_configuration(rng)
+        # stalled attempts restart from a random configuration, or give up
+        stuck = rows[stalled]
+        active[stuck[restarts[stuck] >= settings.max_restarts]] = False
+        again = stuck[restarts[stuck] < settings.max_restarts]
+        if len(again):
+            restarts[again] += 1
+            attempt[again], since_progress[again] = 0, 0
+            mu[again], nu[again], attempt_best[again] = np.nan, 2.0, np.inf
+            q[again] = problem.random_configuration(rng, len(again))
         active[rows[done]] = False
         go = ~done & ~stalled
         if not np.any(go):
