@@ -23,6 +23,8 @@
 # `T_a_b` naming).
 
 # %%
+import inspect
+
 import matplotlib.pyplot as plt
 import numpy as np
 import sympy as sp
@@ -33,6 +35,7 @@ import urkin.plot
 import urkin.symbolic
 from urkin.exercises import check
 from urkin.kinematics import dh_chain
+from urkin.seeds import SEED002_ARM, SEED002_DH, SEED002_LENGTHS, SEED002_SHIFT, seed002_position
 from urkin.symbolic import LENGTHS, Q
 from urkin.transforms import make_transform, rot_x, rot_z
 
@@ -541,61 +544,31 @@ print("|d1|, |a2|, |a3|, |d4|, |d5|, |d6| (m):       ",
 #
 # The report works in its own convention: positive $a_2 = 425$ mm and $a_3 = 392$ mm, lengths
 # 89.2, 425, 392, 109.3, 94.75 and 82.5 mm (close to, but not exactly, UR's UR5 numbers), and
-# therefore its own joint angles. Below, its formula is typed once, in metres, as a function
-# that accepts numpy arrays *or* SymPy symbols: one transcription, used both to compute and to
-# reason, means one chance of a typo instead of two.
+# therefore its own joint angles. Its formula is transcribed once, in metres, in
+# `urkin.seeds`, as a function that accepts numpy arrays *or* SymPy symbols: one transcription,
+# used to compute and to reason here and again in lessons 04 and 05, means one chance of a
+# typo instead of several. Here are its terms, exactly as the report prints them:
 
 # %%
-seed002_lengths = (0.0892, 0.425, 0.392, 0.1093, 0.09475, 0.0825)  # d1, a2, a3, d4, d5, d6 (m)
-seed002_table = np.array(  # its standard-DH rows (d_i, a_i, α_i): UR's twists, positive a
-    [
-        [0.0892, 0.0, np.pi / 2],
-        [0.0, 0.425, 0.0],
-        [0.0, 0.392, 0.0],
-        [0.1093, 0.0, np.pi / 2],
-        [0.09475, 0.0, -np.pi / 2],
-        [0.0825, 0.0, 0.0],
-    ]
-)
-
-
-def seed002_position(q, lengths, cos=np.cos, sin=np.sin):
-    """Seed 002's published flange position, term by term as printed (its own convention).
-
-    ``q`` holds six angles (numbers, arrays or SymPy symbols) and ``lengths`` the six lengths;
-    pass ``sp.cos, sp.sin`` to get SymPy expressions. Returns [p_x, p_y, p_z].
-    """
-    l1, l2, l3, l4, l5, l6 = lengths
-    t1, t2, t3, t4, t5, _ = q
-    c1, s1, c2, s2, c3, s3 = cos(t1), sin(t1), cos(t2), sin(t2), cos(t3), sin(t3)
-    c5, s5 = cos(t5), sin(t5)
-    c234, s234 = cos(t2 + t3 + t4), sin(t2 + t3 + t4)
-    p_x = (l5 * c1 * s234 + l4 * s1 - l6 * c1 * c234 + l2 * c1 * c2 + l6 * c5 * s1
-           + l3 * c1 * c2 * c3 - l3 * c1 * s2 * s3)
-    p_y = (l5 * s1 * s234 - l4 * c1 - l6 * s1 * c234 - l6 * c1 * c5 + l2 * c2 * s1
-           + l3 * c2 * c3 * s1 - l3 * s1 * s2 * s3)
-    p_z = l1 - l6 * s234 * s5 + l3 * sin(t2 + t3) + l2 * s2 - l5 * c234
-    return [p_x, p_y, p_z]
-
-
+print(inspect.getsource(seed002_position).split('"""')[2].strip("\n"), end="\n\n")
 print("      seed 002 (mm)   UR's UR5 (mm)")
-for symbol, theirs, ours in zip(LENGTHS, seed002_lengths, np.abs(ur5.lengths)):
+for symbol, theirs, ours in zip(LENGTHS, SEED002_LENGTHS, np.abs(ur5.lengths)):
     print(f"{symbol!s:>3}   {1000 * theirs:10.3f}   {1000 * ours:10.3f}")
 
 # %% [markdown]
 # **Its angles are not UR's angles.** Flipping the sign of $a_2$ and $a_3$ is the same as
 # turning the $x$ axes of frames 2 and 3 by half a turn, so the same physical pose has
 # $q^{\text{seed}} = q^{\text{UR}} + (0, \pi, 0, -\pi, 0, 0)$: the half turn enters at joint 2
-# and leaves at joint 4. Check it numerically: the seed's table through `dh_chain` at the
-# shifted angles against `urkin.fk` of an arm with the seed's lengths in UR's sign convention.
+# and leaves at joint 4. Check it numerically: the seed's table `SEED002_DH` through
+# `dh_chain` at the shifted angles against `urkin.fk` of `SEED002_ARM`, an arm with the
+# seed's lengths in UR's sign convention (both from `urkin.seeds`).
 
 # %%
-SHIFT = np.array([0.0, np.pi, 0.0, -np.pi, 0.0, 0.0])  # q_seed = q_UR + SHIFT
-l1, l2, l3, l4, l5, l6 = seed002_lengths
-seed002_arm = urkin.Robot("UR5 (seed 002's lengths)", l1, -l2, -l3, l4, l5, l6)
+print("SEED002_SHIFT =", SEED002_SHIFT.round(5))
+print("SEED002_ARM =", SEED002_ARM)
 q_ur = np.random.default_rng(3).uniform(-np.pi, np.pi, (1000, 6))
-shift_gap = np.abs(dh_chain(seed002_table, q_ur + SHIFT) - urkin.fk(seed002_arm, q_ur)).max()
-print(f"seed table at q_UR + SHIFT vs urkin.fk at q_UR, 1000 poses: largest difference "
+shift_gap = np.abs(dh_chain(SEED002_DH, q_ur + SEED002_SHIFT) - urkin.fk(SEED002_ARM, q_ur)).max()
+print(f"seed table at q_UR + SEED002_SHIFT vs urkin.fk at q_UR, 1000 poses: largest difference "
       f"{'below 1e-12' if shift_gap < 1e-12 else f'{shift_gap:.3g}'}")
 
 # %% [markdown]
@@ -611,8 +584,8 @@ def millimetres(p):
 
 q_blind = np.array([0.35, 0.35, 0.35, np.pi / 2 - 0.70, 0.35, 0.35])  # seed angles
 print(f"q2 + q3 + q4 = {np.degrees(q_blind[1:4].sum()):.1f}°")
-print("its DH chain:", millimetres(dh_chain(seed002_table, q_blind)[:3, 3]))
-print("its formula: ", millimetres(seed002_position(q_blind, seed002_lengths)))
+print("its DH chain:", millimetres(dh_chain(SEED002_DH, q_blind)[:3, 3]))
+print("its formula: ", millimetres(seed002_position(q_blind, SEED002_LENGTHS)))
 
 # %% [markdown]
 # Perfect agreement, to the micrometre. Now change only $q_4$, so that all six joints are at
@@ -620,13 +593,13 @@ print("its formula: ", millimetres(seed002_position(q_blind, seed002_lengths)))
 
 # %%
 q_all = np.full(6, 0.35)  # seed angles
-p_chain = dh_chain(seed002_table, q_all)[:3, 3]
-p_formula = np.array(seed002_position(q_all, seed002_lengths))
+p_chain = dh_chain(SEED002_DH, q_all)[:3, 3]
+p_formula = np.array(seed002_position(q_all, SEED002_LENGTHS))
 print("its DH chain:", millimetres(p_chain))
 print("its formula: ", millimetres(p_formula))
 print(f"off by {1000 * np.linalg.norm(p_formula - p_chain):.3f} mm")
-print("\nthe same pose in UR's angles, q_UR = q_seed − SHIFT =", q_all - SHIFT)
-print("urkin.fk:    ", millimetres(urkin.fk(seed002_arm, q_all - SHIFT)[:3, 3]))
+print("\nthe same pose in UR's angles, q_UR = q_seed − SEED002_SHIFT =", q_all - SEED002_SHIFT)
+print("urkin.fk:    ", millimetres(urkin.fk(SEED002_ARM, q_all - SEED002_SHIFT)[:3, 3]))
 
 # %% [markdown]
 # 27 mm off, in $x$ and $y$ only. A mistake in a formula is best found symbolically:
@@ -668,12 +641,12 @@ print("derived   p − d6·z6 depends on q5:",
 
 # %%
 q_many = np.random.default_rng(4).uniform(-np.pi, np.pi, (3000, 6))  # seed angles
-chain_many = dh_chain(seed002_table, q_many)[:, :3, 3]
-formula_many = np.array(seed002_position(q_many.T, seed002_lengths)).T
+chain_many = dh_chain(SEED002_DH, q_many)[:, :3, 3]
+formula_many = np.array(seed002_position(q_many.T, SEED002_LENGTHS)).T
 error_mm = 1000 * np.linalg.norm(formula_many - chain_many, axis=1)
 c234_many = np.cos(q_many[:, 1:4].sum(axis=1))
 q5_many = q_many[:, 4]
-d6_mm = 1000 * seed002_lengths[5]
+d6_mm = 1000 * SEED002_LENGTHS[5]
 
 fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5))
 dots = left.scatter(c234_many, error_mm, c=np.sin(q5_many), cmap="coolwarm", s=6,

@@ -25,6 +25,8 @@
 # the home pose $M$, space and body forward kinematics).
 
 # %%
+import inspect
+
 import matplotlib.pyplot as plt
 import numpy as np
 import sympy as sp
@@ -37,6 +39,14 @@ import urkin.poe
 import urkin.symbolic
 from urkin.exercises import check
 from urkin.kinematics import dh_chain
+from urkin.seeds import (
+    SEED002_ARM,
+    SEED002_DH,
+    SEED002_LENGTHS,
+    SEED002_SHIFT,
+    seed002_jacobian,
+    seed002_position,
+)
 from urkin.symbolic import LENGTHS, Q
 from urkin.transforms import adjoint, so3_log
 
@@ -272,76 +282,13 @@ print("∂p/∂q equals the linear rows of the column-by-column J:",
 # that its $p_x$ and $p_y$ lack a factor $\sin q_5$ on the $d_6 \cos(q_2+q_3+q_4)$ terms. What
 # does that do to the Jacobian?
 #
-# Below, the report's position and Jacobian are typed in metres, in its convention, as
-# functions that accept numbers, numpy arrays or SymPy symbols — one transcription for both
-# computing and reasoning.
+# `urkin.seeds` holds the report's position and Jacobian, transcribed once in metres and in
+# its convention, as functions that accept numbers, numpy arrays or SymPy symbols — one
+# transcription for both computing and reasoning (lesson 02 used `seed002_position`). Here is
+# the Jacobian, entry by entry as the report lists it:
 
 # %%
-seed002_lengths = (0.0892, 0.425, 0.392, 0.1093, 0.09475, 0.0825)  # d1, a2, a3, d4, d5, d6 (m)
-seed002_table = np.array(  # its standard-DH rows (d_i, a_i, α_i), positive a2 and a3
-    [
-        [0.0892, 0.0, np.pi / 2],
-        [0.0, 0.425, 0.0],
-        [0.0, 0.392, 0.0],
-        [0.1093, 0.0, np.pi / 2],
-        [0.09475, 0.0, -np.pi / 2],
-        [0.0825, 0.0, 0.0],
-    ]
-)
-SHIFT = np.array([0.0, np.pi, 0.0, -np.pi, 0.0, 0.0])  # q_seed = q_UR + SHIFT
-
-
-def seed002_position(q, lengths, cos=np.cos, sin=np.sin):
-    """Seed 002's published flange position [p_x, p_y, p_z] (its convention; wrong in x, y)."""
-    d1, a2, a3, d4, d5, d6 = lengths
-    c1, s1, c2, s2, c3, s3 = cos(q[0]), sin(q[0]), cos(q[1]), sin(q[1]), cos(q[2]), sin(q[2])
-    c5, s5 = cos(q[4]), sin(q[4])
-    c234, s234 = cos(q[1] + q[2] + q[3]), sin(q[1] + q[2] + q[3])
-    arm = a2 * c2 + a3 * c2 * c3 - a3 * s2 * s3  # in-plane reach of upper arm and forearm
-    return [
-        d5 * c1 * s234 + d4 * s1 - d6 * c1 * c234 + d6 * c5 * s1 + c1 * arm,
-        d5 * s1 * s234 - d4 * c1 - d6 * s1 * c234 - d6 * c1 * c5 + s1 * arm,
-        d1 - d6 * s234 * s5 + a3 * sin(q[1] + q[2]) + a2 * s2 - d5 * c234,
-    ]
-
-
-def seed002_jacobian(q, lengths, cos=np.cos, sin=np.sin):
-    """Seed 002's hand-derived 3 × 6 position Jacobian, entry by entry as the report lists it."""
-    _, a2, a3, d4, d5, d6 = lengths  # d1 drops out of every derivative
-    c1, s1, c2, s2, c3, s3 = cos(q[0]), sin(q[0]), cos(q[1]), sin(q[1]), cos(q[2]), sin(q[2])
-    c5, s5 = cos(q[4]), sin(q[4])
-    c23 = cos(q[1] + q[2])
-    c234, s234 = cos(q[1] + q[2] + q[3]), sin(q[1] + q[2] + q[3])
-    zero = 0 * c1  # a zero of the right shape (and type) for arrays and symbols alike
-    # columns 2 to 4 of the x and y rows share the wrist terms (d5, d6), as in the report
-    wrist_x, wrist_y = d5 * c1 * c234 + d6 * c1 * s234, d5 * s1 * c234 + d6 * s1 * s234
-    row_x = [
-        -d5 * s1 * s234 + d4 * c1 + d6 * s1 * c234 - a2 * s1 * c2 + d6 * c5 * c1
-        - a3 * s1 * c2 * c3 + a3 * s1 * s2 * s3,
-        wrist_x - a2 * c1 * s2 - a3 * c1 * s2 * c3 - a3 * c1 * c2 * s3,
-        wrist_x - a3 * c1 * c2 * s3 - a3 * c1 * s2 * c3,
-        wrist_x,
-        -d6 * s5 * s1,
-        zero,
-    ]
-    row_y = [
-        d5 * c1 * s234 + d4 * s1 - d6 * c1 * c234 + d6 * s1 * c5 + a2 * c2 * c1
-        + a3 * c2 * c3 * c1 - a3 * c1 * s2 * s3,
-        wrist_y - a2 * s2 * s1 - a3 * s2 * c3 * s1 - a3 * s1 * c2 * s3,
-        wrist_y - a3 * c2 * s3 * s1 - a3 * s1 * s2 * c3,
-        wrist_y,
-        d6 * c1 * s5,
-        zero,
-    ]
-    row_z = [
-        zero,
-        -d6 * c234 * s5 + a3 * c23 + a2 * c2 + d5 * s234,
-        -d6 * c234 * s5 + a3 * c23 + d5 * s234,
-        -d6 * c234 * s5 + d5 * s234,
-        -d6 * s234 * c5,
-        zero,
-    ]
-    return [row_x, row_y, row_z]
+print(inspect.getsource(seed002_jacobian).split('"""')[2].strip("\n"))
 
 
 # %% [markdown]
@@ -369,17 +316,15 @@ rng = np.random.default_rng(4)
 q_seed = rng.uniform(-np.pi, np.pi, (500, 6))  # seed 002's angles
 h = 1e-6
 steps = h * np.eye(6)
-plus = dh_chain(seed002_table, (q_seed[:, None, :] + steps).reshape(-1, 6))[:, :3, 3]
-minus = dh_chain(seed002_table, (q_seed[:, None, :] - steps).reshape(-1, 6))[:, :3, 3]
+plus = dh_chain(SEED002_DH, (q_seed[:, None, :] + steps).reshape(-1, 6))[:, :3, 3]
+minus = dh_chain(SEED002_DH, (q_seed[:, None, :] - steps).reshape(-1, 6))[:, :3, 3]
 J_true = ((plus - minus) / (2 * h)).reshape(500, 6, 3).transpose(0, 2, 1)  # (500, 3, 6)
 
-l1, l2, l3, l4, l5, l6 = seed002_lengths
-seed002_arm = urkin.Robot("UR5 (seed 002's lengths)", l1, -l2, -l3, l4, l5, l6)
-J_exact = urkin.kinematics.position_jacobian(seed002_arm, q_seed - SHIFT)
+J_exact = urkin.kinematics.position_jacobian(SEED002_ARM, q_seed - SEED002_SHIFT)
 print(f"central differences vs urkin's exact ∂p/∂q: largest difference "
       f"{np.abs(J_true - J_exact).max():.0e} m/rad")
 
-J_seed = np.array(seed002_jacobian(q_seed.T, seed002_lengths)).transpose(2, 0, 1)
+J_seed = np.array(seed002_jacobian(q_seed.T, SEED002_LENGTHS)).transpose(2, 0, 1)
 worst = np.abs(J_seed - J_true).max(axis=0)  # (3, 6), m/rad, over the 500 configurations
 wrong = worst > 1e-6
 print(f"\n{wrong.sum()} of 18 entries are wrong; largest error per entry (mm/rad):")
@@ -399,10 +344,10 @@ error_jacobian = (p_published - p_true_general).jacobian(Q).applyfunc(
 display(error_jacobian)
 
 q_blind = np.array([0.35, 0.35, 0.35, np.pi / 2 - 0.70, 0.35, 0.35])  # q2 + q3 + q4 = 90°
-blind_plus = dh_chain(seed002_table, q_blind + steps)[:, :3, 3]
-blind_minus = dh_chain(seed002_table, q_blind - steps)[:, :3, 3]
+blind_plus = dh_chain(SEED002_DH, q_blind + steps)[:, :3, 3]
+blind_minus = dh_chain(SEED002_DH, q_blind - steps)[:, :3, 3]
 J_blind_true = ((blind_plus - blind_minus) / (2 * h)).T
-J_blind_seed = np.array(seed002_jacobian(q_blind, seed002_lengths), dtype=float)
+J_blind_seed = np.array(seed002_jacobian(q_blind, SEED002_LENGTHS), dtype=float)
 print(f"where q2 + q3 + q4 = 90°, as at the report's test: p is right, but ∂p_x/∂q2 is off by "
       f"{1000 * abs(J_blind_seed[0, 1] - J_blind_true[0, 1]):.1f} mm/rad")
 
@@ -416,8 +361,8 @@ print(f"where q2 + q3 + q4 = 90°, as at the report's test: p is right, but ∂p
 # %%
 J_own = np.array(  # central differences of the *published* p: what the report differentiated
     [
-        (np.array(seed002_position((q_seed + steps[j]).T, seed002_lengths))
-         - np.array(seed002_position((q_seed - steps[j]).T, seed002_lengths))) / (2 * h)
+        (np.array(seed002_position((q_seed + steps[j]).T, SEED002_LENGTHS))
+         - np.array(seed002_position((q_seed - steps[j]).T, SEED002_LENGTHS))) / (2 * h)
         for j in range(6)
     ]
 ).transpose(2, 1, 0)  # (500, 3, 6)

@@ -34,6 +34,8 @@ import urkin.kinematics
 import urkin.plot
 from urkin.exercises import check
 from urkin.numerical_ik import orientation_error
+from urkin.seeds import SEED002_ARM, seed002_jacobian, seed002_position
+from urkin.seeds import SEED002_SHIFT as SHIFT
 from urkin.transforms import make_transform, rotation_angle
 
 np.set_printoptions(precision=4, suppress=True)
@@ -148,18 +150,14 @@ for delta in (0.2, 0.1, 0.05, 0.025):
 #   (lesson 00), and the animation draws angles scaled by that factor too.
 #
 # Here everything is in metres and radians. The arm is the UR5 with the report's own lengths
-# in UR's sign convention, `seed002_arm`, as in lessons 02 and 04 (its numbers differ from
-# UR's UR5 by less than a millimetre); its angles are UR's, and the report's are
-# $q^\text{seed} = q^\text{UR} +$ `SHIFT`. The report does not print its square's corners, so
-# here is one in its spirit: 0.2 m on a side, horizontal, sampled every 10 mm rather than
-# every 1 mm (81 points are plenty to see what happens).
+# in UR's sign convention, `SEED002_ARM` from `urkin.seeds`, as in lessons 02 and 04 (its
+# numbers differ from UR's UR5 by less than a millimetre); its angles are UR's, and the
+# report's are $q^\text{seed} = q^\text{UR} +$ `SHIFT` (`urkin.seeds.SEED002_SHIFT`). The
+# report does not print its square's corners, so here is one in its spirit: 0.2 m on a side,
+# horizontal, sampled every 10 mm rather than every 1 mm (81 points are plenty to see what
+# happens).
 
 # %%
-seed002_lengths = (0.0892, 0.425, 0.392, 0.1093, 0.09475, 0.0825)  # d1, a2, a3, d4, d5, d6 (m)
-l1, l2, l3, l4, l5, l6 = seed002_lengths
-seed002_arm = urkin.Robot("UR5 (seed 002's lengths)", l1, -l2, -l3, l4, l5, l6)
-SHIFT = np.array([0.0, np.pi, 0.0, -np.pi, 0.0, 0.0])  # q_seed = q_UR + SHIFT
-
 side, spacing = 0.2, 0.01  # metres
 centre = np.array([0.4, 0.3, 0.2])
 corners = centre + 0.5 * side * np.array(
@@ -168,7 +166,7 @@ fractions = np.arange(round(side / spacing)) / round(side / spacing)
 square = np.vstack([corners[k] + fractions[:, None] * (corners[k + 1] - corners[k])
                     for k in range(4)] + [corners[:1]])  # four sides, then back to the start
 guess_20 = np.radians(np.full(6, 20.0)) - SHIFT  # 20° on every joint, in the report's angles
-p_guess = urkin.fk(seed002_arm, guess_20)[:3, 3]
+p_guess = urkin.fk(SEED002_ARM, guess_20)[:3, 3]
 print(f"{len(square)} target points; the first is {square[0]} m")
 print(f"the 20° guess puts the flange at {p_guess.round(4)} m, "
       f"{np.linalg.norm(p_guess - square[0]):.2f} m from the first point")
@@ -183,13 +181,13 @@ print(f"the 20° guess puts the flange at {p_guess.round(4)} m, "
 q = guess_20
 solved, iterations, failures = [], [], 0
 for point in square:
-    result = urkin.ik(seed002_arm, point, q0=q, method="nr", max_restarts=0)
+    result = urkin.ik(SEED002_ARM, point, q0=q, method="nr", max_restarts=0)
     failures += not result.success
     q = result.q  # warm start for the next point
     solved.append(q)
     iterations.append(result.iterations)
 solved = np.array(solved)
-reached = urkin.fk(seed002_arm, solved)[:, :3, 3]
+reached = urkin.fk(SEED002_ARM, solved)[:, :3, 3]
 largest_miss = np.linalg.norm(reached - square, axis=1).max()
 
 print(f"failures: {failures} of {len(square)}")
@@ -274,70 +272,18 @@ check("5.3", ik_position)
 # Newton–Raphson has no way to notice: it drives the model's error to zero, and the model's
 # Jacobian is the exact derivative of the model, so it converges as happily as ever — to
 # angles where the *formula* reaches the target. Below, the report's formula and Jacobian
-# (transcribed in lessons 02 and 04, in its own angles) drive a small Newton–Raphson loop,
+# (`urkin.seeds`, as in lessons 02 and 04, in its own angles) drive a small Newton–Raphson loop,
 # and the answers are checked with `urkin.fk`.
 
 # %%
-def seed002_position(q, lengths, cos=np.cos, sin=np.sin):
-    """Seed 002's published flange position [p_x, p_y, p_z] (its angles; wrong in x and y)."""
-    d1, a2, a3, d4, d5, d6 = lengths
-    c1, s1, c2, s2, c3, s3 = cos(q[0]), sin(q[0]), cos(q[1]), sin(q[1]), cos(q[2]), sin(q[2])
-    c5, s5 = cos(q[4]), sin(q[4])
-    c234, s234 = cos(q[1] + q[2] + q[3]), sin(q[1] + q[2] + q[3])
-    arm = a2 * c2 + a3 * c2 * c3 - a3 * s2 * s3  # in-plane reach of upper arm and forearm
-    return [
-        d5 * c1 * s234 + d4 * s1 - d6 * c1 * c234 + d6 * c5 * s1 + c1 * arm,
-        d5 * s1 * s234 - d4 * c1 - d6 * s1 * c234 - d6 * c1 * c5 + s1 * arm,
-        d1 - d6 * s234 * s5 + a3 * sin(q[1] + q[2]) + a2 * s2 - d5 * c234,
-    ]
-
-
-def seed002_jacobian(q, lengths, cos=np.cos, sin=np.sin):
-    """Seed 002's hand-derived 3 × 6 Jacobian: the exact derivative of its (wrong) p."""
-    _, a2, a3, d4, d5, d6 = lengths
-    c1, s1, c2, s2, c3, s3 = cos(q[0]), sin(q[0]), cos(q[1]), sin(q[1]), cos(q[2]), sin(q[2])
-    c5, s5 = cos(q[4]), sin(q[4])
-    c23 = cos(q[1] + q[2])
-    c234, s234 = cos(q[1] + q[2] + q[3]), sin(q[1] + q[2] + q[3])
-    zero = 0 * c1
-    wrist_x, wrist_y = d5 * c1 * c234 + d6 * c1 * s234, d5 * s1 * c234 + d6 * s1 * s234
-    row_x = [
-        -d5 * s1 * s234 + d4 * c1 + d6 * s1 * c234 - a2 * s1 * c2 + d6 * c5 * c1
-        - a3 * s1 * c2 * c3 + a3 * s1 * s2 * s3,
-        wrist_x - a2 * c1 * s2 - a3 * c1 * s2 * c3 - a3 * c1 * c2 * s3,
-        wrist_x - a3 * c1 * c2 * s3 - a3 * c1 * s2 * c3,
-        wrist_x,
-        -d6 * s5 * s1,
-        zero,
-    ]
-    row_y = [
-        d5 * c1 * s234 + d4 * s1 - d6 * c1 * c234 + d6 * s1 * c5 + a2 * c2 * c1
-        + a3 * c2 * c3 * c1 - a3 * c1 * s2 * s3,
-        wrist_y - a2 * s2 * s1 - a3 * s2 * c3 * s1 - a3 * s1 * c2 * s3,
-        wrist_y - a3 * c2 * s3 * s1 - a3 * s1 * s2 * c3,
-        wrist_y,
-        d6 * c1 * s5,
-        zero,
-    ]
-    row_z = [
-        zero,
-        -d6 * c234 * s5 + a3 * c23 + a2 * c2 + d5 * s234,
-        -d6 * c234 * s5 + a3 * c23 + d5 * s234,
-        -d6 * c234 * s5 + d5 * s234,
-        -d6 * s234 * c5,
-        zero,
-    ]
-    return [row_x, row_y, row_z]
-
-
 def model_position(q):
     """The report's p for UR angles q (metres)."""
-    return np.array(seed002_position(q + SHIFT, seed002_lengths))
+    return np.array(seed002_position(q + SHIFT))
 
 
 def model_jacobian(q):
     """The report's Jacobian for UR angles q (m/rad); a constant shift leaves it unchanged."""
-    return np.array(seed002_jacobian(q + SHIFT, seed002_lengths), dtype=float)
+    return np.array(seed002_jacobian(q + SHIFT), dtype=float)
 
 
 def newton_on_model(position, jacobian, p_target, q0, tol=1e-10, max_step=1.0,
@@ -359,7 +305,8 @@ def newton_on_model(position, jacobian, p_target, q0, tol=1e-10, max_step=1.0,
 
 def seed002_miss(q):
     """Where lesson 02's error formula says the true flange is off: d6 |cos q234| (1 − sin q5)."""
-    return l6 * np.abs(np.cos(q[..., 1] + q[..., 2] + q[..., 3])) * (1.0 - np.sin(q[..., 4]))
+    c234 = np.cos(q[..., 1] + q[..., 2] + q[..., 3])
+    return SEED002_ARM.d6 * np.abs(c234) * (1.0 - np.sin(q[..., 4]))
 
 
 # the same warm-started tracking as before, on the report's model
@@ -370,7 +317,7 @@ for point in square:
     on_model.append(q)
 on_model = np.array(on_model)
 model_gap = np.abs(np.array([model_position(q) for q in on_model]) - square).max()
-miss_model = np.linalg.norm(urkin.fk(seed002_arm, wrapped(on_model))[:, :3, 3] - square, axis=1)
+miss_model = np.linalg.norm(urkin.fk(SEED002_ARM, wrapped(on_model))[:, :3, 3] - square, axis=1)
 
 print(f"the model's own error at its answers: {below(model_gap, 1e-10)} m (converged)")
 print(f"the real flange misses its target by {1000 * miss_model.min():.1f} to "
@@ -395,13 +342,13 @@ print(f"lesson 02's formula d6·|cos(q2+q3+q4)|·(1 − sin q5) predicts the mis
 
 # %%
 def true_position(q):
-    """The flange position of seed002_arm by urkin.fk, for UR angles q (metres)."""
-    return urkin.fk(seed002_arm, wrapped(q))[:3, 3]
+    """The flange position of SEED002_ARM by urkin.fk, for UR angles q (metres)."""
+    return urkin.fk(SEED002_ARM, wrapped(q))[:3, 3]
 
 
 def true_jacobian(q):
-    """urkin's exact 3 × 6 position Jacobian of seed002_arm (m/rad)."""
-    return urkin.kinematics.position_jacobian(seed002_arm, wrapped(q))
+    """urkin's exact 3 × 6 position Jacobian of SEED002_ARM (m/rad)."""
+    return urkin.kinematics.position_jacobian(SEED002_ARM, wrapped(q))
 
 
 def seed002_pipeline(position, jacobian):
@@ -420,7 +367,7 @@ def seed002_pipeline(position, jacobian):
 
 def misses_mm(q):
     """Distance from the true flange to each target point of the square, millimetres."""
-    return 1000 * np.linalg.norm(urkin.fk(seed002_arm, wrapped(q))[:, :3, 3] - square, axis=1)
+    return 1000 * np.linalg.norm(urkin.fk(SEED002_ARM, wrapped(q))[:, :3, 3] - square, axis=1)
 
 
 print("seed 002's pipeline            flange − target (mm)     first point   as drawn (mm)")
@@ -442,10 +389,10 @@ for name, model in (("with its published formula", (model_position, model_jacobi
 # %%
 traces = [
     (reached, "urkin.ik, true kinematics (exact)", "tab:blue", "-"),
-    (urkin.fk(seed002_arm, wrapped(on_model))[:, :3, 3],
+    (urkin.fk(SEED002_ARM, wrapped(on_model))[:, :3, 3],
      "step-limited Newton on the report's formula", "tab:orange", "-"),
 ]
-drawn_trace = urkin.fk(seed002_arm, wrapped(seed_drawn))[:, :3, 3]
+drawn_trace = urkin.fk(SEED002_ARM, wrapped(seed_drawn))[:, :3, 3]
 drawn_trace[0] = 0.0  # the report's trace list starts with an entry it never sets
 traces.append((drawn_trace, "the report's pipeline, as its animation draws it", "tab:red", "--"))
 
@@ -470,8 +417,8 @@ along.plot(index, misses_mm(on_model), color="tab:orange",
 along.plot(index, misses_mm(seed_solved), color="tab:red", label="the report's pipeline, solved")
 along.plot(index, 1000 * seed002_miss(seed_solved), "o", color="tab:red", markersize=3,
            fillstyle="none", label="prediction d6·|cos(q2+q3+q4)|·(1 − sin q5)")
-along.axhline(1000 * 2 * l6, color="0.5", linestyle=":",
-              label=f"largest possible: 2·d6 = {2000 * l6:.0f} mm")
+along.axhline(2000 * SEED002_ARM.d6, color="0.5", linestyle=":",
+              label=f"largest possible: 2·d6 = {2000 * SEED002_ARM.d6:.0f} mm")
 along.set_xlabel("target point along the square (index, 10 mm apart)")
 along.set_ylabel("distance flange − target (mm)")
 along.set_title("how far the real flange is from each target")
@@ -515,7 +462,7 @@ for panel, model_name in enumerate(("true kinematics", "report's formula")):
     for loop_name, colour in (("step-limited", "tab:blue"), ("report's", "tab:red")):
         q = answers[model_name, loop_name]
         miss = 1000 * np.linalg.norm(true_position(q) - first)
-        urkin.plot.draw_robot(ax, seed002_arm, q, frames=False, color=colour, linewidth=3,
+        urkin.plot.draw_robot(ax, SEED002_ARM, q, frames=False, color=colour, linewidth=3,
                               label=f"{loop_name} loop: flange {miss:.1f} mm from the target")
     ax.scatter(*first, color="black", s=60, marker="*", depthshade=False,
                label="target (first corner)")
@@ -540,7 +487,7 @@ plt.show()
 # %%
 rng = np.random.default_rng(2)
 guesses = rng.uniform(-np.pi, np.pi, (200, 6))
-exact = urkin.ik(seed002_arm, np.tile(first, (200, 1)), q0=guesses, method="nr",
+exact = urkin.ik(SEED002_ARM, np.tile(first, (200, 1)), q0=guesses, method="nr",
                  max_restarts=0)
 formula_misses = np.array([
     1000 * np.linalg.norm(true_position(newton_on_model(model_position, model_jacobian,

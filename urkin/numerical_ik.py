@@ -47,7 +47,7 @@ from numpy.typing import ArrayLike
 from urkin._generated import ur_kinematics as _gen
 from urkin.kinematics import _joints, fk, jacobian
 from urkin.robots import Robot
-from urkin.transforms import check_transform, rotation_angle, rotation_parts, skew
+from urkin.transforms import check_transform, rotation_angle, rotation_parts, skew, twist_parts
 
 __all__ = ["IK_METHODS", "IKResult", "ik", "orientation_error"]
 
@@ -278,18 +278,7 @@ class _Problem:
         p, R = T[..., :3, 3], T[..., :3, :3]
         dR = self.R[rows] @ np.swapaxes(R, -1, -2)
         dp = self.p[rows] - (dR @ p[..., None])[..., 0]
-        _, theta, omega = rotation_parts(dR)
-        W = skew(omega)
-        theta = theta[..., None, None]
-        small = theta < 1e-4
-        safe = np.where(small, 1.0, theta)
-        k = np.where(
-            small,
-            1.0 / 12.0 + theta**2 / 720.0,
-            (1.0 - safe * np.sin(safe) / (2.0 * (1.0 - np.cos(safe)))) / safe**2,
-        )
-        v = ((np.eye(3) - 0.5 * W + k * (W @ W)) @ dp[..., None])[..., 0]
-        return np.concatenate([omega, v], axis=-1)
+        return twist_parts(dR, dp)
 
     def wrap(self, q: np.ndarray) -> np.ndarray:
         wrapped = (q + np.pi) % (2.0 * np.pi) - np.pi

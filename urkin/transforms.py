@@ -36,6 +36,7 @@ __all__ = [
     "so3_exp",
     "so3_log",
     "twist_matrix",
+    "twist_parts",
     "twist_vector",
     "unskew",
 ]
@@ -578,8 +579,21 @@ def se3_log(T: ArrayLike) -> np.ndarray:
     True
     """
     array = check_transform(T)
-    omega = so3_log(array[..., :3, :3])
-    theta = np.linalg.norm(omega, axis=-1)[..., None, None]
+    return twist_parts(array[..., :3, :3], array[..., :3, 3])
+
+
+def twist_parts(R: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """:func:`se3_log` of the transform ``(R, p)``, without input checks (inner loops).
+
+    Examples
+    --------
+    >>> V = np.array([0.1, -0.2, 0.3, 0.4, 0.5, -0.6])
+    >>> T = se3_exp(V)
+    >>> np.allclose(twist_parts(T[:3, :3], T[:3, 3]), V)
+    True
+    """
+    _, theta, omega = rotation_parts(R)
+    theta = theta[..., None, None]
     W = skew(omega)
     small = theta < 1e-4
     safe = np.where(small, 1.0, theta)
@@ -589,7 +603,7 @@ def se3_log(T: ArrayLike) -> np.ndarray:
         (1.0 - safe * np.sin(safe) / (2.0 * (1.0 - np.cos(safe)))) / safe**2,
     )
     G_inverse = np.eye(3) - 0.5 * W + k * (W @ W)
-    v = (G_inverse @ array[..., :3, 3, None])[..., 0]
+    v = (G_inverse @ p[..., None])[..., 0]
     return np.concatenate([omega, v], axis=-1)
 
 

@@ -15,6 +15,7 @@ from urkin.exercises.framework import (
 )
 from urkin.exercises.inputs import negated_a, random_arm, random_q
 from urkin.kinematics import dh_chain, dh_transform
+from urkin.seeds import seed002_position
 
 _fk = urkin.fk  # the reference, bound before any grading guard is installed
 
@@ -183,19 +184,12 @@ _UR5 = urkin.robot("ur5")
 
 
 def _seed002_position(q):
-    """Seed 002's published p (in metres, UR angles): the d6·c234 terms lack sin q5."""
-    d1, a2, a3, d4, d5, d6 = _UR5.lengths
-    q1, q2, q3, q4, q5, _ = q
-    c1, s1, c5, s5 = np.cos(q1), np.sin(q1), np.cos(q5), np.sin(q5)
-    c234, s234 = np.cos(q2 + q3 + q4), np.sin(q2 + q3 + q4)
-    reach = a2 * np.cos(q2) + a3 * np.cos(q2 + q3)
-    return np.array(
-        [
-            d4 * s1 + d5 * c1 * s234 + d6 * (s1 * c5 - c1 * c234) + c1 * reach,
-            -d4 * c1 + d5 * s1 * s234 - d6 * (c1 * c5 + s1 * c234) + s1 * reach,
-            d1 + a2 * np.sin(q2) + a3 * np.sin(q2 + q3) - d5 * c234 - d6 * s234 * s5,
-        ]
-    )
+    """Seed 002's published p for UR angles and the UR5's lengths: the d6·c234 terms lack s5.
+
+    Its formula holds in either sign convention: negating a2 and a3 absorbs the half turns
+    between the report's angles and UR's.
+    """
+    return np.array(seed002_position(q, _UR5.lengths))
 
 
 def _position_matches(student, rng):

@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import partial
+
 import numpy as np
 
 import urkin
@@ -20,7 +24,7 @@ from urkin.poe import body_screws, fk_body, fk_space, screw_axis, space_screws
 from urkin.transforms import se3_exp
 
 _fk = urkin.fk  # references, bound before any grading guard is installed
-_screw_axis, _se3_exp, _fk_space, _fk_body = screw_axis, se3_exp, fk_space, fk_body
+_screw_axis, _se3_exp = screw_axis, se3_exp
 
 _FK_FUNCTIONS = (
     "urkin.kinematics.fk",
@@ -168,7 +172,52 @@ register(
 )
 
 
-# ------------------------------------------------------------------------------ 3.3 fk_space
+# ----------------------------------------------------------------- 3.3 fk_space and 3.4 fk_body
+
+
+@dataclass(frozen=True)
+class _ProductForm:
+    """What differs between the space form (3.3) and the body form (3.4) of the product."""
+
+    name: str  # "space" or "body"
+    letter: str  # "S" or "B"
+    screws: Callable[..., tuple[np.ndarray, np.ndarray]]
+    reference: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]
+    formula: str
+    other_order: str  # the mistake of putting M on the other side
+
+    @property
+    def call(self) -> str:
+        return f"fk_{self.name}(M, {self.letter}, q)"
+
+    def hypotheses(self, M, axes, q) -> dict:
+        space = self.name == "space"
+        product_alone = self.reference(np.eye(4), axes, q)
+        return {
+            self.other_order: lambda: M @ product_alone if space else product_alone @ M,
+            "the exponentials multiplied in reverse order (joint 6 first)": lambda: (
+                _reversed_product(M, axes, q, space)
+            ),
+            "q treated as degrees": lambda: self.reference(M, axes, np.radians(q)),
+        }
+
+
+_SPACE = _ProductForm(
+    name="space",
+    letter="S",
+    screws=space_screws,
+    reference=fk_space,
+    formula="T = e^[S1]q1 ⋯ e^[S6]q6 M",
+    other_order="M multiplied first: M e^[S1]q1 ⋯ is the body form, which needs body screw axes",
+)
+_BODY = _ProductForm(
+    name="body",
+    letter="B",
+    screws=body_screws,
+    reference=fk_body,
+    formula="T = M e^[B1]q1 ⋯ e^[B6]q6",
+    other_order="M multiplied last: e^[B1]q1 ⋯ M is the space form, which needs space screw axes",
+)
 
 
 def _reversed_product(M, axes, q, space: bool):
@@ -192,22 +241,10 @@ def _other_arm(rng) -> tuple[np.ndarray, np.ndarray]:
     return table, rng.uniform(-np.pi, np.pi, n)
 
 
-def _space_hypotheses(M, S, q):
-    return {
-        "M multiplied first: M e^[S1]q1 ⋯ is the body form, which needs body screw axes": (
-            lambda: M @ _fk_space(np.eye(4), S, q)
-        ),
-        "the exponentials multiplied in reverse order (joint 6 first)": lambda: _reversed_product(
-            M, S, q, space=True
-        ),
-        "q treated as degrees": lambda: _fk_space(M, S, np.radians(q)),
-    }
-
-
-def _space_at_zero(student, rng):
+def _product_at_zero(form: _ProductForm, student, rng):
     for _ in range(3):
-        S, M = space_screws(random_arm(rng))
-        got = as_array(student(M.copy(), S.copy(), np.zeros(6)), (4, 4), "fk_space(M, S, 0)")
+        axes, M = form.screws(random_arm(rng))
+        got = as_array(student(M.copy(), axes.copy(), np.zeros(6)), (4, 4), form.call)
         compare(
             got,
             M,
@@ -216,116 +253,55 @@ def _space_at_zero(student, rng):
         )
 
 
-def _space_matches(student, rng):
+def _product_matches(form: _ProductForm, student, rng):
     for _ in range(10):
         arm, q = random_arm(rng), random_q(rng)
-        S, M = space_screws(arm)
-        got = as_array(student(M.copy(), S.copy(), q.copy()), (4, 4), "fk_space(M, S, q)")
+        axes, M = form.screws(arm)
+        got = as_array(student(M.copy(), axes.copy(), q.copy()), (4, 4), form.call)
         compare(
             got,
             _fk(arm, q),
-            what=f"T = e^[S1]q1 ⋯ e^[S6]q6 M (the {arm.name}'s flange pose)",
+            what=f"{form.formula} (the {arm.name}'s flange pose)",
             inputs={"robot": arm.name, "q": q},
-            hypotheses=_space_hypotheses(M, S, q),
+            hypotheses=form.hypotheses(M, axes, q),
         )
 
 
-def _space_any_joint_count(student, rng):
+def _product_any_joint_count(form: _ProductForm, student, rng):
     for _ in range(4):
         table, q = _other_arm(rng)
-        S, M = space_screws(table)
-        got = as_array(student(M.copy(), S.copy(), q.copy()), (4, 4), "fk_space(M, S, q)")
+        axes, M = form.screws(table)
+        got = as_array(student(M.copy(), axes.copy(), q.copy()), (4, 4), form.call)
         compare(
             got,
             dh_chain(table, q),
-            what=f"an arm with {len(q)} joints: S has one column per joint, (6, {len(q)})",
-            inputs={"S": S, "q": q},
-            hypotheses=_space_hypotheses(M, S, q),
+            what=(
+                f"an arm with {len(q)} joints: {form.letter} has one column per joint, "
+                f"(6, {len(q)})"
+            ),
+            inputs={form.letter: axes, "q": q},
+            hypotheses=form.hypotheses(M, axes, q),
         )
 
 
-register(
-    Exercise(
-        id="3.3",
-        function="fk_space",
-        title="forward kinematics, space form",
-        checks=(
-            Check("gives M at q = 0", 1, _space_at_zero),
-            Check("matches the arm's flange pose for random arms and q", 2, _space_matches),
-            Check("works for any number of joints", 1, _space_any_joint_count),
-        ),
-        forbidden=_FK_FUNCTIONS,
-        builds_on=("3.2",),
+for _id, _form in (("3.3", _SPACE), ("3.4", _BODY)):
+    register(
+        Exercise(
+            id=_id,
+            function=f"fk_{_form.name}",
+            title=f"forward kinematics, {_form.name} form",
+            checks=(
+                Check("gives M at q = 0", 1, partial(_product_at_zero, _form)),
+                Check(
+                    "matches the arm's flange pose for random arms and q",
+                    2,
+                    partial(_product_matches, _form),
+                ),
+                Check(
+                    "works for any number of joints", 1, partial(_product_any_joint_count, _form)
+                ),
+            ),
+            forbidden=_FK_FUNCTIONS,
+            builds_on=("3.2",),
+        )
     )
-)
-
-
-# ------------------------------------------------------------------------------- 3.4 fk_body
-
-
-def _body_hypotheses(M, B, q):
-    return {
-        "M multiplied last: e^[B1]q1 ⋯ M is the space form, which needs space screw axes": (
-            lambda: _fk_body(np.eye(4), B, q) @ M
-        ),
-        "the exponentials multiplied in reverse order (joint 6 first)": lambda: _reversed_product(
-            M, B, q, space=False
-        ),
-        "q treated as degrees": lambda: _fk_body(M, B, np.radians(q)),
-    }
-
-
-def _body_at_zero(student, rng):
-    for _ in range(3):
-        B, M = body_screws(random_arm(rng))
-        got = as_array(student(M.copy(), B.copy(), np.zeros(6)), (4, 4), "fk_body(M, B, 0)")
-        compare(
-            got,
-            M,
-            what="at q = 0 every exponential is the identity: T = M",
-            inputs={"M": M, "q": np.zeros(6)},
-        )
-
-
-def _body_matches(student, rng):
-    for _ in range(10):
-        arm, q = random_arm(rng), random_q(rng)
-        B, M = body_screws(arm)
-        got = as_array(student(M.copy(), B.copy(), q.copy()), (4, 4), "fk_body(M, B, q)")
-        compare(
-            got,
-            _fk(arm, q),
-            what=f"T = M e^[B1]q1 ⋯ e^[B6]q6 (the {arm.name}'s flange pose)",
-            inputs={"robot": arm.name, "q": q},
-            hypotheses=_body_hypotheses(M, B, q),
-        )
-
-
-def _body_any_joint_count(student, rng):
-    for _ in range(4):
-        table, q = _other_arm(rng)
-        B, M = body_screws(table)
-        got = as_array(student(M.copy(), B.copy(), q.copy()), (4, 4), "fk_body(M, B, q)")
-        compare(
-            got,
-            dh_chain(table, q),
-            what=f"an arm with {len(q)} joints: B has one column per joint, (6, {len(q)})",
-            inputs={"B": B, "q": q},
-            hypotheses=_body_hypotheses(M, B, q),
-        )
-
-
-register(
-    Exercise(
-        id="3.4",
-        function="fk_body",
-        title="forward kinematics, body form",
-        checks=(
-            Check("gives M at q = 0", 1, _body_at_zero),
-            Check("matches the arm's flange pose for random arms and q", 2, _body_matches),
-            Check("works for any number of joints", 1, _body_any_joint_count),
-        ),
-        forbidden=_FK_FUNCTIONS,
-        builds_on=("3.2",),
-    )
-)
