@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 
 import urkin
@@ -50,27 +52,19 @@ def _table_point(rng, behind: bool):
             return x, y
 
 
-def _theta1_in_front(student, rng):
+def _theta1_matches(behind: bool, student, rng):
+    what = (
+        "behind the base (x < 0) θ1 must still point the arm at the wrist point"
+        if behind
+        else "θ1 = atan2(y, x) − asin(0.110 / √(x² + y²))"
+    )
     for _ in range(6):
-        xc, yc = _table_point(rng, behind=False)
+        xc, yc = _table_point(rng, behind=behind)
         got = as_array(student(xc, yc), (), "lab_theta1(x_c, y_c)")
         compare(
             wrap_angles(got),
             wrap_angles(_theta1(xc, yc)),
-            what="θ1 = atan2(y, x) − asin(0.110 / √(x² + y²))",
-            inputs={"x_c": xc, "y_c": yc},
-            hypotheses=_theta1_hypotheses(xc, yc),
-        )
-
-
-def _theta1_behind(student, rng):
-    for _ in range(6):
-        xc, yc = _table_point(rng, behind=True)
-        got = as_array(student(xc, yc), (), "lab_theta1(x_c, y_c)")
-        compare(
-            wrap_angles(got),
-            wrap_angles(_theta1(xc, yc)),
-            what="behind the base (x < 0) θ1 must still point the arm at the wrist point",
+            what=what,
             inputs={"x_c": xc, "y_c": yc},
             hypotheses=_theta1_hypotheses(xc, yc),
         )
@@ -82,8 +76,12 @@ register(
         function="lab_theta1",
         title="the lab's base angle θ1 (lab convention)",
         checks=(
-            Check("right for wrist points in front of the base", 1, _theta1_in_front),
-            Check("right behind the base, where arctan(y/x) fails", 2, _theta1_behind),
+            Check(
+                "right for wrist points in front of the base", 1, partial(_theta1_matches, False)
+            ),
+            Check(
+                "right behind the base, where arctan(y/x) fails", 2, partial(_theta1_matches, True)
+            ),
         ),
         forbidden=("urkin.lab_ik.ik_lab",),
     )
