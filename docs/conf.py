@@ -1,21 +1,18 @@
-"""Sphinx configuration of the urkin site: the lessons (student notebooks, executed at build
-time), the API reference from docstrings, and the guides.  Builds offline."""
+"""Sphinx configuration of the urkin site: the lessons (student notebooks, executed once before
+the build), the API reference from docstrings, and the guides.  Builds offline."""
 
-import shutil
 from pathlib import Path
 
 import urkin
+from urkin import course
 
 DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
 
-# The lessons are the generated student notebooks (no solutions), copied here and executed by
-# myst-nb during the build; docs/lessons/ is not committed.
-LESSONS = DOCS / "lessons"
-shutil.rmtree(LESSONS, ignore_errors=True)
-LESSONS.mkdir()
-for notebook in sorted((ROOT / "course").glob("[0-9][0-9]_*.ipynb")):
-    shutil.copyfile(notebook, LESSONS / notebook.name)
+# The lessons are the generated student notebooks (no solutions), executed once into
+# docs/lessons/ (not committed) and reused while neither they nor urkin change; a lesson that
+# raises fails the build.
+course.render(ROOT, DOCS / "lessons")
 
 project = "urkin"
 author = "urkin developers"
@@ -32,12 +29,8 @@ extensions = [
 
 exclude_patterns = ["_build", "**.ipynb_checkpoints", "Thumbs.db", ".DS_Store"]
 
-# notebooks: always execute, and fail the build on any error
-nb_execution_mode = "force"
-nb_execution_raise_on_error = True
-nb_execution_show_tb = True
-nb_execution_timeout = 300
-nb_execution_allow_errors = False
+# notebooks were executed by course.render above; an error there has already failed the build
+nb_execution_mode = "off"
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]
 myst_heading_anchors = 3
 

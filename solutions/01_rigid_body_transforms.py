@@ -703,8 +703,8 @@ print(f"log(exp(ω)) = ω for all 1000, within 1e-12 rad: "
 
 # %%
 largest_below_one = np.nextafter(1.0, 0.0)
-print(f"largest double below 1: 1 − {1.0 - largest_below_one:.3e};  arccos of it: "
-      f"{np.arccos(largest_below_one):.3e} rad")
+print(f"largest double below 1 is 1 − 2⁻⁵³: {1.0 - largest_below_one == 2.0**-53};  "
+      f"arccos of it: {np.arccos(largest_below_one):.3e} rad")
 
 angles = np.logspace(-12, 0, 97)  # true angles, 1e-12 to 1 rad, 8 per decade
 axis = np.array([1.0, 2.0, 2.0]) / 3.0

@@ -323,7 +323,7 @@ print(f"the model's own error at its answers: {below(model_gap, 1e-10)} m (conve
 print(f"the real flange misses its target by {1000 * miss_model.min():.1f} to "
       f"{1000 * miss_model.max():.1f} mm")
 print(f"lesson 02's formula d6·|cos(q2+q3+q4)|·(1 − sin q5) predicts the misses within "
-      f"{below(np.abs(seed002_miss(on_model) - miss_model).max())} m")
+      f"{below(np.abs(seed002_miss(on_model) - miss_model).max(), 1e-9)} m")
 
 
 # %% [markdown]

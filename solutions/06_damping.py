@@ -859,7 +859,8 @@ same = np.abs(twist_newton("space", "space", T_twist_goal, q_twist_start, 2)[1]
               - twist_newton("body", "body", T_twist_goal, q_twist_start, 2)[1]).max()
 print(f"\nmatched pairings after 2 iterations: largest difference in q {below(same)}")
 poe_result = urkin.ik(ur5, T_twist_goal, q0=q_twist_start, method="poe")
-print("urkin.ik(method='poe'):", poe_result)
+print(f"urkin.ik(method='poe'): success {poe_result.success} after {poe_result.iterations} "
+      f"iterations, residual {below(poe_result.residual)}")
 
 # %% [markdown]
 # The matched pairings are one and the same iteration: quadratic convergence, round-off level

@@ -90,7 +90,7 @@ def main(argv: list[str] | None = None) -> int:
     grade.set_defaults(run=_grade)
 
     course = commands.add_parser("course", help="build or check the student notebooks")
-    course.add_argument("action", choices=["build", "check", "execute"])
+    course.add_argument("action", choices=["build", "check", "execute", "render"])
     course.add_argument("lessons", nargs="*")
     course.add_argument("--root", type=Path, default=Path("."))
     course.set_defaults(run=lambda a: _course(a))

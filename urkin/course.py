@@ -12,6 +12,7 @@ Commands (also ``urkin course …``)::
     python -m urkin.course execute   # paired .py → .ipynb, executed in place (needs jupytext)
     python -m urkin.course build     # solutions/ → course/
     python -m urkin.course check     # fails on drift, a leaked solution line or a missing check
+    python -m urkin.course render    # course/ executed once into docs/lessons/ (for the site)
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ __all__ = [
     "execute",
     "find_lessons",
     "normalise_solution",
+    "render",
     "strip_solutions",
 ]
 
@@ -299,6 +301,61 @@ def execute(root: Path, names: list[str] | None = None, timeout: int = 120) -> l
     return done
 
 
+def _execute(notebook, root: Path, timeout: int, what: str) -> None:
+    from nbclient import NotebookClient
+    from nbclient.exceptions import CellExecutionError
+
+    client = NotebookClient(
+        notebook,
+        timeout=timeout,
+        kernel_name="python3",
+        resources={"metadata": {"path": str(root / "course")}},
+    )
+    try:
+        client.execute()
+    except CellExecutionError as error:
+        raise RuntimeError(f"{what} failed to run top to bottom:\n{error}") from None
+
+
+def _render_key(student: Path) -> str:
+    """What a rendered lesson depends on: its notebook and urkin's source."""
+    import hashlib
+
+    digest = hashlib.sha256(student.read_bytes())
+    for source in sorted(Path(__file__).parent.rglob("*.py")):
+        digest.update(source.read_bytes())
+    return digest.hexdigest()
+
+
+def render(root: Path, into: Path, timeout: int = 300) -> list[Path]:
+    """Execute every student notebook of ``course/`` once, into ``into`` (for the docs site).
+
+    A lesson that raises fails the call.  A rendered notebook is reused while neither it nor
+    urkin's source has changed, so building the docs twice executes nothing the second time.
+    """
+    import nbformat
+
+    into.mkdir(parents=True, exist_ok=True)
+    written = []
+    for student in sorted((root / "course").glob("[0-9][0-9]_*.ipynb")):
+        target = into / student.name
+        key = _render_key(student)
+        if target.exists():
+            rendered = json.loads(target.read_text(encoding="utf-8"))
+            if rendered.get("metadata", {}).get("urkin", {}).get("rendered_from") == key:
+                written.append(target)
+                continue
+        notebook = nbformat.read(student, as_version=4)
+        _execute(notebook, root, timeout, f"course/{student.name}")
+        notebook.metadata.setdefault("urkin", {})["rendered_from"] = key
+        nbformat.write(notebook, target)
+        written.append(target)
+    for stale in sorted(into.glob("*.ipynb")):
+        if stale not in written:
+            stale.unlink()
+    return written
+
+
 def main(argv: list[str] | None = None) -> int:
     """Command line of ``urkin course``."""
     parser = argparse.ArgumentParser(
@@ -306,14 +363,25 @@ def main(argv: list[str] | None = None) -> int:
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("action", choices=["build", "check", "execute"])
-    parser.add_argument("lessons", nargs="*", help="execute only these (e.g. 02_dh_fk)")
+    parser.add_argument("action", choices=["build", "check", "execute", "render"])
+    parser.add_argument(
+        "lessons", nargs="*", help="execute only these (e.g. 02_dh_fk); render: the folder"
+    )
     parser.add_argument("--root", type=Path, default=Path("."), help="course root (default .)")
     args = parser.parse_args(argv)
     root = args.root.resolve()
     if args.action == "build":
         for path in build(root):
             print(f"wrote {path.relative_to(root)}")
+        return 0
+    if args.action == "render":
+        into = Path(args.lessons[0]) if args.lessons else root / "docs" / "lessons"
+        try:
+            rendered = render(root, into)
+        except RuntimeError as error:
+            print(f"urkin course render: {error}", file=sys.stderr)
+            return 1
+        print(f"{len(rendered)} lessons rendered in {into}")
         return 0
     if args.action == "execute":
         try:

@@ -403,7 +403,9 @@ def rotation_parts(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         B = 0.5 * (R + np.swapaxes(R, -1, -2)) - cos_theta[..., None, None] * np.eye(3)
         column = np.argmax(np.diagonal(B, axis1=-2, axis2=-1), axis=-1)
         k = np.take_along_axis(B, column[..., None, None], axis=-1)[..., 0]
-        k = k / np.linalg.norm(k, axis=-1, keepdims=True)
+        # rows far from π may have B = 0 (R = I): their k is never used, so divide safely
+        norm = np.linalg.norm(k, axis=-1, keepdims=True)
+        k = k / np.where(norm > 0.0, norm, 1.0)
         sign = np.where(np.sum(k * s, axis=-1) < 0.0, -1.0, 1.0)
         omega = np.where(near_pi[..., None], (sign * theta)[..., None] * k, omega)
     return s, theta, omega
