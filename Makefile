@@ -60,6 +60,7 @@ bench: $(STAMP)
 	$(PY) bench/kinematics.py
 	$(PY) bench/ik.py
 	$(PY) bench/ik_analytic.py
+	$(PY) bench/grading.py
 
 clean:
 	rm -rf docs/_build docs/lessons build *.egg-info

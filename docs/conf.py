@@ -4,7 +4,7 @@ the build), the API reference from docstrings, and the guides.  Builds offline."
 from pathlib import Path
 
 import urkin
-from urkin import course
+from urkin.course import build
 
 DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
@@ -12,7 +12,7 @@ ROOT = DOCS.parent
 # The lessons are the generated student notebooks (no solutions), executed once into
 # docs/lessons/ (not committed) and reused while neither they nor urkin change; a lesson that
 # raises fails the build.
-course.render(ROOT, DOCS / "lessons")
+build.render(ROOT, DOCS / "lessons")
 
 project = "urkin"
 author = "urkin developers"
@@ -29,7 +29,7 @@ extensions = [
 
 exclude_patterns = ["_build", "**.ipynb_checkpoints", "Thumbs.db", ".DS_Store"]
 
-# notebooks were executed by course.render above; an error there has already failed the build
+# notebooks were executed by build.render above; an error there has already failed the build
 nb_execution_mode = "off"
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]
 myst_heading_anchors = 3

@@ -35,7 +35,7 @@ import numpy as np
 
 import urkin
 import urkin.plot
-from urkin.exercises import check
+from urkin.course import check
 
 np.set_printoptions(precision=4, suppress=True)
 
@@ -95,11 +95,19 @@ for step in range(1, 4):
     print(f"after round trip {step}: {angle_deg:.4f}°")
 
 # %% [markdown]
-# ### Exercise 0.1 — `deg_to_rad` (4 points)
+# ### Exercise 0.1 — `deg_to_rad` (5 points)
 #
 # Write `deg_to_rad(angles_deg)`, which converts degrees to radians. It must accept a single
 # number, a list, or a numpy array of any shape — such as an `(N, 6)` array holding N joint
-# configurations — and return floats of the same shape. Use the exact factor π/180.
+# configurations — and return floats of the same shape. Use the exact factor π/180, and do not
+# wrap the result into one turn: 720° is 4π.
+#
+# *Checked* (to 1e-12; a float32 answer to float32's precision): 180°, −90°, 0°, 45° and other
+# whole angles; arrays of random angles between −720° and 720°; an `(N, 6)` array and a
+# three-dimensional one; and a plain list of six angles. The feedback recognises the usual
+# slips: converting the wrong way, seed 002's rounded factors 0.0175 and 0.01744, a rounded
+# result, and a list or array that only `math.radians` would not take. Nothing of urkin is
+# hidden here: numpy's `np.radians` and `np.deg2rad` are fine.
 
 # %%
 def deg_to_rad(angles_deg):
@@ -213,7 +221,14 @@ plt.show()
 #
 # Write `base_link_pose(T_base_tool)`: given a tool pose measured in UR's `base` frame, return
 # the same pose measured in the URDF `base_link` frame. Think of which transform goes on which
-# side: the names should cancel.
+# side: the names should cancel. Write the half turn `T_base_link_base` yourself, as a 4×4
+# numpy array: cos π = −1 and sin π = 0 make it very simple.
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): that the result is a
+# homogeneous transform with the tool at the same height (both frames share the z axis), and
+# that it equals `T_base_link_base @ T_base_tool` for random poses. The feedback recognises the
+# product on the wrong side, a quarter turn, a turn about x or y, and 180 used as radians.
+# urkin's own `urkin.T_BASE_LINK_BASE` is hidden while this exercise is graded.
 
 # %%
 def base_link_pose(T_base_tool):
@@ -230,7 +245,8 @@ def base_link_pose(T_base_tool):
         ``T_base_link_tool``, the pose of the same tool in the base_link frame.
     """
     ### BEGIN SOLUTION
-    return urkin.T_BASE_LINK_BASE @ T_base_tool
+    T_base_link_base = np.diag([-1.0, -1.0, 1.0, 1.0])  # Rz(π): cos π = −1, sin π = 0
+    return T_base_link_base @ T_base_tool
     ### END SOLUTION
 
 

@@ -25,7 +25,7 @@ import numpy as np
 import urkin
 import urkin.plot
 import urkin.transforms
-from urkin.exercises import check
+from urkin.course import check
 from urkin.transforms import (
     check_rotation,
     inv_transform,
@@ -134,8 +134,16 @@ for name, R in [("Rx", rot_x(theta)), ("Ry", rot_y(theta)),
 # ### Exercise 1.1 — `rot_z` (3 points)
 #
 # Write `rot_z(theta)`: the 3×3 matrix of a rotation by `theta` radians about the z axis, as a
-# numpy array of floats. Build it from `np.cos` and `np.sin` (calling urkin's `rot_z` earns no
-# points). The check tests that your matrix is a rotation and that it matches Rz(θ) above.
+# numpy array of floats. Build it from `np.cos` and `np.sin`. Any angle in radians is allowed,
+# including angles beyond a full turn.
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): that the result is a rotation
+# matrix (RᵀR = I, det R = +1) by the angle θ (trace 1 + 2 cos θ), and that it equals Rz(θ)
+# above, for random angles between −8 and 8 rad. The feedback recognises the usual slips: a
+# transposed matrix, a lost minus sign, degrees, and a turn about x or y. urkin's own
+# elementary rotations (`rot_x`, `rot_y`, `rot_z`, `rpy_to_rotation`, `so3_exp`), and
+# `se3_exp` and `dh_transform`, which compute them too, are hidden while this exercise is
+# graded.
 
 # %%
 def rot_z(theta):
@@ -333,11 +341,21 @@ plt.show()
 # * **it says what it means**: "un-shift, then un-turn". A general inverse hides the geometry
 #   and would also silently invert a matrix that is not a rigid transform at all.
 #
-# ### Exercise 1.2 — `transform_inverse` (3 points)
+# ### Exercise 1.2 — `transform_inverse` (4 points)
 #
 # Write `transform_inverse(T)` for a 4×4 homogeneous transform `T = [[R, p], [0, 1]]`: return
-# the 4×4 array `[[Rᵀ, −Rᵀp], [0, 1]]`. Use the formula above — no `np.linalg.inv` and no
-# urkin `inv_transform`. The check multiplies your answer with `T` and expects the identity.
+# the 4×4 array `[[Rᵀ, −Rᵀp], [0, 1]]`. Use the formula above: no general matrix inverse
+# (`np.linalg.inv`, `pinv`, `solve`, a numpy matrix's `.I` or `** -1`).
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): that the result is a
+# homogeneous transform whose rotation block is Rᵀ; that `T @ transform_inverse(T)` is the
+# identity for random poses; and that it is the transpose formula, not a general inverse — the
+# check reads your code (and the functions it calls) for the calls above, and gives your
+# function a matrix whose 3×3 block is not a rotation, where a general inverse and the formula
+# differ (raising an exception for such a matrix is fine). The feedback recognises a
+# translation left unrotated, a missing transpose or minus sign, and a transposed 4×4 matrix.
+# urkin's own `inv_transform`, `se3_exp` and `se3_log` are hidden while this exercise is
+# graded; `make_transform` is not.
 
 # %%
 def transform_inverse(T):
@@ -510,10 +528,18 @@ print(f"rpy in degrees: {rpy_deg.round(2) + 0.0}  →  rebuilt error "
 #
 # Write `rotation_to_rpy(R)`: given a 3×3 rotation matrix, return a numpy array
 # `(roll, pitch, yaw)` **in radians** such that `R = Rz(yaw) @ Ry(pitch) @ Rx(roll)`, with pitch
-# in [−π/2, π/2] and roll and yaw in [−π, π]. Use the `atan2` formulas derived above. At the
+# in [−π/2, π/2] and roll and yaw in (−π, π]. Use the `atan2` formulas derived above. At the
 # gimbal lock — when √(r₁₁² + r₂₁²) is below 1e-9 — set yaw to 0 and compute roll as
-# atan2(−r₂₃, r₂₂). (In numpy, r₂₃ is `R[1, 2]`: indices start at 0.) The check rebuilds R
-# from your angles, tests their ranges, and tries both locked cases.
+# atan2(−r₂₃, r₂₂). (In numpy, r₂₃ is `R[1, 2]`: indices start at 0.)
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): that Rz(yaw) Ry(pitch) Rx(roll)
+# rebuilds R, for random rotations and for roll and yaw in every quadrant; that the angles are
+# the ones in the ranges above (away from the lock only one set is); and, at both locked cases
+# (pitch = +90° and −90°, typed with exact zeros), that your angles rebuild R with yaw = 0. The
+# feedback recognises degrees, the angles in reverse order, a wrong sign of pitch, `arctan`
+# instead of `atan2`, the second solution (cos pitch < 0), a missing or half-right locked
+# branch, and says which angle is wrong otherwise. urkin's own `rotation_to_rpy` (and the pose
+# panel `pose_text`, which uses it) is hidden while this exercise is graded.
 
 # %%
 def rotation_to_rpy(R):
@@ -528,7 +554,7 @@ def rotation_to_rpy(R):
     -------
     ndarray, shape (3,)
         (roll, pitch, yaw) in radians, with R = Rz(yaw) @ Ry(pitch) @ Rx(roll);
-        pitch in [−π/2, π/2], roll and yaw in [−π, π]. At pitch = ±π/2 (gimbal lock)
+        pitch in [−π/2, π/2], roll and yaw in (−π, π]. At pitch = ±π/2 (gimbal lock)
         yaw is 0.
     """
     ### BEGIN SOLUTION
@@ -628,12 +654,20 @@ not_a_rotation = np.eye(3) + np.sin(0.8) * K + (1 - np.cos(0.8)) * K @ K
 print(f"with |k| = 2 the 'rotation' has det = {np.linalg.det(not_a_rotation):.4f}")
 
 # %% [markdown]
-# ### Exercise 1.4 — `axis_angle_to_rotation` (4 points)
+# ### Exercise 1.4 — `axis_angle_to_rotation` (5 points)
 #
 # Write `axis_angle_to_rotation(axis, angle)`: the 3×3 rotation by `angle` radians about
-# `axis`, by Rodrigues' formula. The axis may have any non-zero length: **normalise it first**.
-# Build [k] yourself (or with urkin's `skew`); do not call urkin's `so3_exp`. The check tests
-# that your matrix is a rotation, matches the formula, and leaves its axis fixed.
+# `axis`, by Rodrigues' formula. The axis may have any non-zero length: **normalise it first**;
+# it may be a numpy array or a plain list of three numbers. Every angle is allowed, 0 included.
+# Build [k] yourself (or with urkin's `skew`).
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): that the result is a rotation
+# matrix by the given angle (trace 1 + 2 cos θ); that it matches Rodrigues' formula for random
+# axes from 0.03 to 30 long and random angles, and at angles 0 and π; that it turns about its
+# axis (R k = k, and a vector across the axis turns by θ); and that the axis may be a list.
+# The feedback recognises an axis left unnormalised, `K**2` for K @ K, a transposed [k],
+# degrees, and a division by the angle that fails at 0. urkin's own `so3_exp`, and `se3_exp`,
+# which computes it too, are hidden while this exercise is graded; `skew` is not.
 
 # %%
 def axis_angle_to_rotation(axis, angle):

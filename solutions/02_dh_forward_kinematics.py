@@ -33,9 +33,15 @@ from IPython.display import display
 import urkin
 import urkin.plot
 import urkin.symbolic
-from urkin.exercises import check
+from urkin.course import check
+from urkin.course.seeds import (
+    SEED002_ARM,
+    SEED002_DH,
+    SEED002_LENGTHS,
+    SEED002_SHIFT,
+    seed002_position,
+)
 from urkin.kinematics import dh_chain
-from urkin.seeds import SEED002_ARM, SEED002_DH, SEED002_LENGTHS, SEED002_SHIFT, seed002_position
 from urkin.symbolic import LENGTHS, Q, simplify_angles
 from urkin.transforms import make_transform, rot_x, rot_z
 
@@ -203,6 +209,10 @@ print(f"standard table, modified formula  p = {p_mixed_up} m   "
 # $T_{i-1,i} = R_z(\theta)\,T_z(d)\,T_x(a)\,R_x(\alpha)$, as a numpy array of shape `(4, 4)`.
 # The four arguments are plain numbers: angles in radians, lengths in metres. Type the matrix
 # you displayed above; numpy's `np.cos` and `np.sin` do the rest.
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): that the result is a
+# homogeneous transform, and that it equals $R_z(\theta)T_z(d)T_x(a)R_x(\alpha)$ for random
+# links. urkin's own `dh_transform` and `dh_chain` are hidden while this exercise is graded.
 
 # %%
 def dh_transform(theta, d, a, alpha):
@@ -397,8 +407,12 @@ print("UR5 at home, urkin.fk:       ", metres(urkin.fk(ur5, home)[:3, 3]))
 # $\theta_i = q_i$ and the arm's DH values `robot.d`, `robot.a` and `robot.alpha` (numpy arrays
 # of six numbers each; metres and radians).
 #
-# The check tries all seven arms. It recognises the usual slips: links multiplied in reverse
-# order, the modified formula, and `a2`, `a3` with the wrong sign.
+# *Checked* (to 1e-9; a float32 answer to float32's precision): a homogeneous transform;
+# UR's flange position at `q = 0` for all seven arms; the DH chain for random arms and
+# configurations; and `q` given as a plain list of six numbers. The feedback recognises the
+# usual slips: links multiplied in reverse order, the modified formula, and `a2`, `a3` with the
+# wrong sign. urkin's own forward kinematics (`urkin.fk`, `fk_frames`, `dh_chain`, the PoE and
+# SymPy versions) is hidden while this exercise is graded; your `dh_transform` is not.
 
 # %%
 def forward_kinematics(robot, q):
@@ -542,7 +556,8 @@ print("|d1|, |a2|, |a3|, |d4|, |d5|, |d6| (m):       ",
 # The report works in its own convention: positive $a_2 = 425$ mm and $a_3 = 392$ mm, lengths
 # 89.2, 425, 392, 109.3, 94.75 and 82.5 mm (close to, but not exactly, UR's UR5 numbers), and
 # therefore its own joint angles. Its formula is transcribed once, in metres, in
-# `urkin.seeds`, as a function that accepts numpy arrays *or* SymPy symbols: one transcription,
+# `urkin.course.seeds`, as a function that accepts numpy arrays *or* SymPy symbols: one
+# transcription,
 # used to compute and to reason here and again in lessons 04 and 05, means one chance of a
 # typo instead of several. Here are its terms, exactly as the report prints them:
 
@@ -558,7 +573,7 @@ for symbol, theirs, ours in zip(LENGTHS, SEED002_LENGTHS, np.abs(ur5.lengths)):
 # $q^{\text{seed}} = q^{\text{UR}} + (0, \pi, 0, -\pi, 0, 0)$: the half turn enters at joint 2
 # and leaves at joint 4. Check it numerically: the seed's table `SEED002_DH` through
 # `dh_chain` at the shifted angles against `urkin.fk` of `SEED002_ARM`, an arm with the
-# seed's lengths in UR's sign convention (both from `urkin.seeds`).
+# seed's lengths in UR's sign convention (both from `urkin.course.seeds`).
 
 # %%
 print("SEED002_SHIFT =", SEED002_SHIFT.round(5))
@@ -732,9 +747,13 @@ print(", ".join(f"∂p_{'xyz'[r]}/∂q{c + 1}" for r, c in wrong))
 #   its own, *outside* the function (so that it is built once), and call the result inside
 #   (a lambdified column matrix returns shape `(3, 1)`: flatten it).
 #
-# Calling `urkin.fk`, `urkin.fk_frames`, `dh_chain`, urkin's `dh_transform`,
-# `urkin.symbolic.ur_t06` or `ur_frames` inside the function earns no points. The check also
-# tests poses with $q_2 + q_3 + q_4 = 90°$, and recognises seed 002's formula if you copy it.
+# *Checked* (to 1e-9; a float32 answer to float32's precision): the UR5's flange position for
+# random `q`, and at poses with $q_2 + q_3 + q_4 = 90°$; and that the function is a closed
+# form — the check reads your code, which must not multiply matrices (`@`, `np.dot`,
+# `np.matmul`) or call your `dh_transform` or `forward_kinematics`. The feedback recognises seed
+# 002's formula if you copy it. urkin's forward kinematics (`urkin.fk`, `fk_frames`,
+# `dh_chain`, `dh_transform`, `urkin.symbolic.ur_t06` and `ur_frames`) is hidden while this
+# exercise is graded; the symbols and `simplify_angles` of `urkin.symbolic` are not.
 
 # %%
 def ur5_position(q):

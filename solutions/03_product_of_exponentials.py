@@ -32,7 +32,7 @@ import numpy as np
 import urkin
 import urkin.plot
 import urkin.poe
-from urkin.exercises import check
+from urkin.course import check
 from urkin.transforms import (
     adjoint,
     inv_transform,
@@ -209,10 +209,14 @@ for row, col in zip(*np.nonzero(np.abs(difference) > 1e-12)):
 #
 # Write `screw_axis(w, q)`: the screw axis of a revolute joint turning about the unit
 # direction `w` through the point `q` (metres), as a numpy array of shape `(6,)` in the order
-# **(ω, v)**, with $v = -\omega \times q$ (`np.cross` computes cross products). The check
-# compares with random axes and points, tests that moving `q` along the axis changes nothing,
-# and recognises a wrong sign, the point used as `v`, and the (v, ω) order. Calling
-# `urkin.poe.screw_axis` earns no points.
+# **(ω, v)**, with $v = -\omega \times q$ (`np.cross` computes cross products).
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): $(\omega, -\omega \times q)$
+# for random unit axes and points; and that `S` describes the axis, not the point — moving `q`
+# along `w` leaves it unchanged, a parallel axis elsewhere changes it. The feedback recognises
+# a wrong sign of $v$, the point used as $v$, `w` and `q` swapped, the (v, ω) order and a
+# (2, 3) array. urkin's `urkin.poe.screw_axis` (and `space_screws`, `body_screws`, which use
+# it) is hidden while this exercise is graded.
 
 # %%
 def screw_axis(w, q):
@@ -362,10 +366,16 @@ plt.show()
 # screw axis `S = (ω, v)` (shape `(6,)`, unit ω, ordered as in exercise 3.1) and an angle
 # `theta` in radians. Use the closed form derived above: Rodrigues' formula for the rotation
 # block and $(I\theta + (1 - \cos\theta)[\omega] + (\theta - \sin\theta)[\omega]^2)\,v$ for the
-# translation. Build $[\omega]$ yourself or with urkin's `skew`; calling urkin's `se3_exp`
-# earns no points. The check tests that your result is a rigid transform, matches
-# $e^{[S]\theta}$, leaves the points of the axis where they are, and recognises the $v\theta$
-# translation, a transposed rotation and degrees.
+# translation. Build $[\omega]$ yourself or with urkin's `skew`.
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): a homogeneous transform whose
+# rotation turns by θ about ω; $e^{[S]\theta}$ for random screw axes and angles of 0.3 to π
+# rad either way; and that it turns space about the screw axis — the points of the axis stay
+# where they are, a point off it keeps its distance from the axis and its height along it and
+# turns by θ, right-handed about ω. The feedback recognises the $v\theta$ translation, a
+# transposed rotation, −θ, degrees, `S` read as (v, ω), slips in the closed form's two
+# matrices, and a series cut off too early. urkin's `se3_exp` and `urkin.poe` are hidden
+# while this exercise is graded; `skew` and `so3_exp` are not.
 
 # %%
 def twist_exp(S, theta):
@@ -524,16 +534,24 @@ plt.show()
 # motors, while the DH origins of joints 1 to 4 sit in one plane. Both lie on the same axis
 # lines, and that is all a screw axis records.
 #
-# ### Exercise 3.3 — `fk_space` (4 points)
+# ### Exercise 3.3 — `fk_space` (5 points)
 #
 # Write `fk_space(M, S, q)`: the space-form product of exponentials
 # $T = e^{[S_1]q_1} \cdots e^{[S_n]q_n}\, M$, for `M` of shape `(4, 4)`, screw axes `S` of
 # shape `(6, n)` with **one screw axis per column** (`S[:, i]` is joint i + 1's), and joint
 # angles `q` of shape `(n,)` in radians. Return a `(4, 4)` array. Use **your own
 # `twist_exp`** for every factor, and multiply from the left (joint 1) to the right, with M
-# last. Calling `urkin.fk`, `urkin.poe.fk_space`, `urkin.poe.fk_body` or the DH functions
-# earns no points. The check uses the screw axes of random UR arms and compares with their
-# flange poses; it recognises M on the wrong side, the factors in reverse order, and degrees.
+# last.
+#
+# *Checked* (to 1e-9; a float32 answer, or one built on a float32 `twist_exp`, to float32's
+# precision): `M` at `q = 0` and the right pose when one joint alone turns; the flange pose of
+# random UR arms at random `q`, from their screw axes; arms with 2 to 7 joints; and — one
+# point — that the result is the product of *your own* factors, `twist_exp(S[:, 0], q[0]) @ …
+# @ twist_exp(S[:, n - 1], q[n - 1]) @ M`. The feedback recognises M on the wrong side, the
+# factors in reverse order, a joint or M left out, rows of `S` used as axes, degrees, and a
+# right product of a wrong `twist_exp`. urkin's forward kinematics (`urkin.fk`, `fk_frames`,
+# `dh_chain`, `urkin.poe.fk_space`, `fk_body`, `space_screws`, the SymPy and generated
+# versions) is hidden while this exercise is graded; your `twist_exp` is not.
 
 # %%
 def fk_space(M, S, q):
@@ -728,13 +746,18 @@ print("moved base:      B unchanged:", np.allclose(B_mount, B_ur5, rtol=0, atol=
 # errors measured in the tool frame by an inverse-kinematics solver, or an arm whose base moves
 # (on a rail or a mobile platform) while its tool stays the same.
 #
-# ### Exercise 3.4 — `fk_body` (4 points)
+# ### Exercise 3.4 — `fk_body` (5 points)
 #
 # Write `fk_body(M, B, q)`: the body-form product $T = M\, e^{[B_1]q_1} \cdots e^{[B_n]q_n}$
 # for `M` of shape `(4, 4)`, body screw axes `B` of shape `(6, n)` (one per column, ordered
 # (ω, v)) and joint angles `q` of shape `(n,)` in radians, as a `(4, 4)` array. Use your own
-# `twist_exp`; start with M and multiply the exponentials in joint order on its right. The
-# same functions as in exercise 3.3 are off limits, and the check recognises the same slips.
+# `twist_exp`; start with M and multiply the exponentials in joint order on its right.
+#
+# *Checked* (to 1e-9; a float32 answer, or one built on a float32 `twist_exp`, to float32's
+# precision): as in exercise 3.3, with the body screw axes of random UR arms and of arms with
+# 2 to 7 joints, and — one point — that the result is `M @ twist_exp(B[:, 0], q[0]) @ … @
+# twist_exp(B[:, n - 1], q[n - 1])` with your own `twist_exp`. The feedback recognises the same
+# slips, with M multiplied last. The same urkin functions as in exercise 3.3 are hidden.
 
 # %%
 def fk_body(M, B, q):

@@ -37,9 +37,8 @@ import urkin.kinematics
 import urkin.plot
 import urkin.poe
 import urkin.symbolic
-from urkin.exercises import check
-from urkin.kinematics import dh_chain
-from urkin.seeds import (
+from urkin.course import below, check
+from urkin.course.seeds import (
     SEED002_ARM,
     SEED002_DH,
     SEED002_LENGTHS,
@@ -47,15 +46,11 @@ from urkin.seeds import (
     seed002_jacobian,
     seed002_position,
 )
+from urkin.kinematics import dh_chain
 from urkin.symbolic import LENGTHS, Q, simplify_angles
 from urkin.transforms import adjoint, so3_log
 
 np.set_printoptions(precision=4, suppress=True)
-
-
-def below(value, limit=1e-12):
-    """A tiny difference as text: "below 1e-12" rather than a number that is only round-off."""
-    return f"below {limit:.0e}" if value < limit else f"{value:.3g}"
 
 
 # %% [markdown]
@@ -194,10 +189,17 @@ for i in range(6):
 # `urkin.fk_frames(robot, q)` (entry `k` is the pose of DH frame `k`; entry 0 is the base and
 # entry 6 the flange). `np.cross` computes the cross product.
 #
-# Calling `urkin.jacobian`, `urkin.kinematics.position_jacobian` or the Jacobians of
-# `urkin.poe` earns no points. The check compares your linear rows with finite differences of
-# the flange position, and the whole matrix with urkin's for random arms; it recognises the
-# rows in twist order, the wrong frame's axis, a reversed lever arm and the space Jacobian.
+# *Checked* (to 1e-9, and to 1e-7 against finite differences; a float32 answer to float32's
+# precision): the linear rows against central differences of the flange position
+# ($h = 10^{-6}$); the angular rows against the flange's rate of turn,
+# $[\omega_i] = (\partial R/\partial q_i)\,R^\mathsf{T}$, by central differences of its
+# orientation; and the whole matrix against urkin's, for random arms and configurations. The
+# feedback recognises the rows in twist order, the axis of the wrong frame (or the wrong column
+# of it), a reversed lever arm or one from the base origin, the wrist centre's velocity, the
+# space and body Jacobians, degrees, and `a2`, `a3` with the wrong sign. urkin's Jacobians
+# (`urkin.jacobian`, `urkin.kinematics.position_jacobian`, `urkin.poe.jacobian_space`,
+# `jacobian_body`, the generated and SymPy versions, and what uses them) are hidden while this
+# exercise is graded; `urkin.fk_frames` and `urkin.fk` are not.
 
 # %%
 def geometric_jacobian(robot, q):
@@ -277,7 +279,7 @@ print("∂p/∂q equals the linear rows of the column-by-column J:",
 # that its $p_x$ and $p_y$ lack a factor $\sin q_5$ on the $d_6 \cos(q_2+q_3+q_4)$ terms. What
 # does that do to the Jacobian?
 #
-# `urkin.seeds` holds the report's position and Jacobian, transcribed once in metres and in
+# `urkin.course.seeds` holds the report's position and Jacobian, transcribed once in metres and in
 # its convention, as functions that accept numbers, numpy arrays or SymPy symbols — one
 # transcription for both computing and reasoning (lesson 02 used `seed002_position`). Here is
 # the Jacobian, entry by entry as the report lists it:
@@ -428,8 +430,16 @@ plt.show()
 # change `q` in place (build the nudged inputs as new arrays). You saw the idea for the seed
 # chain above; here it must work for any `f`, `n` and `m`.
 #
-# The check tries linear functions (where the answer is exact), a smooth function with a large
-# `h` (which tells central from forward differences) and the UR flange position.
+# *Checked* (to 1e-9, 2·10⁻⁵ against an exact derivative and 10⁻⁸ for the flange; a float32
+# answer to float32's round-off amplified by 1/h): linear functions $f(q) = Aq + b$ of several
+# shapes with $m \ne n$, where the answer is exactly $A$, once with `q` a plain list; the
+# central difference at the step `h` you are given ($h = 2^{-2}, 2^{-3}, 2^{-4}$ on a smooth
+# function and on a UR arm's flange position, where a forward difference or an ignored `h`
+# shows), and within 2·10⁻⁵ of the derivative at $h \approx 10^{-3}$; and the UR flange's 3 × 6
+# position Jacobian with the default step. The feedback recognises forward and backward
+# differences, a wrong divisor, an ignored `h` or another default, a transposed result, and
+# nudged copies that share `q`'s memory. Nothing of urkin is hidden: urkin has no numeric
+# differentiation.
 
 # %%
 def numeric_jacobian(f, q, h=1e-6):
@@ -784,7 +794,7 @@ print("rank of J at home:", np.linalg.matrix_rank(urkin.jacobian(ur5, home), tol
 # keeps that step finite. Starting an iterative solver at a singular configuration is asking for
 # trouble; the IK lessons start elsewhere.
 #
-# ### Exercise 4.3 — `singularities` (4 points)
+# ### Exercise 4.3 — `singularities` (5 points)
 #
 # Write `singularities(robot, q)`: the set of singular families present at `q`, a subset of
 # `{"shoulder", "elbow", "wrist"}` (the empty set when `q` is regular). A family is present
@@ -795,10 +805,18 @@ print("rank of J at home:", np.linalg.matrix_rank(urkin.jacobian(ur5, home), tol
 #
 # Use the factors, not the determinant: $\det J$ is a product, and a product can be tiny
 # because one factor is small or because several are moderately small — it cannot say which
-# family is present. Calling `urkin.kinematics.singularities`, `singular_families`,
-# `singularity_factors`, `manipulability` or `condition_number` earns no points. The check
-# tests regular configurations (including $\cos q_3 = 0$), each family alone, and their
-# intersections.
+# family is present.
+#
+# *Checked* (the set of names, in any case, as a set, list or tuple): none at regular
+# configurations (among them $\cos q_3 = 0$ and $\cos q_5 = 0$), and not none at singular
+# ones; each family alone (the elbow and the wrist at 0, ±π and ±2π) and at their
+# intersections, on random UR arms; and — one point — `tol`: a configuration whose factor is
+# 10⁻⁸ … 10⁻³ from zero is regular at the default `tol = 1e-9`, singular for a `tol` ten times
+# its factor, regular for a tenth. The feedback recognises a cosine test, a missing absolute
+# value, a test of the angle itself, exact comparison with 0, an ignored `tol` or another
+# default, a wrong shoulder factor, joint numbers off by one and an if/elif chain that returns
+# one family. urkin's `singularities`, `singular_families`, `singularity_factors`,
+# `manipulability` and `condition_number` are hidden while this exercise is graded.
 
 # %%
 def singularities(robot, q, tol=1e-9):

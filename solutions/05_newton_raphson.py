@@ -32,18 +32,13 @@ import numpy as np
 import urkin
 import urkin.kinematics
 import urkin.plot
-from urkin.exercises import check
+from urkin.course import below, check
 from urkin.numerical_ik import orientation_error
-from urkin.seeds import SEED002_ARM, seed002_jacobian, seed002_position
-from urkin.seeds import SEED002_SHIFT as SHIFT
+from urkin.course.seeds import SEED002_ARM, seed002_jacobian, seed002_position
+from urkin.course.seeds import SEED002_SHIFT as SHIFT
 from urkin.transforms import make_transform, rotation_angle
 
 np.set_printoptions(precision=4, suppress=True)
-
-
-def below(value, limit=1e-12):
-    """A tiny number as text: "below 1e-12" rather than digits that are only round-off."""
-    return f"below {limit:.0e}" if value < limit else f"{value:.2e}"
 
 
 def wrapped(q):
@@ -150,9 +145,9 @@ for delta in (0.2, 0.1, 0.05, 0.025):
 #   (lesson 00), and the animation draws angles scaled by that factor too.
 #
 # Here everything is in metres and radians. The arm is the UR5 with the report's own lengths
-# in UR's sign convention, `SEED002_ARM` from `urkin.seeds`, as in lessons 02 and 04 (its
+# in UR's sign convention, `SEED002_ARM` from `urkin.course.seeds`, as in lessons 02 and 04 (its
 # numbers differ from UR's UR5 by less than a millimetre); its angles are UR's, and the
-# report's are $q^\text{seed} = q^\text{UR} +$ `SHIFT` (`urkin.seeds.SEED002_SHIFT`). The
+# report's are $q^\text{seed} = q^\text{UR} +$ `SHIFT` (`urkin.course.seeds.SEED002_SHIFT`). The
 # report does not print its square's corners, so here is one in its spirit: 0.2 m on a side,
 # horizontal, sampled every 10 mm rather than every 1 mm (81 points are plenty to see what
 # happens).
@@ -200,19 +195,27 @@ print(f"largest distance between the flange and its target: {below(largest_miss,
 # first, whose guess put the flange more than half a metre away. A far guess costs a few
 # iterations, not accuracy.
 #
-# ### Exercise 5.3 — `ik_position` (3 points)
+# ### Exercise 5.1 — `ik_position` (4 points)
 #
 # Write `ik_position(robot, p_target, q0)`: position-only Newton–Raphson. Repeat: compute the
 # flange position with `urkin.fk`, the error $e = p^\* - p$ (metres), the 3 × 6 position
 # Jacobian (`urkin.kinematics.position_jacobian(robot, q)`, or the top three rows of
 # `urkin.jacobian`), and the step $\Delta q = J_v^+ e$. Scale the step down so that no joint
-# moves more than 1 rad, wrap the angles into $[-\pi, \pi)$, and stop when $|e|$ is below
-# $10^{-12}$ m (or after 100 iterations).
+# moves more than `max_step` (1 rad by default), wrap the angles into $[-\pi, \pi)$, and stop
+# when $|e|$ is below `tol` ($10^{-12}$ m) or after `max_iterations` (100) steps.
 #
-# The check asks for the target within $10^{-8}$ m, on every UR arm, from starts up to
-# 0.4 rad per joint away, and makes sure the orientation is really left free: keeping the
-# start's orientation (a 6 × 6 Jacobian with a zero orientation error) is a different, and
-# often impossible, problem. Calling `urkin.ik` earns no points.
+# *Checked* (to 1e-8 m, one step to 1e-9 rad; a float32 answer to float32's precision): that
+# `urkin.fk` puts the flange on `p_target` for random targets on every UR arm, from starts up
+# to 0.4 rad per joint away; that one iteration (`max_iterations=1`, a small `max_step`) moves
+# `q` along $J_v^+ e$ with the 3 × 6 position Jacobian — keeping the start's orientation (a
+# 6 × 6 Jacobian with a zero orientation error) is a different, and often impossible, problem
+# — scaled down as a whole, in the same direction, so that no joint moves more than
+# `max_step`; that the angles come back wrapped into $[-\pi, \pi)$ from a start with extra
+# whole turns; and that `p_target` and `q0` may be plain lists. The feedback recognises
+# millimetres, the ω rows of the Jacobian, a step the wrong way, a clipped or missing step
+# limit and a loop that never runs. urkin's IK solvers (`urkin.ik` and all of
+# `urkin.numerical_ik`, the closed-form solvers) are hidden while this exercise is graded;
+# `urkin.fk`, `urkin.jacobian` and `position_jacobian` are not.
 
 # %%
 def ik_position(robot, p_target, q0, tol=1e-12, max_iterations=100, max_step=1.0):
@@ -256,7 +259,7 @@ def ik_position(robot, p_target, q0, tol=1e-12, max_iterations=100, max_step=1.0
 
 
 # %%
-check("5.3", ik_position)
+check("5.1", ik_position)
 
 # %% [markdown]
 # ### What went wrong in seed 002
@@ -272,8 +275,8 @@ check("5.3", ik_position)
 # Newton–Raphson has no way to notice: it drives the model's error to zero, and the model's
 # Jacobian is the exact derivative of the model, so it converges as happily as ever — to
 # angles where the *formula* reaches the target. Below, the report's formula and Jacobian
-# (`urkin.seeds`, as in lessons 02 and 04, in its own angles) drive a small Newton–Raphson loop,
-# and the answers are checked with `urkin.fk`.
+# (`urkin.course.seeds`, as in lessons 02 and 04, in its own angles) drive a small
+# Newton–Raphson loop, and the answers are checked with `urkin.fk`.
 
 # %%
 def model_position(q):
@@ -543,7 +546,7 @@ print(f"report's formula: misses of {formula_misses.min():.1f} to {formula_misse
 # Test them separately, each against its own tolerance, as `urkin.ik` does
 # (`tol_position` in metres, `tol_orientation` in radians).
 #
-# ### Exercise 5.1 — `pose_error` (3 points)
+# ### Exercise 5.2 — `pose_error` (3 points)
 #
 # Write `pose_error(T, T_target)`: the 6-vector $[p^\* - p;\ \log(R^\* R^\mathsf{T})]$ for
 # two 4 × 4 poses. Write the log map yourself (calling `urkin.transforms.so3_log` or
@@ -560,8 +563,14 @@ print(f"report's formula: misses of {formula_misses.min():.1f} to {formula_misse
 #   column with the largest diagonal entry is a multiple of $k$. Normalise it, and pick the
 #   sign that agrees with $s$.
 #
-# The check compares with urkin on random pairs of poses and insists on a half turn being
-# seen as an error of length π.
+# *Checked* (to 1e-9; a float32 answer to float32's precision): $[p^\* - p;\ \log(R^\*
+# R^\mathsf{T})]$ for random pairs of poses; no turn and a turn of about $10^{-10}$ rad (zero or
+# tiny, never 0/0); an exact half turn, which must come out with length π along the turn's
+# axis (either sign; to 1e-7 there); and turns a little short of a half turn, where the sign of
+# $k$ matters. The feedback recognises the cross-product error, the tool frame, either part
+# pointing the wrong way, the (orientation; position) order, degrees and a missing ½. urkin's
+# rotation log (`so3_log`, `se3_log`, `rotation_parts`, `twist_parts`) and all of
+# `urkin.numerical_ik`, `orientation_error` included, are hidden while this exercise is graded.
 
 # %%
 def pose_error(T, T_target):
@@ -602,10 +611,10 @@ def pose_error(T, T_target):
 
 
 # %%
-check("5.1", pose_error)
+check("5.2", pose_error)
 
 # %% [markdown]
-# ### Exercise 5.2 — `ik_newton` (4 points)
+# ### Exercise 5.3 — `ik_newton` (6 points)
 #
 # Write `ik_newton(robot, T_target, q0)`: full-pose Newton–Raphson. Repeat:
 #
@@ -617,9 +626,18 @@ check("5.1", pose_error)
 # 4. scale the step down so that no joint moves more than `max_step` radians, add it, and
 #    wrap the angles into $[-\pi, \pi)$.
 #
-# The check runs it on random UR arms from starts 0.1 rad and 0.5 rad per joint away from a
-# solution, and asks for the target within $10^{-8}$ m and $10^{-8}$ rad. Calling `urkin.ik`
-# earns no points.
+# *Checked* (to 1e-8 m and 1e-8 rad, one step to 1e-9 rad; a float32 answer to float32's
+# precision): that `urkin.fk` reaches the target on random UR arms from starts 0.1 rad and 0.5
+# rad per joint away from a solution; that one iteration (`max_iterations=1`, a small
+# `max_step`) moves `q` along $J^+ e$ (with the error of your `pose_error`, or the exact one),
+# scaled down as a whole, in the same direction, so that no joint moves more than `max_step`;
+# that the angles come back wrapped into $[-\pi, \pi)$ from a start with extra whole turns; and
+# that `q0` may be a plain list. The feedback recognises a step the wrong way, the
+# Jacobian-transpose step, the cross-product and tool-frame errors, a clipped or missing step
+# limit, an ignored `max_iterations`, unwrapped angles and a loop that never runs. urkin's IK
+# solvers (`urkin.ik` and all of `urkin.numerical_ik`, `orientation_error` included: use your
+# `pose_error`) are hidden while this exercise is graded; `urkin.fk` and `urkin.jacobian` are
+# not.
 
 # %%
 def ik_newton(robot, T_target, q0, tol=1e-12, max_iterations=100, max_step=1.0):
@@ -662,7 +680,7 @@ def ik_newton(robot, T_target, q0, tol=1e-12, max_iterations=100, max_step=1.0):
 
 
 # %%
-check("5.2", ik_newton)
+check("5.3", ik_newton)
 
 # %% [markdown]
 # ## 4. Watching it converge

@@ -29,16 +29,11 @@ import numpy as np
 
 import urkin
 import urkin.poe
-from urkin.exercises import check
+from urkin.course import below, check
 from urkin.numerical_ik import orientation_error
 from urkin.transforms import inv_transform, rotation_angle, se3_log
 
 np.set_printoptions(precision=4, suppress=True)
-
-
-def below(value, limit=1e-12):
-    """A tiny number as text: "below 1e-12" rather than a number that is only round-off."""
-    return f"below {limit:.0e}" if value < limit else f"{value:.3g}"
 
 
 def pose_residual(robot, q_now, T_goal):
@@ -253,7 +248,7 @@ except ValueError as exc:
 # inside the bound. Damping keeps a step finite; whether it is a *good* step is another
 # matter, which the rest of this lesson is about.
 #
-# ### Exercise 6.1 — `dls_step` (3 points)
+# ### Exercise 6.1 — `dls_step` (4 points)
 #
 # Write `dls_step(J, e, lam)`: the damped least-squares step
 # $\Delta q = J^\mathsf{T}(JJ^\mathsf{T} + \lambda^2 I)^{-1} e$ for a Jacobian of **any** shape
@@ -262,9 +257,14 @@ except ValueError as exc:
 # `np.linalg.solve(A, e)` to apply $A^{-1}$ to a vector: it is faster and more accurate than
 # forming the inverse.
 #
-# The check compares your step with the formula for random 6×6 and 3×6 Jacobians, then
-# makes $J$ singular (two dependent rows) with $\lambda = 0.01$. It recognises seed 000's
-# element-wise line, $\lambda$ where $\lambda^2$ belongs, and the undamped pseudo-inverse.
+# *Checked* (to 1e-9, 1e-6 for a singular $J$; a float32 answer to float32's precision for the
+# system's condition number): the formula for random 6×6, 3×6 and other shapes of $J$ with $\lambda$
+# between 0.05 and 0.5; a singular $J$ (two dependent rows) with $\lambda = 0.01$; and, reading your
+# code once the step is right, that it applies the inverse with a solve — no `np.linalg.inv`, no
+# `pinv`, no SVD (nor the SVD helper above). The feedback recognises seed 000's element-wise line,
+# $\lambda$ where $\lambda^2$ belongs, an identity of the wrong size, the matrix returned instead of
+# the step and the undamped pseudo-inverse. urkin's IK solvers (all of `urkin.numerical_ik`, the
+# closed-form solvers) are hidden while this exercise is graded.
 
 # %%
 def dls_step(J, e, lam):
@@ -600,17 +600,22 @@ for name, q_here in [("regular q", q_regular), ("home", home)]:
 # is exactly where the report wanted to use it. `np.linalg.pinv` (via the SVD) and the damped
 # forms work at any rank.
 #
-# ### Exercise 6.2 — `lm_step` (3 points)
+# ### Exercise 6.2 — `lm_step` (4 points)
 #
 # Write `lm_step(J, e, mu)`: the Levenberg–Marquardt step $\Delta q = (J^\mathsf{T}J +
 # \mu I)^{-1}J^\mathsf{T}e$ for a Jacobian of any shape $m \times n$ (here the identity is
 # $n \times n$). Solve the $n \times n$ system with `np.linalg.solve` rather than forming an
 # inverse.
 #
-# The check compares with the formula for random Jacobians, then verifies the identity you just
-# saw: with a singular $J$ and $\mu = 10^{-3}$, your step must equal the DLS step with
-# $\lambda^2 = \mu$. It recognises $\mu^2$ for $\mu$, $\mu$ added to every entry instead of
-# the diagonal, a missing $J^\mathsf{T}$, and seed 001's printed minus sign.
+# *Checked* (to 1e-9, 1e-6 for a singular $J$; a float32 answer to float32's precision for the
+# system's condition number): the formula for random 6×6, 3×6 and other shapes of $J$ with $\mu$
+# between $10^{-4}$ and 1; the identity you just saw — with a singular $J$ and $\mu = 10^{-3}$ your
+# step must equal the DLS step with $\lambda^2 = \mu$; and, reading your code once the step is right
+# (and that of any function of yours it calls, such as `dls_step`), that it solves rather than
+# inverts: no `np.linalg.inv` or `pinv`. The feedback recognises $\mu^2$ for $\mu$, $\mu$ added to
+# every entry instead of the diagonal, a missing $J^\mathsf{T}$, an identity of the wrong size and
+# seed 001's printed minus sign. urkin's IK solvers (all of `urkin.numerical_ik`, the closed-form
+# solvers) are hidden while this exercise is graded.
 
 # %%
 def lm_step(J, e, mu):
@@ -684,7 +689,7 @@ print(f"their remaining pose errors: {no_restarts.residual[stuck].min():.0e} to 
 # again from a random configuration. urkin does this by default (`max_restarts=20`,
 # seeded, so results are reproducible), and every target is then reached.
 #
-# ### Exercise 6.3 — `ik_lm` (4 points)
+# ### Exercise 6.3 — `ik_lm` (6 points)
 #
 # Write `ik_lm(robot, T_target, q0)`: inverse kinematics by Levenberg–Marquardt with adaptive
 # damping, built on **your** `lm_step`. The recipe:
@@ -703,10 +708,20 @@ print(f"their remaining pose errors: {no_restarts.residual[stuck].min():.0e} to 
 #   result is reproducible — with $\mu$ reset. Allow 20 restarts; if none succeeds, return
 #   the best $q$ you saw.
 #
-# Calling `urkin.ik` (or its internals) earns no points. The check solves random targets on
-# random UR arms, from a start 0.5 rad away on every joint and from the triply singular home
-# pose, and measures your answer with urkin's forward kinematics: it must be within
-# $10^{-8}$ m and $10^{-8}$ rad.
+# *Checked* (to 1e-8 m and 1e-8 rad, measured with `urkin.fk`; a float32 answer to float32's
+# precision): that your answer reaches random targets on random UR arms from starts 0.5 rad away on
+# every joint, and from the triply singular home pose, given as a list as seed 000 writes it; that
+# $\mu$ adapts — the check watches the calls your `ik_lm` makes to your `lm_step`: after a rejected
+# step (`lm_step` called again at the same point) $\mu$ must be larger, after an accepted step that
+# cuts $\|e\|$ below 40 % of its value it must not grow (and it must shrink at least once), and a
+# step that raises the error must not be kept — so a fixed $\mu$ fails; and that it restarts:
+# targets near home that Levenberg–Marquardt from home reaches only after a restart. Any adaptive
+# rule (×2 and ÷3, ×10 and ÷10, Nielsen's), step limit, stopping test and restart generator will do.
+# The feedback recognises a fixed $\mu$, $\mu$ moving the wrong way, steps that raise the error
+# accepted, no restarts, restarts from the same start, a loose tolerance and a loop that never runs
+# (seed 001's `while ‖V‖ < ε`). urkin's IK solvers (`urkin.ik` with its step functions, the
+# closed-form solvers) are hidden while this exercise is graded; `urkin.fk`, `urkin.jacobian` and
+# `orientation_error` are not.
 
 # %%
 def ik_lm(robot, T_target, q0):

@@ -35,16 +35,11 @@ import urkin
 import urkin.kinematics
 import urkin.plot
 from urkin.analytic_ik import wrap_angles
-from urkin.exercises import check
-from urkin.lab_ik import LAB_BASE_IN_WORLD, LAB_LINKS, LAB_OFFSET, lab_robot
+from urkin.course import below, check
+from urkin.course.lab import LAB_BASE_IN_WORLD, LAB_LINKS, LAB_OFFSET, lab_robot
 from urkin.transforms import make_transform, rot_x, rot_z, rotation_angle
 
 np.set_printoptions(precision=4, suppress=True)
-
-
-def below(value, limit=1e-12):
-    """A tiny number as text: "below 1e-12" rather than digits that are only round-off."""
-    return f"below {limit:.0e}" if value < limit else f"{value:.2e}"
 
 
 def largest_fk_error(robot, configurations, T_goal):
@@ -56,10 +51,11 @@ def largest_fk_error(robot, configurations, T_goal):
 
 # %% [markdown]
 # Every demonstration below uses urkin's own functions — `urkin.ik_analytic`, urkin's
-# closed-form solver for any UR arm; `urkin.ik_lab` and `urkin.fk_lab`, urkin's fixed version
-# of the lab sheet; `urkin.ik_closest` — never the functions you write, so the notebook runs
-# from top to bottom before you have written anything. Exercise 7.3 shares its name with
-# `urkin.ik_lab`; this notebook always calls urkin's with its `urkin.` prefix.
+# closed-form solver for any UR arm; `urkin.course.ik_lab` and `urkin.course.fk_lab`, the
+# course's fixed version of the lab sheet; `urkin.ik_closest` — never the functions you write,
+# so the notebook runs from top to bottom before you have written anything. Exercise 7.3
+# shares its name with `urkin.course.ik_lab`; this notebook always calls the course's version
+# by its full name, `urkin.course.ik_lab`.
 #
 # ## 1. Why a closed form?
 #
@@ -175,15 +171,15 @@ for printed, millimetres, meaning, metres in sheet_numbers:
     agrees = np.isclose(millimetres / 1000, metres)
     print(f"{printed:>9}    {meaning:<15}  {metres:7.4f}   {agrees}")
 print(f"\nthe base in the table frame: {BASE_IN_TABLE} m")
-print(f"LAB_TO_UR equals urkin.lab_ik.LAB_OFFSET: {np.array_equal(LAB_TO_UR, LAB_OFFSET)}")
+print(f"LAB_TO_UR equals urkin.course.lab.LAB_OFFSET: {np.array_equal(LAB_TO_UR, LAB_OFFSET)}")
 
 # %% [markdown]
-# **The arm as a DH model.** `urkin.lab_ik.lab_robot()` is the lab's arm as a urkin `Robot`:
+# **The arm as a DH model.** `urkin.course.lab.lab_robot()` is the lab's arm as a urkin `Robot`:
 # UR's DH structure with $d_1 = L_1$, $a_2 = -L_3$, $a_3 = -L_5$, $d_4 = L_2 - L_4 + L_6$,
 # $d_5 = L_7$, $d_6 = L_8$, its base at the offset above, and the gripper as its **tool**: the
 # suction cup at $(-L_9,\ 0,\ L_{10})$ in the flange frame, with the tool's $x$ axis along the
 # gripper plate. So `urkin.fk(lab, q)` is the pose of the suction cup in the table frame, and
-# `urkin.fk_lab(q)` reads $(x_w, y_w, z_w, \psi)$ off it. The lab's lengths are the UR3's,
+# `urkin.course.fk_lab(q)` reads $(x_w, y_w, z_w, \psi)$ off it. The lab's lengths are the UR3's,
 # measured and rounded to the millimetre:
 
 # %%
@@ -208,13 +204,13 @@ for name, mine, official in zip(("d1", "a2", "a3", "d4", "d5", "d6"), lab.length
 
 # %%
 target = (0.0, 0.40, 0.05, 1.75)  # x_w, y_w, z_w (m) and yaw_w (rad): a gripper target
-q_target = urkin.ik_lab(*target)  # UR controller angles
+q_target = urkin.course.ik_lab(*target)  # UR controller angles
 T_gripper = urkin.fk(lab, q_target)
 T_flange = urkin.fk_frames(lab, q_target)[-1]
-print(f"target (x_w, y_w, z_w, yaw_w): {np.array(target)}")
-print(f"urkin.ik_lab, UR angles (rad):  {q_target}")
-print(f"the same in lab angles (rad):   {wrap_angles(q_target - LAB_TO_UR)}")
-print(f"urkin.fk_lab gives back:        {urkin.fk_lab(q_target).round(12) + 0.0}")
+print(f"target (x_w, y_w, z_w, yaw_w):        {np.array(target)}")
+print(f"urkin.course.ik_lab, UR angles (rad): {q_target}")
+print(f"the same in lab angles (rad):         {wrap_angles(q_target - LAB_TO_UR)}")
+print(f"urkin.course.fk_lab gives back:       {urkin.course.fk_lab(q_target).round(12) + 0.0}")
 
 ax = urkin.plot.axes3d(center=(-0.05, 0.22, 0.17), half_width=0.26,
                        title="The lab's UR3 on its table, gripper at the target", figsize=(8, 8))
@@ -277,14 +273,14 @@ gripper_base = T_gripper[:3, 3] - BASE_IN_TABLE
 centre_x, centre_y = frames_base[5, :2]  # DH frame 5 sits right above the wrist centre
 rho = np.hypot(centre_x, centre_y)
 theta_c, theta_B = np.arctan2(centre_y, centre_x), np.arcsin(OFFSET / rho)
-theta1_lab = wrap_angles(q_target[0] - LAB_TO_UR[0])  # urkin.ik_lab's θ1, lab convention
+theta1_lab = wrap_angles(q_target[0] - LAB_TO_UR[0])  # urkin.course.ik_lab's θ1, lab convention
 u = np.array([np.cos(theta1_lab), np.sin(theta1_lab)])
 n = np.array([-u[1], u[0]])
 foot = (np.array([centre_x, centre_y]) @ u) * u
 yaw = target[3]
 print(f"wrist centre (x_c, y_c) = ({centre_x:.4f}, {centre_y:.4f}) m, ρ = {rho:.4f} m")
 print(f"θc = {theta_c:.4f} rad, θB = {theta_B:.4f} rad, θc − θB = {theta_c - theta_B:.4f} rad")
-print(f"urkin.ik_lab's θ1 in the lab convention:   {theta1_lab:.4f} rad")
+print(f"urkin.course.ik_lab's θ1 in the lab convention:   {theta1_lab:.4f} rad")
 
 
 def angle_arc(canvas, centre, radius, start, end, label, colour, label_radius=1.25,
@@ -357,8 +353,15 @@ plt.show()
 # $(x_c, y_c)$ given in the robot's base frame. Use `OFFSET` (= 0.110 m) for the sideways
 # offset. Of the two tangents from the base to the offset circle, the lab's arm uses the one
 # with the wrist on its left as seen from above, $\theta_1 = \theta_c - \theta_B$ as in the
-# figure. The check asks for the right angle for wrist centres in front of the base and
-# behind it.
+# figure.
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): θ1 in radians, the lab's
+# angle (not UR's joint 1), for random wrist centres 0.115 to 0.6 m from the base axis — in
+# front of the base (1 point) and behind it, $x_c < 0$, where `arctan(y/x)` fails (2 points).
+# No interval is asked for: θ1 is compared up to whole turns. The feedback recognises the
+# sheet's `arctan`, the other tangent, UR's joint 1, degrees and the sheet's millimetres.
+# urkin's lab solution and IK solvers (`urkin.course.ik_lab`, `urkin.ik_analytic`,
+# `urkin.ik_closest`, `urkin.ik`) are hidden while this exercise is graded.
 
 # %%
 def lab_theta1(x_c, y_c):
@@ -570,11 +573,22 @@ plt.show()
 # the lab fixes its branch.
 
 # %% [markdown]
-# ### Exercise 7.2 — `planar_2r` (3 points)
+# ### Exercise 7.2 — `planar_2r` (4 points)
 #
 # Write `planar_2r(x, y, l1, l2)` for the planar two-link arm above: return
 # `np.array([theta_a, theta_b])` with the elbow branch $\theta_b = +\arccos(\ldots) \ge 0$.
-# The check tries targets in all four quadrants, so the tip's direction needs `atan2`.
+# The targets lie in all four quadrants, so the tip's direction needs `atan2`.
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): for random links and targets
+# strictly inside the ring — some with the second link folded back so far that
+# $l_1 + l_2\cos\theta_b < 0$ — that the tip reaches $(x, y)$ with the elbow
+# $0 < \theta_b < \pi$ (angles are compared through the tip, so any whole turns may be added),
+# for targets with $x > 0$ (1 point) and $x < 0$ (2 points); and (1 point) targets on the
+# ring's outer and inner edges, which lie exactly in the ring but where rounding puts an
+# unclipped $\cos\theta_b$ past ±1. There the two elbows meet in a double root, which makes
+# the angles sensitive to rounding: the tip must be reached to 1e-6 m (a float32 answer to
+# the square root of float32's precision). urkin has no planar solver of its own: nothing
+# is hidden.
 
 # %%
 def planar_2r(x, y, l1, l2):
@@ -609,7 +623,7 @@ def planar_2r(x, y, l1, l2):
 check("7.2", planar_2r)
 
 # %% [markdown]
-# ### Exercise 7.3 — `ik_lab` (4 points)
+# ### Exercise 7.3 — `ik_lab` (5 points)
 #
 # Now put the steps together. Write `ik_lab(x_w, y_w, z_w, yaw_w)`: the UR controller angles
 # (a numpy array of six) that put the suction cup at $(x_w, y_w, z_w)$ in the table frame,
@@ -622,11 +636,20 @@ check("7.2", planar_2r)
 # 5. θ4 = −θ2 − θ3, θ5 = −π/2, θ6 = π/2 + θ1 − ψ (all lab convention);
 # 6. add `LAB_TO_UR` and wrap the angles into $(-\pi, \pi]$ (`wrap_angles`).
 #
-# The lengths are `L1` … `L10` and `OFFSET`, defined in section 2. The check sends random
-# targets on the table, in front of the base and behind it, through `urkin.fk_lab` and asks
-# for the target back within $10^{-8}$; it also checks that you return the lab's branch
-# (θ5 = −π/2, θ3 > 0). Calling `urkin.ik_lab`, `urkin.ik_analytic`, `urkin.ik_closest` or
-# `urkin.ik` earns no points.
+# The lengths are `L1` … `L10` and `OFFSET`, defined in section 2.
+#
+# *Checked* (to 1e-8; a float32 answer to float32's precision): random reachable targets on
+# the table, away from the singular edges, go through your `ik_lab` and back through
+# `urkin.course.fk_lab`, which must return the target (the yaw up to whole turns): with the
+# wrist centre in front of the base (1 point); behind it, $x_c < 0$ (1 point); and in front
+# but so close that wrist 1 is behind the base axis, $r < 0$ (1 point). Your angles must be
+# the lab's branch — θ1 from the `lab_theta1` tangent, θ5 = −π/2, θ3 > 0 — compared with
+# urkin's answer up to whole turns (1 point); and, on targets where unwrapped angles leave
+# it, every angle must lie in $(-\pi, \pi]$ (1 point). The feedback recognises the sheet's
+# three mistakes, lab angles, degrees, millimetres, the other elbow or tangent, and unwrapped
+# angles. `urkin.course.ik_lab`, `urkin.ik_analytic`, `urkin.ik_closest` and `urkin.ik` are
+# hidden while this exercise is graded (calling them earns nothing); `wrap_angles`,
+# `urkin.fk` and `urkin.course.fk_lab` are not.
 
 # %%
 def ik_lab(x_w, y_w, z_w, yaw_w):
@@ -671,7 +694,7 @@ check("7.3", ik_lab)
 # Now test the sheet itself. Below are its formulas exactly as printed — `arctan(y/x)` for
 # θc and for θ2, and $r = \sqrt{x^2 + y^2}$ — with the millimetres turned into metres (as
 # printed, every target would give NaN). They return lab angles; adding `LAB_TO_UR` turns
-# them into controller angles (section 2) that `urkin.fk_lab` can check.
+# them into controller angles (section 2) that `urkin.course.fk_lab` can check.
 
 # %%
 def sheet_ik(x_w, y_w, z_w, yaw_w):
@@ -701,14 +724,14 @@ def gripper_pose(x_w, y_w, z_w, yaw_w):
 
 
 print(f"the sheet, as printed (lab angles): {sheet_ik(*target)}")
-print(f"urkin.ik_lab (lab angles):          {wrap_angles(q_target - LAB_TO_UR)}")
+print(f"urkin.course.ik_lab (lab angles):   {wrap_angles(q_target - LAB_TO_UR)}")
 print("gripper_pose(target) is the pose urkin.fk reaches:",
       np.allclose(gripper_pose(*target), T_gripper, atol=1e-12))
 
 # %% [markdown]
 # On that target, in front of the base, the sheet is right. Now sweep a grid of targets over
 # the whole table — 0.005 m apart, the cup 0.05 m above the table, yaw 0 — and send each
-# answer through `urkin.fk_lab`. Which targets can the lab's branch reach at all?
+# answer through `urkin.course.fk_lab`. Which targets can the lab's branch reach at all?
 # `urkin.ik_analytic` on the lab's robot answers that for the whole grid in one batched call
 # (section 5 explains its rows; row 2 is the lab's branch).
 
@@ -724,11 +747,12 @@ with np.errstate(invalid="ignore", divide="ignore"):  # NaN where the sheet has 
     q_sheet = sheet_ik(*targets.T, table_yaw) + LAB_TO_UR
 answered = np.all(np.isfinite(q_sheet), axis=1)
 sheet_error = np.full(len(targets), np.nan)
-sheet_error[answered] = np.linalg.norm(urkin.fk_lab(q_sheet[answered])[:, :3]
+sheet_error[answered] = np.linalg.norm(urkin.course.fk_lab(q_sheet[answered])[:, :3]
                                        - targets[answered], axis=1)
-q_fixed = urkin.ik_lab(*targets[reachable].T, table_yaw)
+q_fixed = urkin.course.ik_lab(*targets[reachable].T, table_yaw)
 fixed_error = np.full(len(targets), np.nan)
-fixed_error[reachable] = np.linalg.norm(urkin.fk_lab(q_fixed)[:, :3] - targets[reachable], axis=1)
+fixed_error[reachable] = np.linalg.norm(urkin.course.fk_lab(q_fixed)[:, :3]
+                                        - targets[reachable], axis=1)
 
 # where the targets lie, from the geometry of section 3: the wrist centre's x, and the signed
 # reach r = s − L7, where s = √(ρ² − 0.110²) is the wrist centre's distance along u
@@ -749,7 +773,7 @@ print(f"  in front of the base, but wrist 1 behind the base axis (r < 0): "
 print(f"  any other: {np.sum(fails & (wrist_x >= 0) & (signed_r >= 0))}")
 print(f"where the printed formulas do work, largest round-trip error: "
       f"{below(np.nanmax(sheet_error[reachable & ~fails]))} m")
-print(f"urkin.ik_lab, every reachable target, largest round-trip error: "
+print(f"urkin.course.ik_lab, every reachable target, largest round-trip error: "
       f"{below(np.nanmax(fixed_error))} m")
 
 # %% [markdown]
@@ -763,7 +787,7 @@ extent = (xs[0] - 0.0025, xs[-1] + 0.0025, ys[0] - 0.0025, ys[-1] + 0.0025)
 shape = grid_x.shape
 fig, axes = plt.subplots(1, 2, figsize=(15, 7.5), sharey=True, layout="constrained")
 panels = ((axes[0], sheet_error, "the sheet's formulas as printed (in metres)"),
-          (axes[1], fixed_error, "fixed: atan2 and the signed r (urkin.ik_lab)"))
+          (axes[1], fixed_error, "fixed: atan2 and the signed r (urkin.course.ik_lab)"))
 for ax, error, title in panels:
     shown = np.where(reachable, np.maximum(error, floor), np.nan).reshape(shape)
     image = ax.imshow(shown, extent=extent, origin="lower", cmap="viridis",
@@ -914,7 +938,7 @@ plt.show()
 #
 # `urkin.ik_analytic` accepts any `Robot`, including the lab's with its base and tool, so it
 # can solve the lab's targets directly. The lab's branch is "+" for θ1, θ5 = −π/2 (the "−"
-# wrist) and θ3 > 0: row 2. Compare it with `urkin.ik_lab` on 1000 random table targets,
+# wrist) and θ3 > 0: row 2. Compare it with `urkin.course.ik_lab` on 1000 random table targets,
 # including some behind the base:
 
 # %%
@@ -924,10 +948,10 @@ random_targets = np.column_stack([rng.uniform(-0.45, 0.15, 3000), rng.uniform(-0
 all_rows, real = urkin.ik_analytic(lab, gripper_pose(*random_targets.T), return_mask=True)
 keep = np.flatnonzero(real[:, 2])[:1000]  # the first 1000 the lab's branch reaches
 lab_rows = all_rows[keep, 2]
-lab_answers = urkin.ik_lab(*random_targets[keep].T)
+lab_answers = urkin.course.ik_lab(*random_targets[keep].T)
 behind = np.sum(urkin.fk_frames(lab, lab_answers)[:, 5, 0, 3] < BASE_IN_TABLE[0])
 print(f"{len(keep)} targets ({behind} with the wrist centre behind the base)")
-print(f"largest |urkin.ik_lab − row 2 of urkin.ik_analytic|: "
+print(f"largest |urkin.course.ik_lab − row 2 of urkin.ik_analytic|: "
       f"{below(np.abs(wrap_angles(lab_answers - lab_rows)).max())} rad")
 print(f"row 2 has θ5 = −π/2 everywhere: {np.allclose(lab_rows[:, 4], -np.pi / 2, atol=1e-12)}; "
       f"θ3 > 0 everywhere: {bool(np.all(lab_rows[:, 2] > 0))}")

@@ -1,5 +1,5 @@
 """Closed-form IK: correctness, inclusion, completeness, strictness and range, singular poses
-included, for all seven arms; the lab's top-down solution; choosing the nearest solution."""
+included, for all seven arms; choosing the nearest solution."""
 
 import warnings
 import zlib
@@ -11,7 +11,6 @@ import urkin
 from tests.reference import OFFICIAL_DH, dh_fk
 from urkin.analytic_ik import ik_analytic, ik_closest, wrap_angles
 from urkin.kinematics import singularity_factors
-from urkin.lab_ik import LAB_LINKS, fk_lab, ik_lab, lab_robot
 
 N_RANDOM = 10_000
 
@@ -43,8 +42,9 @@ def test_correctness_every_solution_reaches_the_pose(solved):
     # and by the independent DH product
     rows = np.flatnonzero(mask.ravel())[:200]
     for row in rows:
-        np.testing.assert_allclose(dh_fk(OFFICIAL_DH[arm.name], solutions.reshape(-1, 6)[row]),
-                                   T[row // 8], atol=1e-9)  # fmt: skip
+        np.testing.assert_allclose(
+            dh_fk(OFFICIAL_DH[arm.name], solutions.reshape(-1, 6)[row]), T[row // 8], atol=1e-9
+        )
 
 
 def test_inclusion_the_generating_configuration_is_among_the_solutions(solved):
@@ -80,8 +80,9 @@ def test_completeness_numerical_search_finds_nothing_else():
     Q = np.random.default_rng(5).uniform(-np.pi, np.pi, (40, 6))
     T = urkin.fk(ur5, Q)
     starts = np.random.default_rng(6).uniform(-np.pi, np.pi, (40, 6))
-    numeric = urkin.ik(ur5, np.repeat(T, len(starts), axis=0), q0=np.tile(starts, (40, 1)),
-                       max_restarts=0)  # fmt: skip
+    numeric = urkin.ik(
+        ur5, np.repeat(T, len(starts), axis=0), q0=np.tile(starts, (40, 1)), max_restarts=0
+    )
     found = numeric.q[numeric.success].reshape(-1, 6)
     owners = np.repeat(np.arange(40), len(starts))[numeric.success]
     for i in range(40):
@@ -132,8 +133,15 @@ def on_family(arm, family, rng, q=None):
     return q
 
 
-FAMILIES = [("shoulder",), ("wrist",), ("elbow",), ("shoulder", "wrist"), ("shoulder", "elbow"),
-            ("elbow", "wrist"), ("shoulder", "elbow", "wrist")]  # fmt: skip
+FAMILIES = [
+    ("shoulder",),
+    ("wrist",),
+    ("elbow",),
+    ("shoulder", "wrist"),
+    ("shoulder", "elbow"),
+    ("elbow", "wrist"),
+    ("shoulder", "elbow", "wrist"),
+]
 
 
 @pytest.mark.parametrize("family", FAMILIES, ids=["+".join(f) for f in FAMILIES])
@@ -221,60 +229,3 @@ def test_closest_reports_unreachable_poses():
     result = ik_closest(ur3, far, np.zeros(6))
     assert not result.success and "out of reach" in result.reason
     assert np.isfinite(result.q).all()
-
-
-# ---------------------------------------------------------------------------- the lab
-
-
-def lab_grid():
-    xs, ys = np.meshgrid(np.linspace(-0.3, 0.5, 33), np.linspace(-0.25, 0.55, 33))
-    return xs.ravel(), ys.ravel()
-
-
-@pytest.mark.parametrize("z", [0.0, 0.06, 0.2])
-@pytest.mark.parametrize("yaw", [-2.5, 0.0, 1.2])
-def test_lab_ik_round_trips_every_reachable_table_target(z, yaw):
-    xs, ys = lab_grid()
-    reached = 0
-    for x, y in zip(xs, ys):
-        try:
-            q = ik_lab(x, y, z, yaw)
-        except ValueError as exc:
-            assert "unreachable" in str(exc)
-            continue
-        reached += 1
-        np.testing.assert_allclose(fk_lab(q), [x, y, z, yaw], atol=1e-9)
-    assert reached > 300
-
-
-def test_lab_ik_is_one_branch_of_the_analytic_solution():
-    robot = lab_robot()
-    xs, ys = lab_grid()
-    behind = 0
-    for x, y in zip(xs[::3], ys[::3]):
-        try:
-            q = ik_lab(x, y, 0.05, 0.7)
-        except ValueError:
-            continue
-        T = urkin.fk(robot, q)
-        solutions = ik_analytic(robot, T)
-        assert distance_mod_2pi(solutions, q) < 1e-9
-        assert q[4] == pytest.approx(-np.pi / 2) and q[2] > 0
-        base = np.array([x, y]) - [-0.15, 0.15]
-        behind += base[0] < 0  # the wrist behind the base axis: where the printed formula fails
-    assert behind > 10
-
-
-def test_the_printed_lab_formula_fails_behind_the_base():
-    offset = LAB_LINKS[1] - LAB_LINKS[3] + LAB_LINKS[5]  # L2 − L4 + L6 = 0.110 m
-    x_c, y_c = -0.20, 0.05  # a wrist point behind the base axis (x < 0 in the base frame)
-    printed = np.arctan(y_c / x_c) - np.arcsin(offset / np.hypot(x_c, y_c))
-    fixed = np.arctan2(y_c, x_c) - np.arcsin(offset / np.hypot(x_c, y_c))
-    assert abs(wrap_angles(printed - fixed)) == pytest.approx(np.pi)
-
-
-def test_lab_ik_refuses_unreachable_targets_with_the_distance():
-    with pytest.raises(ValueError, match=r"stretch .* m further"):
-        ik_lab(1.2, 0.0, 0.05, 0.0)
-    with pytest.raises(ValueError, match="from the base axis"):
-        ik_lab(-0.15, 0.15, 0.05, 0.0)

@@ -6,14 +6,20 @@ from pathlib import Path
 
 import pytest
 
-from urkin import course
+from urkin.course import build as course
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def code_cell(source, outputs=()):
-    return {"cell_type": "code", "execution_count": 3, "id": "x", "metadata": {"scrolled": True},
-            "outputs": list(outputs), "source": source}  # fmt: skip
+    return {
+        "cell_type": "code",
+        "execution_count": 3,
+        "id": "x",
+        "metadata": {"scrolled": True},
+        "outputs": list(outputs),
+        "source": source,
+    }
 
 
 SOLUTION_CELL = '''def dh_transform(theta, d, a, alpha):
@@ -32,11 +38,13 @@ def solution_notebook():
             code_cell(SOLUTION_CELL, [{"output_type": "stream", "name": "stdout", "text": "x"}]),
             code_cell('check("2.1", dh_transform)'),
         ],
-        "metadata": {"kernelspec": {"name": "conda-env-robots", "display_name": "robots"},
-                     "widgets": {"state": {}}},
+        "metadata": {
+            "kernelspec": {"name": "conda-env-robots", "display_name": "robots"},
+            "widgets": {"state": {}},
+        },
         "nbformat": 4,
         "nbformat_minor": 4,
-    }  # fmt: skip
+    }
 
 
 def test_the_repository_course_is_up_to_date_and_leak_free():
@@ -100,8 +108,16 @@ def test_check_finds_a_leaked_solution_line(course_copy):
     lines = [line for cell in solution["cells"] for line in course._source(cell).split("\n")]
     leaked = lines[next(i for i, line in enumerate(lines) if line.strip() == course.BEGIN) + 1]
     student = json.loads(student_path.read_text())
-    student["cells"].append({"cell_type": "code", "execution_count": None, "id": "leak",
-                             "metadata": {}, "outputs": [], "source": leaked})  # fmt: skip
+    student["cells"].append(
+        {
+            "cell_type": "code",
+            "execution_count": None,
+            "id": "leak",
+            "metadata": {},
+            "outputs": [],
+            "source": leaked,
+        }
+    )
     student_path.write_text(course._dumps(student))
     problems = course.check(course_copy)
     assert any("leaked" in p for p in problems), problems
@@ -114,7 +130,7 @@ def test_check_finds_a_missing_check_cell_and_a_stray_notebook(course_copy):
     path.write_text(json.dumps(notebook))
     (course_copy / "course" / "99_stray.ipynb").write_text("{}")
     problems = course.check(course_copy)
-    assert any('no check("0.1"' in p for p in problems), problems
+    assert any('must be exactly check("0.1", deg_to_rad)' in p for p in problems), problems
     assert any("99_stray.ipynb has no source" in p for p in problems), problems
 
 

@@ -3,8 +3,7 @@
 import numpy as np
 
 import urkin
-from urkin.kinematics import dh_chain, position_jacobian
-from urkin.seeds import (
+from urkin.course.seeds import (
     SEED002_ARM,
     SEED002_DH,
     SEED002_LENGTHS,
@@ -12,6 +11,7 @@ from urkin.seeds import (
     seed002_jacobian,
     seed002_position,
 )
+from urkin.kinematics import dh_chain, position_jacobian
 
 D6 = SEED002_LENGTHS[5]
 
@@ -60,13 +60,14 @@ def test_seed002_functions_give_sympy_expressions():
 def test_seed002_formula_error_reaches_two_d6_and_hides_where_c234_is_zero():
     rng = np.random.default_rng(3)
     Q = rng.uniform(-np.pi, np.pi, (4000, 6))
-    errors = np.array([
-        np.linalg.norm(seed002_published_position(q) - dh_chain(SEED002_DH, q)[:3, 3])
-        for q in Q
-    ])  # fmt: skip
+    errors = np.array(
+        [np.linalg.norm(seed002_published_position(q) - dh_chain(SEED002_DH, q)[:3, 3]) for q in Q]
+    )
     c234 = np.cos(Q[:, 1] + Q[:, 2] + Q[:, 3])
     np.testing.assert_allclose(errors, D6 * np.abs(c234) * (1 - np.sin(Q[:, 4])), atol=1e-12)
     assert 0.95 * 2 * D6 < errors.max() <= 2 * D6
-    np.testing.assert_allclose(seed002_published_position(np.zeros(6))[:2] -
-                               dh_chain(SEED002_DH, np.zeros(6))[:3, 3][:2],
-                               [-D6, 0.0], atol=1e-12)  # 82.5 mm at q = 0  # fmt: skip
+    np.testing.assert_allclose(
+        seed002_published_position(np.zeros(6))[:2] - dh_chain(SEED002_DH, np.zeros(6))[:3, 3][:2],
+        [-D6, 0.0],
+        atol=1e-12,
+    )  # 82.5 mm at q = 0

@@ -24,8 +24,9 @@ def test_default_method_from_zeros_succeeds_on_random_reachable_poses(name):
     Q = np.random.default_rng(2026).uniform(-np.pi, np.pi, (1000, 6))
     targets = np.array([dh_fk(OFFICIAL_DH[name], q) for q in Q])
     result = urkin.ik(arm, targets, q0=np.zeros(6))
-    verified = np.array([max(pose_error(OFFICIAL_DH[name], q, T)) < 1e-9
-                         for q, T in zip(result.q, targets)])  # fmt: skip
+    verified = np.array(
+        [max(pose_error(OFFICIAL_DH[name], q, T)) < 1e-9 for q, T in zip(result.q, targets)]
+    )
     assert verified.mean() >= 0.999
     # success is claimed only where the pose error really is within tolerance
     assert not np.any(result.success & ~verified)
@@ -123,8 +124,9 @@ def test_the_cross_product_error_is_blind_at_180_degrees():
         W = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
         turned = (np.eye(3) + np.sin(angle) * W + (1 - np.cos(angle)) * W @ W) @ R
         np.testing.assert_allclose(orientation_error(R, turned), angle * k, atol=1e-12)
-        np.testing.assert_allclose(orientation_error(R, turned, "cross"), np.sin(angle) * k,
-                                   atol=1e-12)  # fmt: skip
+        np.testing.assert_allclose(
+            orientation_error(R, turned, "cross"), np.sin(angle) * k, atol=1e-12
+        )
     half_turn = rot_z(np.pi) @ R
     np.testing.assert_allclose(orientation_error(R, half_turn, "cross"), 0.0, atol=1e-15)
     assert np.linalg.norm(orientation_error(R, half_turn)) == pytest.approx(np.pi)
@@ -163,12 +165,15 @@ def test_tool_and_base_are_honoured():
         ({"target": [np.nan, 0, 0]}, ValueError, "NaN"),
         ({"target": np.eye(4), "method": "newton"}, ValueError, "method must be one of"),
         ({"target": np.eye(4), "orientation": "quat"}, ValueError, "orientation"),
-        ({"target": np.tile(np.eye(4), (3, 1, 1)), "q0": np.zeros((2, 6))}, ValueError,
-         "2 configurations for 3 targets"),
+        (
+            {"target": np.tile(np.eye(4), (3, 1, 1)), "q0": np.zeros((2, 6))},
+            ValueError,
+            "2 configurations for 3 targets",
+        ),
         ({"target": [0.3, 0.1, 0.2], "method": "poe"}, ValueError, "full poses"),
         ({"target": np.eye(4), "q0": np.full(6, 90.0)}, ValueError, "degrees"),
     ],
-)  # fmt: skip
+)
 def test_bad_input_names_the_problem(kwargs, error, message):
     with pytest.raises(error, match=message):
         urkin.ik(urkin.robot("ur5"), **kwargs)

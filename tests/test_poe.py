@@ -73,9 +73,15 @@ SEED001_AXES = np.array(
     [[0, 0, 1], [-1, 0, 0], [-1, 0, 0], [-1, 0, 0], [0, 0, 1], [-1, 0, 0]], float
 )
 SEED001_POINTS = np.array(
-    [[0, 0, 0.1045], [-0.116, 0, 0.109], [-0.117, 0, 0.353], [-0.118, 0, 0.566],
-     [-0.112, 0, 0.65], [-0.112, 0, 0.651]]
-)  # fmt: skip
+    [
+        [0, 0, 0.1045],
+        [-0.116, 0, 0.109],
+        [-0.117, 0, 0.353],
+        [-0.118, 0, 0.566],
+        [-0.112, 0, 0.65],
+        [-0.112, 0, 0.651],
+    ]
+)
 SEED001_S = np.array(
     [
         [0, -1, -1, -1, 0, -1],
@@ -120,8 +126,9 @@ def test_space_body_and_geometric_jacobians_agree_through_the_adjoint(arm, rng):
     np.testing.assert_allclose(poe.space_from_geometric(J, T), J_s, rtol=0, atol=1e-12)
     np.testing.assert_allclose(poe.geometric_from_space(J_s, T), J, rtol=0, atol=1e-12)
     for q, Jq in zip(Q[:20], J_s):
-        expected = poe.space_from_geometric(complex_step_jacobian(OFFICIAL_DH[arm.name], q),
-                                            dh_fk(OFFICIAL_DH[arm.name], q))  # fmt: skip
+        expected = poe.space_from_geometric(
+            complex_step_jacobian(OFFICIAL_DH[arm.name], q), dh_fk(OFFICIAL_DH[arm.name], q)
+        )
         np.testing.assert_allclose(Jq, expected, rtol=0, atol=1e-12)
     np.testing.assert_allclose(poe.jacobian_space(S, Q[0]), J_s[0], rtol=0, atol=1e-14)
 
@@ -196,8 +203,9 @@ def test_se3_log_near_zero_and_pi(angle):
 def test_adjoint_maps_twists_between_frames(rng):
     T = make_transform(rpy_to_rotation(rng.uniform(-1, 1, 3)), rng.uniform(-1, 1, 3))
     V = rng.normal(size=6)
-    np.testing.assert_allclose(twist_matrix(adjoint(T) @ V),
-                               T @ twist_matrix(V) @ inv_transform(T), atol=1e-14)  # fmt: skip
+    np.testing.assert_allclose(
+        twist_matrix(adjoint(T) @ V), T @ twist_matrix(V) @ inv_transform(T), atol=1e-14
+    )
     np.testing.assert_allclose(adjoint(inv_transform(T)), np.linalg.inv(adjoint(T)), atol=1e-12)
 
 

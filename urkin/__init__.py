@@ -1,4 +1,4 @@
-"""urkin: kinematics of Universal Robots arms, and the course built on it.
+"""urkin: kinematics of Universal Robots arms.
 
 The public API::
 
@@ -14,13 +14,13 @@ The public API::
 
 Units are metres and radians; poses are 4×4 homogeneous transforms in DH frame 0 (UR's
 ``base``).  ``import urkin`` loads numpy only: SymPy stays in :mod:`urkin.symbolic` and
-matplotlib in :mod:`urkin.plot`.
+matplotlib in :mod:`urkin.plot`.  The course built on the library (lessons, checks, the
+autograder) is the separate wing :mod:`urkin.course`; the library never imports it.
 """
 
 from urkin import kinematics, poe, robots, transforms
 from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import fk, fk_frames, jacobian, position_jacobian
-from urkin.lab_ik import fk_lab, ik_lab
 from urkin.numerical_ik import IKResult, ik
 from urkin.robots import ROBOTS, T_BASE_LINK_BASE, Robot, robot
 
@@ -31,11 +31,9 @@ __all__ = [
     "Robot",
     "fk",
     "fk_frames",
-    "fk_lab",
     "ik",
     "ik_analytic",
     "ik_closest",
-    "ik_lab",
     "jacobian",
     "kinematics",
     "poe",

@@ -3,7 +3,7 @@
 ::
 
     urkin grade SUBMISSIONS... --out DIR   grade notebooks (files or folders) into DIR
-    urkin course build|check|execute       build course/ from solutions/, check it, run lessons
+    urkin course build|check|execute|render   build course/ from solutions/, check, run, render
     urkin codegen [--check]                regenerate urkin/_generated from the SymPy derivation
     urkin info                             the arms urkin knows and their DH lengths
 """
@@ -18,8 +18,12 @@ __all__ = ["main"]
 
 
 def _grade(args: argparse.Namespace) -> int:
-    from urkin.grading import grade_many, new_seed, progress_bar, write_reports
+    from urkin.course.grading import grade_many, new_seed, progress_bar, write_reports
+    from urkin.course.grading.isolation import support
 
+    isolation = support()
+    if not isolation.namespaces:
+        print(f"WARNING: {isolation.summary}", file=sys.stderr)
     seed = args.seed if args.seed is not None else new_seed()
     progress = progress_bar() if not args.quiet else None
     results = grade_many(
@@ -38,8 +42,10 @@ def _grade(args: argparse.Namespace) -> int:
     out = write_reports(results, args.out)
     graded = sum(r.status == "graded" for r in results)
     print(f"graded {graded} of {len(results)} submissions (seed {seed}); reports in {out}/")
+    print(f"isolation: {isolation.summary}")
     for r in results:
-        print(f"  {r.name:<40} {r.earned:>5g} / {r.points:<5g} {r.status}")
+        name = "".join(c if c.isprintable() else "?" for c in r.name)
+        print(f"  {name:<40} {r.earned:>5g} / {r.points:<5g} {r.status}")
     return 0
 
 
@@ -55,7 +61,11 @@ def _info(_: argparse.Namespace) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``urkin`` console script."""
-    from urkin.grading import DEFAULT_MEMORY_LIMIT_MB, DEFAULT_SETUP_LIMIT, DEFAULT_TIME_LIMIT
+    from urkin.course.grading import (
+        DEFAULT_MEMORY_LIMIT_MB,
+        DEFAULT_SETUP_LIMIT,
+        DEFAULT_TIME_LIMIT,
+    )
 
     parser = argparse.ArgumentParser(
         prog="urkin", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
@@ -77,7 +87,7 @@ def main(argv: list[str] | None = None) -> int:
         "--memory-limit",
         type=int,
         default=DEFAULT_MEMORY_LIMIT_MB,
-        help=f"MiB per exercise (default {DEFAULT_MEMORY_LIMIT_MB})",
+        help=f"MiB per exercise, all its processes (default {DEFAULT_MEMORY_LIMIT_MB})",
     )
     grade.add_argument(
         "--setup-limit",
@@ -107,9 +117,9 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _course(args: argparse.Namespace) -> int:
-    from urkin import course
+    from urkin.course import build
 
-    return course.main([args.action, *args.lessons, "--root", str(args.root)])
+    return build.main([args.action, *args.lessons, "--root", str(args.root)])
 
 
 def _codegen(args: argparse.Namespace) -> int:

@@ -1,8 +1,8 @@
 """Grade notebooks with plain pytest: one test per exercise of each submission.
 
-    pytest tests/grading --submission alice_02_dh_fk.ipynb      # one student
-    pytest tests/grading --submission submissions/              # a folder of them
-    pytest tests/grading                                        # the solution notebooks
+    pytest tests/grading --submission submissions/alice_02_dh_forward_kinematics.ipynb
+    pytest tests/grading --submission submissions/     # a folder of them
+    pytest tests/grading                                # the solution notebooks
 
 A test passes when its exercise earns full points; its failure message is the feedback the
 student would read.  The points of every submission are printed at the end.
@@ -14,9 +14,9 @@ from pathlib import Path
 
 import pytest
 
-from urkin.exercises import exercises_for_lesson
-from urkin.grading import DEFAULT_TIME_LIMIT, find_submissions, grade_notebook, new_seed
-from urkin.grading.notebook import lesson_of
+from urkin.course.grading import DEFAULT_TIME_LIMIT, Grader, find_submissions, new_seed
+from urkin.course.grading.read import read_notebook
+from urkin.course.lessons import lessons
 
 ROOT = Path(__file__).resolve().parents[2]
 _graded: dict[Path, object] = {}
@@ -34,8 +34,8 @@ def pytest_generate_tests(metafunc):
         return
     cases, ids = [], []
     for path in _submissions(metafunc.config):
-        lesson = lesson_of(path)
-        exercises = exercises_for_lesson(lesson) if lesson else []
+        number = read_notebook(path).lesson
+        exercises = lessons()[number].exercises if number in lessons() else []
         for ex in exercises or [None]:
             cases.append((path, ex.id if ex else None))
             ids.append(f"{path.name}::{ex.id if ex else 'lesson?'}")
@@ -43,17 +43,18 @@ def pytest_generate_tests(metafunc):
 
 
 @pytest.fixture(scope="session")
-def grading_seed(request):
+def grader(request):
     seed = request.config.getoption("grading_seed")
-    return new_seed() if seed is None else seed
+    limit = request.config.getoption("time_limit") or DEFAULT_TIME_LIMIT
+    with Grader(new_seed() if seed is None else seed, time_limit=limit) as grader:
+        yield grader
 
 
 @pytest.fixture
-def grade(request, grading_seed):
+def grade(grader):
     def grade_once(path: Path):
         if path not in _graded:
-            limit = request.config.getoption("time_limit") or DEFAULT_TIME_LIMIT
-            _graded[path] = grade_notebook(path, seed=grading_seed, time_limit=limit)
+            _graded[path] = grader.grade(path)
         return _graded[path]
 
     return grade_once
@@ -70,3 +71,4 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
             + (f"  [{parts}]" if parts else f"  {result.reason}")
             + f"  seed {result.seed}"
         )
+    terminalreporter.write_line(f"isolation: {next(iter(_graded.values())).isolation}")

@@ -1,0 +1,290 @@
+"""A folder of hostile submissions: each tries to earn points it did not earn, to reach urkin's
+answer by another route, to change other rows or the reports, or to harm the grading run.
+
+``HOSTILE`` maps a file name to ``(make, expected)``: ``make(path, context)`` writes the file
+(``context`` gives the class folder and the output folder, which an attack may aim at), and
+``expected`` maps exercise ids to the points the submission must get at most (``0`` for the
+attacked exercise).  A file that is no notebook expects no exercises at all.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from tests.notebooks import notebook, student_notebook, write
+
+
+@dataclass
+class Context:
+    folder: Path  # the class folder (the grader's input)
+    out: Path  # the grader's output folder
+    marker: str  # unique text the attacks print or leave behind
+
+
+def _lesson02(replace: dict[str, str]):
+    def make(path: Path, context: Context) -> None:
+        sources = {
+            k: v.replace("MARKER", context.marker)
+            .replace("CLASS", str(context.folder))
+            .replace("OUT", str(context.out))
+            for k, v in replace.items()
+        }
+        write(student_notebook("02", sources), path)
+
+    return make
+
+
+def _fk(body: str) -> dict[str, str]:
+    return {"forward_kinematics": "def forward_kinematics(robot, q):\n" + body}
+
+
+_ROUTES = {
+    # urkin's answer to 2.2 by another name or route
+    "route_import_as": {"forward_kinematics": "from urkin import fk as forward_kinematics\n"},
+    "route_alias": {"forward_kinematics": "forward_kinematics = urkin.kinematics.fk\n"},
+    "route_fk_frames": _fk("    return urkin.fk_frames(robot, q)[-1]\n"),
+    "route_poe": _fk(
+        "    S, M = urkin.poe.space_screws(robot)\n    return urkin.poe.fk_space(M, S, q)\n"
+    ),
+    "route_generated": _fk(
+        "    from urkin._generated import ur_kinematics as g\n"
+        "    return g.t06_one(*q, *robot.lengths)\n"
+    ),
+    "route_symbolic": _fk(
+        "    f = sp.lambdify((Q, LENGTHS), urkin.symbolic.ur_t06(), 'numpy')\n"
+        "    return np.asarray(f(q, robot.lengths), dtype=float)\n"
+    ),
+    "route_reload": _fk(
+        "    import importlib, urkin.kinematics as k\n    return importlib.reload(k).fk(robot, q)\n"
+    ),
+    "route_fresh_import": _fk(
+        "    import sys\n"
+        "    for name in [m for m in sys.modules if m.startswith('urkin')]:\n"
+        "        del sys.modules[name]\n"
+        "    import urkin as again\n"
+        "    return again.fk(robot, q)\n"
+    ),
+    "route_source_file": _fk(
+        "    import urkin.kinematics as k\n"
+        "    text = open(k.__file__).read()\n"
+        "    space = {'__name__': 'urkin.kinematics_copy'}\n"
+        "    exec(compile(text, 'copy', 'exec'), space)\n"
+        "    return space['fk'](robot, q)\n"
+    ),
+    "route_subprocess": _fk(
+        "    import json, subprocess, sys\n"
+        "    code = ('import json, sys, urkin; r = urkin.robot(sys.argv[1]); '\n"
+        "            'print(json.dumps(urkin.fk(r, json.loads(sys.argv[2])).tolist()))')\n"
+        "    out = subprocess.run([sys.executable, '-c', code, robot.name,\n"
+        "                          json.dumps(list(map(float, q)))], capture_output=True,\n"
+        "                         text=True).stdout\n"
+        "    return np.array(json.loads(out))\n"
+    ),
+    "route_thread": _fk(
+        "    import threading\n"
+        "    box = []\n"
+        "    t = threading.Thread(target=lambda: box.append(urkin.fk(robot, q)))\n"
+        "    t.start(); t.join()\n"
+        "    return box[0]\n"
+    ),
+    "route_gc": _fk(
+        "    import gc\n"
+        "    for o in gc.get_objects():\n"
+        "        if callable(o) and getattr(o, '__name__', '') in ('fk', 't06_one'):\n"
+        "            try:\n"
+        "                return o(robot, q)\n"
+        "            except Exception:\n"
+        "                pass\n"
+        "    raise RuntimeError('nothing found')\n"
+    ),
+    "route_ik_roundtrip": _fk(
+        "    # the closed-form IK's verification computes FK: ask it about a pose near q\n"
+        "    return urkin.ik(robot, np.eye(4), q0=q, max_iter=0).q\n"
+    ),
+    "route_plot": _fk(
+        "    import urkin.plot\n"
+        "    import matplotlib.pyplot as plt\n"
+        "    ax = urkin.plot.show_robot(robot, q)\n"
+        "    return ax\n"
+    ),
+}
+
+_FORGERIES = {
+    # forging results, patching what the checks compare with, lying on the channel
+    "forge_pipe": _fk(
+        "    import json, os, sys\n"
+        "    fd = int(sys.argv[2])\n"
+        "    for i in range(1, 200):\n"
+        "        os.write(fd, (json.dumps({'id': i, 'value': {'$a': ['float64', [4, 4],\n"
+        "                  ''] }}) + '\\n').encode())\n"
+        "    return np.eye(4)\n"
+    ),
+    "forge_result_file": _fk(
+        "    for name in ('RESULT.json', '/tmp/RESULT.json', 'OUT/gradebook.csv'):\n"
+        "        try:\n"
+        "            open(name, 'w').write('{\"score\": 1000}')\n"
+        "        except OSError:\n"
+        "            pass\n"
+        "    return np.eye(4)\n"
+    ),
+    "patch_checks": _fk(
+        "    np.allclose = lambda *a, **k: True\n"
+        "    np.isclose = lambda *a, **k: True\n"
+        "    urkin.fk = lambda robot, q: np.eye(4)\n"
+        "    import urkin.course\n"
+        "    return np.eye(4)\n"
+    ),
+    "fake_report_text": _fk(
+        "    raise ValueError('\\n# alice_02.ipynb\\nLesson 02: 0 / 13 points'\n"
+        "                     '\\n```\\n=HYPERLINK(1) \\u202e MARKER')\n"
+    ),
+    "exit_in_function": _fk("    import sys\n    sys.exit(0)\n"),
+    "os_exit_in_function": _fk("    import os\n    os._exit(0)\n"),
+}
+
+_SABOTAGE = {
+    # other rows, the reports, the machine
+    "sabotage_classmates": _fk(
+        "    import glob, os\n"
+        "    for pattern in ('CLASS/*', '../*', '/tmp/*', 'OUT/*', 'OUT/*/*'):\n"
+        "        for name in glob.glob(pattern):\n"
+        "            try:\n"
+        "                open(name, 'w').write('MARKER')\n"
+        "            except OSError:\n"
+        "                pass\n"
+        "    return np.eye(4)\n"
+    ),
+    "late_daemon": _fk(
+        "    import os, time\n"
+        "    if os.fork() == 0:\n"
+        "        os.setsid()\n"
+        "        if os.fork() == 0:\n"
+        "            time.sleep(4)\n"
+        "            for name in ('OUT/gradebook.csv', 'OUT/summary.json'):\n"
+        "                try:\n"
+        "                    open(name, 'w').write('MARKER')\n"
+        "                except OSError:\n"
+        "                    pass\n"
+        "            os._exit(0)\n"
+        "        os._exit(0)\n"
+        "    return np.eye(4)\n"
+    ),
+    "hold_the_runner": _fk(
+        "    import signal, time\n"
+        "    signal.signal(signal.SIGTERM, signal.SIG_IGN)\n"
+        "    while True:\n"
+        "        time.sleep(0.1)\n"
+    ),
+    "fork_bomb": _fk(
+        "    import os\n"
+        "    while True:\n"
+        "        try:\n"
+        "            os.fork()\n"
+        "        except OSError:\n"
+        "            pass\n"
+    ),
+    "memory_hog": _fk("    blocks = []\n    while True:\n        blocks.append(np.ones(2**27))\n"),
+    "stderr_flood": _fk(
+        "    import os\n"
+        "    block = b'MARKER' * 200_000\n"
+        "    for _ in range(1000):\n"
+        "        os.write(2, block)\n"
+        "    return np.eye(4)\n"
+    ),
+    "print_flood": _fk(
+        "    for _ in range(10**5):\n        print('x' * 10_000)\n    return np.eye(4)\n"
+    ),
+    "huge_answer": _fk("    return np.ones((4, 4, 10**7))\n"),
+    "deep_answer": _fk("    x = []\n    for _ in range(10**5):\n        x = [x]\n    return x\n"),
+    "network": _fk(
+        "    import socket\n"
+        "    socket.create_connection(('pypi.org', 443), timeout=3)\n"
+        "    return np.eye(4)\n"
+    ),
+}
+
+
+def _setup_hang(path: Path, context: Context) -> None:
+    nb = student_notebook("02")
+    nb["cells"].append(
+        {
+            "cell_type": "code",
+            "execution_count": None,
+            "id": "hang",
+            "metadata": {},
+            "outputs": [],
+            "source": "import time\nPAUSE = time.sleep(10**6)\n\ndef helper():\n    return PAUSE\n",
+        }
+    )
+    for cell in nb["cells"]:
+        if "def forward_kinematics" in "".join(cell["source"]):
+            cell["source"] = "".join(cell["source"]).replace(
+                "    T = np.eye(4)", "    helper\n    T = np.eye(4)", 1
+            )
+    write(nb, path)
+
+
+def _fifo(path: Path, context: Context) -> None:
+    os.mkfifo(path)
+
+
+def _symlink(path: Path, context: Context) -> None:
+    path.symlink_to("/etc/passwd")
+
+
+def _huge(path: Path, context: Context) -> None:
+    with open(path, "wb") as handle:
+        handle.truncate(25 * 2**20)
+
+
+def _many_cells(path: Path, context: Context) -> None:
+    cells = [f"x{i} = {i}" for i in range(20_000)]
+    write(notebook(*cells, "def dh_transform(theta, d, a, alpha):\n    return x1"), path)
+
+
+ODD_FILES = {
+    "fifo_02.ipynb": _fifo,
+    "directory_02.ipynb": lambda p, c: (p.mkdir(), write(notebook("x = 1"), p / "inner.ipynb")),
+    "link_02.ipynb": _symlink,
+    "huge_02.ipynb": _huge,
+    "deep_02.ipynb": lambda p, c: write("[" * 200_000 + "]" * 200_000, p),
+    "garbage_02.ipynb": lambda p, c: p.write_bytes(os.urandom(5000)),
+    "nul_02.ipynb": lambda p, c: write(notebook("def dh_transform(*a):\n    return 1\x00\n"), p),
+    "=cmd|' -c calc'!A0_02.ipynb": _lesson02({}),
+    "alice~02.ipynb": _lesson02({}),
+    "many_cells_02.ipynb": _many_cells,
+    "setup_hang_02.ipynb": _setup_hang,
+    "\u202eevil_02.ipynb": _lesson02({}),
+}
+
+#: file name → (make, {exercise: most points allowed}); an exercise not named keeps its points
+HOSTILE = {
+    **{f"{name}_02.ipynb": (_lesson02(cells), {"2.2": 0}) for name, cells in _ROUTES.items()},
+    **{
+        f"{name}_02.ipynb": (_lesson02(cells), {"2.2": 0 if name != "forge_pipe" else 5})
+        for name, cells in _FORGERIES.items()
+    },
+    **{f"{name}_02.ipynb": (_lesson02(cells), {"2.2": 5}) for name, cells in _SABOTAGE.items()},
+    **{name: (make, {}) for name, make in ODD_FILES.items()},
+}
+# attacks that leave 2.2 correct apart from the attack keep at most its points; those that
+# break it get none
+for _name in (
+    "hold_the_runner",
+    "fork_bomb",
+    "memory_hog",
+    "huge_answer",
+    "deep_answer",
+    "network",
+):
+    HOSTILE[f"{_name}_02.ipynb"] = (HOSTILE[f"{_name}_02.ipynb"][0], {"2.2": 0})
+
+
+def dump(folder: Path) -> None:  # pragma: no cover - for looking at the folder by hand
+    context = Context(folder, folder / "grades", "MARKER")
+    for name, (make, _) in HOSTILE.items():
+        make(folder / name, context)
+    print(json.dumps(sorted(HOSTILE)))

@@ -1,0 +1,174 @@
+"""Reading submitted notebooks: odd files, IPython syntax, which definition is graded, and which
+statements run."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import pytest
+
+from tests.notebooks import notebook, write
+from urkin.course.grading.read import read_notebook, read_untrusted
+
+
+def _plan_text(nb, roots, graded=None):
+    return [
+        (site.cell, site.kind, sorted(site.binds or {site.mutates}))
+        for site in nb.plan(set(roots), graded or {})
+    ]
+
+
+@pytest.mark.parametrize(
+    ("make", "words"),
+    [
+        (lambda p: os.mkfifo(p), "not a regular file"),
+        (lambda p: p.mkdir(), "directory"),
+        (lambda p: p.symlink_to(write({"cells": []}, p.parent / "real")), "symbolic link"),
+        (lambda p: p.write_bytes(b"\xff\xfe not utf-8"), "not a valid notebook"),
+        (lambda p: p.write_text('{"cells": [ this is not json'), "not a valid notebook"),
+        (lambda p: p.write_text("[" * 100_000 + "]" * 100_000), "not a valid notebook"),
+        (lambda p: p.write_text('{"cells": 3}'), "not a valid notebook"),
+        (lambda p: p.write_text("{}"), "not a valid notebook"),
+    ],
+    ids=["fifo", "directory", "symlink", "binary", "bad-json", "deep-json", "cells", "no-cells"],
+)
+def test_a_file_that_is_no_notebook_is_read_without_raising(tmp_path, make, words):
+    path = tmp_path / "alice_02.ipynb"
+    make(path)
+    nb = read_notebook(path)
+    assert nb.error and words in nb.error
+    assert nb.lesson == "02"
+
+
+def test_a_huge_file_is_refused_before_it_is_read(tmp_path):
+    path = tmp_path / "big_02.ipynb"
+    with open(path, "wb") as handle:
+        handle.truncate(30 * 2**20)
+    with pytest.raises(ValueError, match="larger than"):
+        read_untrusted(path)
+
+
+def test_malformed_cells_are_skipped_with_a_note(tmp_path):
+    data = notebook("def f(x):\n    return x\n")
+    data["cells"] += [{"cell_type": "code", "source": 3}, "not a cell", {"cell_type": "code"}]
+    nb = read_notebook(write(data, tmp_path / "a_02.ipynb"))
+    assert nb.error is None and "f" in {n for s in nb.sites for n in s.binds}
+    assert any("malformed" in note for note in nb.notes)
+
+
+def test_ipython_syntax_is_tolerated(tmp_path):
+    cells = (
+        "%matplotlib inline\nimport numpy as np\nnp.linalg.solve?\n!pip install nothing",
+        "def f(x):\n    %timeit x\n    return np.sin(x)\n",
+        "%%time\ndef g(x):\n    return 2 * x\n",
+        "%%bash\necho not python\n",
+        "files = !ls\n??np.cos\n",
+    )
+    nb = read_notebook(write(notebook(*cells), tmp_path / "a_02.ipynb"))
+    bound = {n for s in nb.sites for n in s.binds}
+    assert {"np", "f", "g", "files"} <= bound
+    assert any("%%bash" in note for note in nb.notes)
+    assert not any("syntax error" in note for note in nb.notes)
+
+
+def test_a_syntax_error_loses_only_its_cell(tmp_path):
+    nb = read_notebook(
+        write(
+            notebook("def f(x)\n    return x", "def g(x):\n    return x"), tmp_path / "a_02.ipynb"
+        )
+    )
+    assert {n for s in nb.sites for n in s.binds} == {"g"}
+    assert any("code cell 1 has a syntax error on line 1" in n for n in nb.notes)
+
+
+def test_the_lesson_comes_from_metadata_then_the_file_name(tmp_path):
+    path = write(notebook("x = 1", lesson="05"), tmp_path / "bob_02.ipynb")
+    assert read_notebook(path).lesson == "05"
+    path = write(notebook("x = 1", lesson=None), tmp_path / "bob_02.ipynb")
+    assert read_notebook(path).lesson == "02"
+    assert read_notebook(path, lesson="3").lesson == "03"
+    assert (
+        read_notebook(write(notebook("x = 1", lesson=None), tmp_path / "hw.ipynb")).lesson is None
+    )
+
+
+def test_only_what_the_functions_need_is_executed(tmp_path):
+    cells = (
+        "import numpy as np\nimport matplotlib.pyplot as plt\nimport urkin\nimport urkin.symbolic",
+        "SCALE = 2.0\nunused = np.ones(10**9)\nDH = np.zeros(3)\nDH[1] = 5.0\nDH.fill(1.0)\n"
+        "plt.plot([1])\nprint('hello')",
+        "def helper(x):\n    return SCALE * x\n",
+        "def f(x):\n    return helper(x) + DH.sum() + np.pi\n",
+        "f(3)\nwhile True:\n    pass\n",
+    )
+    nb = read_notebook(write(notebook(*cells), tmp_path / "a_02.ipynb"))
+    plan = _plan_text(nb, {"f"})
+    assert (1, "import", ["np"]) in plan
+    assert not any("plt" in names or "urkin" in names for _, _, names in plan)
+    assert (2, "assign", ["SCALE"]) in plan and (2, "assign", ["DH"]) in plan
+    assert (2, "mutation", ["DH"]) in plan  # DH[1] = 5.0 and DH.fill(1.0)
+    assert not any("unused" in names for _, _, names in plan)
+    assert sum(kind == "other" for _, kind, _ in plan) == 0
+
+
+def test_a_submodule_import_runs_only_when_used(tmp_path):
+    cells = (
+        "import urkin\nimport urkin.symbolic\nimport urkin.plot",
+        "def f(q):\n    return urkin.symbolic.Q[0]\n",
+        "def g(q):\n    return urkin.robot('ur5')\n",
+    )
+    nb = read_notebook(write(notebook(*cells), tmp_path / "a_02.ipynb"))
+
+    def imports(roots):
+        return [s.module or "urkin" for s in nb.plan(roots, {}) if s.kind == "import"]
+
+    assert imports({"f"}) == ["urkin", "urkin.symbolic"]
+    assert imports({"g"}) == ["urkin"]
+
+
+def test_top_level_blocks_that_define_names_run(tmp_path):
+    cells = (
+        "try:\n    import scipy_missing as sp\nexcept ImportError:\n    sp = None\n",
+        "if sp is None:\n    def solve(A, b):\n        return A\nelse:\n    solve = sp.solve\n",
+        "with open('x') as fh:\n    pass\nfor k in range(3):\n    LAST = k\n",
+        "def f(A, b):\n    return solve(A, b), LAST\n",
+    )
+    nb = read_notebook(write(notebook(*cells), tmp_path / "a_02.ipynb"))
+    kinds = [(cell, kind) for cell, kind, _ in _plan_text(nb, {"f"})]
+    assert kinds == [(1, "block"), (2, "block"), (3, "block"), (4, "def")]
+
+
+def test_the_graded_definition_is_the_exercise_cells_not_the_last(tmp_path):
+    cells = (
+        "import numpy as np",
+        "def dh_transform(theta, d, a, alpha):\n    return 'mine'\n",
+        'check("2.1", dh_transform)',
+        "from urkin.kinematics import dh_transform  # compare with the reference",
+        "def dh_transform(theta, d, a, alpha):\n    return 'later'\n",
+    )
+    nb = read_notebook(write(notebook(*cells), tmp_path / "a_02.ipynb"))
+    site = nb.graded_site("dh_transform", "2.1")
+    assert site.cell == 2
+    assert [s.cell for s in nb.redefinitions("dh_transform", site)] == [4, 5]
+    plan = nb.plan({"dh_transform"}, {"dh_transform": site})
+    assert [s.cell for s in plan] == [2]
+
+
+def test_the_course_cell_id_wins_over_the_check_cell(tmp_path):
+    data = notebook("def f(x):\n    return 1\n", "def f(x):\n    return 2\n", 'check("2.1", f)')
+    data["cells"][1]["id"] = "exercise-cell"
+    nb = read_notebook(write(data, tmp_path / "a_02.ipynb"))
+    assert nb.graded_site("f", "2.1", "exercise-cell").cell == 2
+    assert nb.graded_site("f", "2.1").cell == 2  # the last one before the check cell
+    data["cells"].pop(2)
+    nb = read_notebook(write(data, tmp_path / "a_02.ipynb"))
+    assert nb.graded_site("f", "2.1").cell == 1  # no check cell: the first definition
+
+
+def test_reading_is_deterministic_and_json_safe(tmp_path):
+    data = notebook("def f(x):\n    return x\n")
+    path = write(data, tmp_path / "a_02.ipynb")
+    first, second = read_notebook(path), read_notebook(path)
+    assert [(s.cell, s.kind) for s in first.sites] == [(s.cell, s.kind) for s in second.sites]
+    json.dumps(first.cells)

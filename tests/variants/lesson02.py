@@ -1,0 +1,273 @@
+"""Lesson 02 (DH forward kinematics): other correct ways to write its functions, and mistakes."""
+
+from tests.variants import Variant
+
+_UR5_CLOSED_FORM = """
+    d1, a2, a3, d4, d5, d6 = 0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823
+    q1, q2, q3, q4, q5, _ = q
+    c1, s1, c5, s5 = np.cos(q1), np.sin(q1), np.cos(q5), np.sin(q5)
+    c234, s234 = np.cos(q2 + q3 + q4), np.sin(q2 + q3 + q4)
+    reach = a2 * np.cos(q2) + a3 * np.cos(q2 + q3)
+"""
+
+CORRECT = [
+    Variant(
+        "2.1",
+        "four elementary transforms multiplied",
+        """
+def dh_transform(theta, d, a, alpha):
+    def rz(t):
+        c, s = np.cos(t), np.sin(t)
+        return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+
+    def rx(t):
+        c, s = np.cos(t), np.sin(t)
+        return np.array([[1.0, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1]])
+
+    tz, tx = np.eye(4), np.eye(4)
+    tz[2, 3], tx[0, 3] = d, a
+    return rz(theta) @ tz @ tx @ rx(alpha)
+""",
+    ),
+    Variant(
+        "2.1",
+        "math module and nested lists",
+        """
+import math
+
+def dh_transform(theta, d, a, alpha):
+    ct, st, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
+    return [[ct, -st * ca, st * sa, a * ct],
+            [st, ct * ca, -ct * sa, a * st],
+            [0, sa, ca, d],
+            [0, 0, 0, 1]]
+""",
+    ),
+    Variant(
+        "2.1",
+        "float32",
+        """
+def dh_transform(theta, d, a, alpha):
+    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+    return np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st],
+                     [0, sa, ca, d], [0, 0, 0, 1]], dtype=np.float32)
+""",
+    ),
+    Variant(
+        "2.2",
+        "reduce over a list of link transforms",
+        """
+from functools import reduce
+
+def forward_kinematics(robot, q):
+    links = [dh_transform(t, d, a, al) for t, d, a, al in zip(q, robot.d, robot.a, robot.alpha)]
+    return reduce(np.matmul, links, np.eye(4))
+""",
+    ),
+    Variant(
+        "2.2",
+        "index loop over the DH table, input validated",
+        """
+def forward_kinematics(robot, q):
+    q = np.asarray(q, dtype=float)
+    if q.shape != (6,):
+        raise ValueError("q must have six angles")
+    table = robot.dh_table()
+    T = np.eye(4)
+    for i in range(6):
+        d_i, a_i, alpha_i = table[i]
+        T = T @ dh_transform(q[i], d_i, a_i, alpha_i)
+    return T
+""",
+    ),
+    Variant(
+        "2.2",
+        "np.dot, with the lengths read from robot.lengths",
+        """
+def forward_kinematics(robot, q):
+    d1, a2, a3, d4, d5, d6 = robot.lengths
+    rows = [(d1, 0, np.pi / 2), (0, a2, 0), (0, a3, 0), (d4, 0, np.pi / 2), (d5, 0, -np.pi / 2),
+            (d6, 0, 0)]
+    T = np.identity(4)
+    for angle, (d, a, alpha) in zip(list(q), rows):
+        T = np.dot(T, dh_transform(angle, d, a, alpha))
+    return T
+""",
+    ),
+    Variant(
+        "2.3",
+        "the closed form, with the UR5's lengths typed in",
+        f"""
+def ur5_position(q):
+{_UR5_CLOSED_FORM}
+    return np.array([
+        c1 * reach + d4 * s1 + d5 * c1 * s234 + d6 * (s1 * c5 - c1 * c234 * s5),
+        s1 * reach - d4 * c1 + d5 * s1 * s234 - d6 * (c1 * c5 + s1 * c234 * s5),
+        d1 + a2 * np.sin(q2) + a3 * np.sin(q2 + q3) - d5 * c234 - d6 * s234 * s5,
+    ])
+""",
+    ),
+    Variant(
+        "2.3",
+        "SymPy's formula lambdified once, outside the function",
+        """
+ur5_p = sp.lambdify(Q, p_general.subs(dict(zip(LENGTHS, urkin.robot("UR5").lengths))), "numpy")
+
+def ur5_position(q):
+    return np.asarray(ur5_p(*q), dtype=float).reshape(3)
+""",
+    ),
+    Variant(
+        "2.3",
+        "math module, a tuple of floats",
+        """
+import math
+
+def ur5_position(q):
+    d1, a2, a3, d4, d5, d6 = urkin.robot("UR5").lengths
+    q1, q2, q3, q4, q5, q6 = [float(x) for x in q]
+    c1, s1, c5, s5 = math.cos(q1), math.sin(q1), math.cos(q5), math.sin(q5)
+    c234, s234 = math.cos(q2 + q3 + q4), math.sin(q2 + q3 + q4)
+    r = a2 * math.cos(q2) + a3 * math.cos(q2 + q3)
+    x = c1 * r + d4 * s1 + d5 * c1 * s234 + d6 * (s1 * c5 - c1 * c234 * s5)
+    y = s1 * r - d4 * c1 + d5 * s1 * s234 - d6 * (c1 * c5 + s1 * c234 * s5)
+    z = d1 + a2 * math.sin(q2) + a3 * math.sin(q2 + q3) - d5 * c234 - d6 * s234 * s5
+    return (x, y, z)
+""",
+    ),
+]
+
+WRONG = [
+    Variant(
+        "2.1",
+        "degrees",
+        """
+def dh_transform(theta, d, a, alpha):
+    theta, alpha = np.radians(theta), np.radians(alpha)
+    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+    return np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st],
+                     [0, sa, ca, d], [0, 0, 0, 1.0]])
+""",
+        points=1,
+        mistake="θ and α treated as degrees",
+    ),
+    Variant(
+        "2.1",
+        "modified DH",
+        """
+def dh_transform(theta, d, a, alpha):
+    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+    return np.array([[ct, -st, 0, a], [st * ca, ct * ca, -sa, -sa * d],
+                     [st * sa, ct * sa, ca, ca * d], [0, 0, 0, 1.0]])
+""",
+        points=1,
+        mistake="modified (Craig) DH",
+    ),
+    Variant(
+        "2.1",
+        "rotation block transposed",
+        """
+def dh_transform(theta, d, a, alpha):
+    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+    T = np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st],
+                  [0, sa, ca, d], [0, 0, 0, 1.0]])
+    T[:3, :3] = T[:3, :3].T
+    return T
+""",
+        points=1,
+        mistake="rotation block is transposed",
+    ),
+    Variant(
+        "2.1",
+        "urkin's dh_transform imported under the exercise's name",
+        "from urkin.kinematics import dh_transform\n",
+        points=0,
+    ),
+    Variant(
+        "2.2",
+        "a2 and a3 with the wrong sign",
+        """
+def forward_kinematics(robot, q):
+    T = np.eye(4)
+    for angle, d_i, a_i, alpha_i in zip(q, robot.d, -robot.a, robot.alpha):
+        T = T @ dh_transform(angle, d_i, a_i, alpha_i)
+    return T
+""",
+        points=1,
+        mistake="a2 and a3 with the wrong sign",
+    ),
+    Variant(
+        "2.2",
+        "links multiplied in reverse order",
+        """
+def forward_kinematics(robot, q):
+    T = np.eye(4)
+    for angle, d_i, a_i, alpha_i in zip(q, robot.d, robot.a, robot.alpha):
+        T = dh_transform(angle, d_i, a_i, alpha_i) @ T
+    return T
+""",
+        mistake="multiplied in reverse order",
+    ),
+    Variant(
+        "2.2",
+        "calls urkin.fk",
+        "def forward_kinematics(robot, q):\n    return urkin.fk(robot, q)\n",
+        points=0,
+    ),
+    Variant(
+        "2.2",
+        "urkin's PoE product instead",
+        """
+def forward_kinematics(robot, q):
+    S, M = urkin.poe.space_screws(robot)
+    return urkin.poe.fk_space(M, S, q)
+""",
+        points=0,
+    ),
+    Variant(
+        "2.2",
+        "the last of urkin's frames",
+        "def forward_kinematics(robot, q):\n    return urkin.fk_frames(robot, q)[-1]\n",
+        points=0,
+    ),
+    Variant(
+        "2.3",
+        "seed 002's published formula",
+        """
+def ur5_position(q):
+    d1, a2, a3, d4, d5, d6 = urkin.robot("UR5").lengths
+    q1, q2, q3, q4, q5, _ = q
+    c1, s1, c5, s5 = np.cos(q1), np.sin(q1), np.cos(q5), np.sin(q5)
+    c234, s234 = np.cos(q2 + q3 + q4), np.sin(q2 + q3 + q4)
+    reach = a2 * np.cos(q2) + a3 * np.cos(q2 + q3)
+    return np.array([
+        c1 * reach + d4 * s1 + d5 * c1 * s234 + d6 * (s1 * c5 - c1 * c234),
+        s1 * reach - d4 * c1 + d5 * s1 * s234 - d6 * (c1 * c5 + s1 * c234),
+        d1 + a2 * np.sin(q2) + a3 * np.sin(q2 + q3) - d5 * c234 - d6 * s234 * s5,
+    ])
+""",
+        points=2,
+        mistake="lack the factor sin q5",
+    ),
+    Variant(
+        "2.3",
+        "a product of the student's own DH matrices",
+        """
+def ur5_position(q):
+    return forward_kinematics(urkin.robot("UR5"), q)[:3, 3]
+""",
+        points=3,
+        mistake="product of DH matrices instead of the closed-form",
+    ),
+    Variant(
+        "2.3",
+        "urkin's symbolic T06 lambdified",
+        """
+def ur5_position(q):
+    T = urkin.symbolic.ur_t06()
+    f = sp.lambdify((Q, LENGTHS), T[:3, 3], "numpy")
+    return np.asarray(f(q, urkin.robot("UR5").lengths), dtype=float).reshape(3)
+""",
+        points=0,
+    ),
+]

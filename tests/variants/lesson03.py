@@ -1,0 +1,829 @@
+"""Lesson 03 — product of exponentials: correct and wrong versions of the exercise functions."""
+
+from tests.variants import Variant
+
+CORRECT = [
+    # ------------------------------------------------------------------------------ 3.1
+    Variant(
+        "3.1",
+        "q × ω with hstack",
+        """
+def screw_axis(w, q):
+    w = np.array(w, dtype=float)
+    return np.hstack((w, np.cross(q, w)))
+""",
+    ),
+    Variant(
+        "3.1",
+        "cross product by hand, a list",
+        """
+def screw_axis(w, q):
+    wx, wy, wz = w
+    qx, qy, qz = q
+    cross = [wy * qz - wz * qy, wz * qx - wx * qz, wx * qy - wy * qx]
+    return [wx, wy, wz, -cross[0], -cross[1], -cross[2]]
+""",
+    ),
+    Variant(
+        "3.1",
+        "skew matrix helper",
+        """
+def hat(w):
+    return np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+
+
+def screw_axis(w, q):
+    omega = np.asarray(w, dtype=float)
+    v = -hat(omega) @ np.asarray(q, dtype=float)
+    return np.concatenate([omega, v])
+""",
+    ),
+    Variant(
+        "3.1",
+        "float32",
+        """
+def screw_axis(w, q):
+    w = np.asarray(w, dtype=np.float32)
+    q = np.asarray(q, dtype=np.float32)
+    return np.concatenate([w, -np.cross(w, q)]).astype(np.float32)
+""",
+    ),
+    Variant(
+        "3.1",
+        "normalises w, foot of the perpendicular, urkin's skew",
+        """
+from urkin.transforms import skew as cross_matrix
+
+
+def screw_axis(w, q):
+    w = np.asarray(w, dtype=float)
+    w = w / np.linalg.norm(w)
+    q = np.asarray(q, dtype=float)
+    foot = q - np.dot(q, w) * w  # the point of the axis nearest the origin
+    S = np.zeros(6)
+    S[:3] = w
+    S[3:] = -cross_matrix(w) @ foot
+    return S
+""",
+    ),
+    # ------------------------------------------------------------------------------ 3.2
+    Variant(
+        "3.2",
+        "own skew, explicit R and G",
+        """
+def twist_exp(S, theta):
+    S = np.asarray(S, dtype=float)
+    w, v = S[:3], S[3:]
+    W = np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+    R = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    G = np.eye(3) * theta + (1 - np.cos(theta)) * W + (theta - np.sin(theta)) * W @ W
+    return np.vstack([np.hstack([R, (G @ v)[:, None]]), [0.0, 0.0, 0.0, 1.0]])
+""",
+    ),
+    Variant(
+        "3.2",
+        "the series, summed to 60 terms",
+        """
+def twist_exp(S, theta):
+    S = np.asarray(S, dtype=float)
+    A = np.zeros((4, 4))
+    A[:3, :3] = skew(S[:3]) * theta
+    A[:3, 3] = S[3:] * theta
+    total, term = np.eye(4), np.eye(4)
+    for k in range(1, 60):
+        term = term @ A / k
+        total = total + term
+    return total
+""",
+    ),
+    Variant(
+        "3.2",
+        "scaling and squaring",
+        """
+def twist_exp(S, theta):
+    S = np.asarray(S, dtype=float)
+    A = np.zeros((4, 4))
+    A[:3, :3] = skew(S[:3]) * theta
+    A[:3, 3] = S[3:] * theta
+    halvings = 6
+    A = A / 2**halvings
+    total, term = np.eye(4), np.eye(4)
+    for k in range(1, 16):
+        term = term @ A / k
+        total = total + term
+    for _ in range(halvings):
+        total = total @ total
+    return total
+""",
+    ),
+    Variant(
+        "3.2",
+        "geometric: Trans(q) Rot Trans(−q) with q = ω × v",
+        """
+def twist_exp(S, theta):
+    w, v = np.asarray(S[:3], dtype=float), np.asarray(S[3:], dtype=float)
+    R = so3_exp(w * theta)
+    point = np.cross(w, v)  # the point of the axis nearest the origin
+    T = np.eye(4)
+    T[:3, :3] = R
+    T[:3, 3] = (np.eye(3) - R) @ point
+    return T
+""",
+    ),
+    Variant(
+        "3.2",
+        "outer-product Rodrigues, float32",
+        """
+def twist_exp(S, theta):
+    S = np.asarray(S, dtype=np.float32)
+    w, v = S[:3], S[3:]
+    c, s = np.cos(theta), np.sin(theta)
+    W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]], dtype=np.float32)
+    R = c * np.eye(3) + s * W + (1 - c) * np.outer(w, w)
+    G = theta * np.eye(3) + (1 - c) * W + (theta - s) * W @ W
+    T = np.eye(4, dtype=np.float32)
+    T[:3, :3] = R
+    T[:3, 3] = G @ v
+    return T
+""",
+    ),
+    Variant(
+        "3.2",
+        "se3 formula with the angle from the norm of ω θ",
+        """
+def twist_exp(S, theta):
+    S = np.asarray(S, dtype=float)
+    omega_theta = S[:3] * theta
+    angle = np.linalg.norm(omega_theta)
+    if angle < 1e-12:
+        T = np.eye(4)
+        T[:3, 3] = S[3:] * theta
+        return T
+    W = skew(omega_theta / angle)
+    R = np.eye(3) + np.sin(angle) * W + (1 - np.cos(angle)) * W @ W
+    G = angle * np.eye(3) + (1 - np.cos(angle)) * W + (angle - np.sin(angle)) * W @ W
+    T = np.eye(4)
+    T[:3, :3] = R
+    T[:3, 3] = G @ (S[3:] * theta / angle)
+    return T
+""",
+    ),
+    # ------------------------------------------------------------------------------ 3.3
+    Variant(
+        "3.3",
+        "functools.reduce",
+        """
+import functools
+
+
+def fk_space(M, S, q):
+    factors = [twist_exp(S[:, i], q[i]) for i in range(len(q))]
+    return functools.reduce(np.matmul, factors + [np.asarray(M)])
+""",
+    ),
+    Variant(
+        "3.3",
+        "multi_dot",
+        """
+def fk_space(M, S, q):
+    S = np.asarray(S, dtype=float)
+    return np.linalg.multi_dot([twist_exp(s, angle) for s, angle in zip(S.T, q)] + [M])
+""",
+    ),
+    Variant(
+        "3.3",
+        "from M leftwards, last joint first",
+        """
+def fk_space(M, S, q):
+    T = np.array(M, dtype=float)
+    for i in reversed(range(S.shape[1])):
+        T = twist_exp(S[:, i], q[i]) @ T
+    return T
+""",
+    ),
+    Variant(
+        "3.3",
+        "through the body axes Ad(M⁻¹) S",
+        """
+from urkin.transforms import adjoint, inv_transform
+
+
+def fk_space(M, S, q):
+    B = adjoint(inv_transform(M)) @ S
+    T = np.array(M, dtype=float)
+    for i in range(B.shape[1]):
+        T = T @ twist_exp(B[:, i], q[i])
+    return T
+""",
+    ),
+    Variant(
+        "3.3",
+        "float32",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4, dtype=np.float32)
+    for i in range(S.shape[1]):
+        T = T @ twist_exp(S[:, i], q[i]).astype(np.float32)
+    return T @ np.asarray(M, dtype=np.float32)
+""",
+    ),
+    Variant(
+        "3.3",
+        "on a float32 twist_exp",
+        """
+def twist_exp(S, theta):
+    S = np.asarray(S, dtype=np.float32)
+    W = skew(S[:3]).astype(np.float32)
+    s, c = np.float32(np.sin(theta)), np.float32(np.cos(theta))
+    T = np.eye(4, dtype=np.float32)
+    T[:3, :3] = np.eye(3) + s * W + (1 - c) * W @ W
+    t = np.float32(theta)
+    T[:3, 3] = (t * np.eye(3) + (1 - c) * W + (t - s) * W @ W) @ S[3:]
+    return T
+
+
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T @ M
+""",
+    ),
+    # ------------------------------------------------------------------------------ 3.4
+    Variant(
+        "3.4",
+        "functools.reduce",
+        """
+from functools import reduce
+
+
+def fk_body(M, B, q):
+    return reduce(lambda T, i: T @ twist_exp(B[:, i], q[i]), range(len(q)), np.asarray(M))
+""",
+    ),
+    Variant(
+        "3.4",
+        "multi_dot, q as a list",
+        """
+def fk_body(M, B, q):
+    B = np.asarray(B, dtype=float)
+    angles = list(q)
+    return np.linalg.multi_dot([M] + [twist_exp(B[:, i], angles[i]) for i in range(len(angles))])
+""",
+    ),
+    Variant(
+        "3.4",
+        "through the space axes Ad(M) B",
+        """
+from urkin.transforms import adjoint
+
+
+def fk_body(M, B, q):
+    S = adjoint(M) @ B
+    T = np.eye(4)
+    for i in range(S.shape[1]):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T @ M
+""",
+    ),
+    Variant(
+        "3.4",
+        "float32",
+        """
+def fk_body(M, B, q):
+    T = np.asarray(M, dtype=np.float32)
+    for axis, angle in zip(np.asarray(B).T, q):
+        T = T @ twist_exp(axis, angle).astype(np.float32)
+    return T
+""",
+    ),
+]
+
+_TWIST_V_THETA = """
+def twist_exp(S, theta):
+    S = np.asarray(S, dtype=float)
+    T = np.eye(4)
+    T[:3, :3] = so3_exp(S[:3] * theta)
+    T[:3, 3] = S[3:] * theta
+    return T
+"""
+
+WRONG = [
+    # ------------------------------------------------------------------------------ 3.1
+    Variant(
+        "3.1",
+        "v = ω × q",
+        "def screw_axis(w, q):\n    return np.concatenate([w, np.cross(w, q)])\n",
+        points=1,
+        mistake="wrong sign",
+    ),
+    Variant(
+        "3.1",
+        "(v, ω) order",
+        "def screw_axis(w, q):\n    return np.concatenate([-np.cross(w, q), w])\n",
+        points=1,
+        mistake="(v, ω) order",
+    ),
+    Variant(
+        "3.1",
+        "(v, ω) order and the sign",
+        "def screw_axis(w, q):\n    return np.concatenate([np.cross(w, q), w])\n",
+        points=1,
+        mistake="(v, ω) order, and",
+    ),
+    Variant(
+        "3.1",
+        "v = q",
+        "def screw_axis(w, q):\n    return np.concatenate([w, q])\n",
+        points=0,
+        mistake="v = q",
+    ),
+    Variant(
+        "3.1",
+        "arguments swapped",
+        "def screw_axis(w, q):\n    return np.concatenate([q, -np.cross(q, w)])\n",
+        points=0,
+        mistake="swapped",
+    ),
+    Variant(
+        "3.1",
+        "two rows",
+        "def screw_axis(w, q):\n    return np.array([w, -np.cross(w, q)])\n",
+        points=0,
+        mistake="two rows",
+    ),
+    Variant(
+        "3.1",
+        "v only",
+        "def screw_axis(w, q):\n    return -np.cross(w, q)\n",
+        points=0,
+        mistake="only three numbers",
+    ),
+    Variant(
+        "3.1",
+        "a column",
+        "def screw_axis(w, q):\n    return np.concatenate([w, -np.cross(w, q)]).reshape(6, 1)\n",
+        points=0,
+        mistake="column",
+    ),
+    Variant("3.1", "zeros", "def screw_axis(w, q):\n    return np.zeros(6)\n", points=0),
+    Variant(
+        "3.1",
+        "a slip in the hand-written cross product",
+        """
+def screw_axis(w, q):
+    cross = [w[1] * q[2] - w[2] * q[1], w[2] * q[0] - w[0] * q[2], w[0] * q[1] + w[1] * q[0]]
+    return np.array([*w, *(-np.array(cross))])
+""",
+        points=0,
+    ),
+    # ------------------------------------------------------------------------------ 3.2
+    Variant("3.2", "translation v·θ", _TWIST_V_THETA, points=1, mistake="v·θ"),
+    Variant(
+        "3.2",
+        "transposed rotation",
+        """
+def twist_exp(S, theta):
+    W = skew(S[:3])
+    T = np.eye(4)
+    T[:3, :3] = (np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W).T
+    c, s = np.cos(theta), np.sin(theta)
+    T[:3, 3] = (theta * np.eye(3) + (1 - c) * W + (theta - s) * W @ W) @ S[3:]
+    return T
+""",
+        points=1,
+        mistake="transposed",
+    ),
+    Variant(
+        "3.2",
+        "the turn by −θ",
+        """
+def twist_exp(S, theta):
+    W = skew(S[:3])
+    theta = -theta
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    c, s = np.cos(theta), np.sin(theta)
+    T[:3, 3] = (theta * np.eye(3) + (1 - c) * W + (theta - s) * W @ W) @ S[3:]
+    return T
+""",
+        points=1,
+        mistake="wrong sign",
+    ),
+    Variant(
+        "3.2",
+        "degrees",
+        """
+def twist_exp(S, theta):
+    theta = np.radians(theta)
+    W = skew(S[:3])
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    c, s = np.cos(theta), np.sin(theta)
+    T[:3, 3] = (theta * np.eye(3) + (1 - c) * W + (theta - s) * W @ W) @ S[3:]
+    return T
+""",
+        points=0,
+        mistake="degrees",
+    ),
+    Variant(
+        "3.2",
+        "S read as (v, ω)",
+        """
+def twist_exp(S, theta):
+    v, w = np.asarray(S[:3]), np.asarray(S[3:])
+    W = skew(w)
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    T[:3, 3] = (theta * np.eye(3) + (1 - np.cos(theta)) * W + (theta - np.sin(theta)) * W @ W) @ v
+    return T
+""",
+        points=0,
+        mistake="(v, ω)",
+    ),
+    Variant(
+        "3.2",
+        "I instead of Iθ",
+        """
+def twist_exp(S, theta):
+    W = skew(S[:3])
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    T[:3, 3] = (np.eye(3) + (1 - np.cos(theta)) * W + (theta - np.sin(theta)) * W @ W) @ S[3:]
+    return T
+""",
+        points=1,
+        mistake="Iθ written as I",
+    ),
+    Variant(
+        "3.2",
+        "sign of the [ω] term",
+        """
+def twist_exp(S, theta):
+    W = skew(S[:3])
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    c, s = np.cos(theta), np.sin(theta)
+    T[:3, 3] = (theta * np.eye(3) + (c - 1) * W + (theta - s) * W @ W) @ S[3:]
+    return T
+""",
+        points=1,
+        mistake="[ω] term",
+    ),
+    Variant(
+        "3.2",
+        "translation (I − R) v",
+        """
+def twist_exp(S, theta):
+    R = so3_exp(np.asarray(S[:3]) * theta)
+    T = np.eye(4)
+    T[:3, :3] = R
+    T[:3, 3] = (np.eye(3) - R) @ S[3:]
+    return T
+""",
+        points=1,
+        mistake="(I − R) v",
+    ),
+    Variant(
+        "3.2",
+        "Rodrigues with [ω] for [ω]²",
+        """
+def twist_exp(S, theta):
+    W = skew(S[:3])
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W
+    c, s = np.cos(theta), np.sin(theta)
+    T[:3, 3] = (theta * np.eye(3) + (1 - c) * W + (theta - s) * W @ W) @ S[3:]
+    return T
+""",
+        points=0,
+        mistake="[ω]², not [ω]",
+    ),
+    Variant(
+        "3.2",
+        "series cut off after 8 terms",
+        """
+def twist_exp(S, theta):
+    A = np.zeros((4, 4))
+    A[:3, :3] = skew(S[:3]) * theta
+    A[:3, 3] = np.asarray(S[3:]) * theta
+    total, term = np.eye(4), np.eye(4)
+    for k in range(1, 8):
+        term = term @ A / k
+        total = total + term
+    return total
+""",
+        mistake="cut off",
+    ),
+    Variant(
+        "3.2",
+        "no last row",
+        """
+def twist_exp(S, theta):
+    W = skew(S[:3])
+    R = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    G = theta * np.eye(3) + (1 - np.cos(theta)) * W + (theta - np.sin(theta)) * W @ W
+    return np.hstack([R, (G @ S[3:])[:, None]])
+""",
+        points=0,
+        mistake="top three rows",
+    ),
+    Variant(
+        "3.2",
+        "last row of zeros",
+        """
+def twist_exp(S, theta):
+    W = skew(S[:3])
+    T = np.zeros((4, 4))
+    T[:3, :3] = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    c, s = np.cos(theta), np.sin(theta)
+    T[:3, 3] = (theta * np.eye(3) + (1 - c) * W + (theta - s) * W @ W) @ S[3:]
+    return T
+""",
+        points=0,
+        mistake="last row",
+    ),
+    Variant(
+        "3.2",
+        "R and p separately",
+        """
+def twist_exp(S, theta):
+    W = skew(S[:3])
+    R = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    G = theta * np.eye(3) + (1 - np.cos(theta)) * W + (theta - np.sin(theta)) * W @ W
+    return R, G @ S[3:]
+""",
+        points=0,
+        mistake="separately",
+    ),
+    Variant(
+        "3.2",
+        "so3_exp(ω) without θ",
+        """
+def twist_exp(S, theta):
+    W = skew(S[:3])
+    c, s = np.cos(theta), np.sin(theta)
+    T = np.eye(4)
+    T[:3, :3] = so3_exp(np.asarray(S[:3], dtype=float))
+    T[:3, 3] = (theta * np.eye(3) + (1 - c) * W + (theta - s) * W @ W) @ S[3:]
+    return T
+""",
+        points=0,
+        mistake="θ left out of the rotation",
+    ),
+    Variant("3.2", "identity", "def twist_exp(S, theta):\n    return np.eye(4)\n", points=0),
+    Variant(
+        "3.2",
+        "urkin's se3_exp",
+        "def twist_exp(S, theta):\n    return urkin.transforms.se3_exp(np.asarray(S) * theta)\n",
+        points=0,
+    ),
+    # ------------------------------------------------------------------------------ 3.3
+    Variant(
+        "3.3",
+        "M first",
+        """
+def fk_space(M, S, q):
+    T = np.array(M, dtype=float)
+    for i in range(len(q)):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T
+""",
+        points=0,
+        mistake="M multiplied first",
+    ),
+    Variant(
+        "3.3",
+        "reverse order",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = twist_exp(S[:, i], q[i]) @ T
+    return T @ M
+""",
+        points=1,
+        mistake="reverse order",
+    ),
+    Variant(
+        "3.3",
+        "M first, from the last joint",
+        """
+def fk_space(M, S, q):
+    T = np.array(M, dtype=float)
+    for i in reversed(range(len(q))):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T
+""",
+        points=0,
+        mistake="wrong side and the exponentials in reverse",
+    ),
+    Variant(
+        "3.3",
+        "degrees",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T @ twist_exp(S[:, i], np.radians(q[i]))
+    return T @ M
+""",
+        points=0,
+        mistake="degrees",
+    ),
+    Variant(
+        "3.3",
+        "M left out",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T
+""",
+        points=0,
+        mistake="M left out",
+    ),
+    Variant(
+        "3.3",
+        "element-wise product",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T * twist_exp(S[:, i], q[i])
+    return T @ M
+""",
+        mistake="element-wise",
+    ),
+    Variant(
+        "3.3",
+        "loop stops one joint early",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q) - 1):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T @ M
+""",
+        mistake="last joint left out",
+    ),
+    Variant(
+        "3.3",
+        "range(6)",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(6):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T @ M
+""",
+        points=4,
+        mistake="loop over six joints",
+    ),
+    Variant(
+        "3.3",
+        "range(len(S))",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(S)):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T @ M
+""",
+        points=4,
+        mistake="loop over six joints",
+    ),
+    Variant(
+        "3.3",
+        "rows of S",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T @ twist_exp(S[i], q[i])
+    return T @ M
+""",
+        points=0,
+        mistake="rows",
+    ),
+    Variant(
+        "3.3",
+        "S_i q_i with θ = 1",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T @ twist_exp(S[:, i] * q[i], 1.0)
+    return T @ M
+""",
+        points=0,
+        mistake="S_i·q_i",
+    ),
+    Variant(
+        "3.3",
+        "built on a twist_exp with translation v·θ",
+        """
+def fk_space(M, S, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T @ twist_exp(S[:, i], q[i])
+    return T @ M
+""",
+        points=1,
+        mistake="your twist_exp",
+        also=(("twist_exp", _TWIST_V_THETA),),
+    ),
+    Variant(
+        "3.3",
+        "urkin's fk_space",
+        "def fk_space(M, S, q):\n    return urkin.poe.fk_space(M, S, q)\n",
+        points=0,
+    ),
+    Variant("3.3", "returns M", "def fk_space(M, S, q):\n    return M\n", points=0),
+    # ------------------------------------------------------------------------------ 3.4
+    Variant(
+        "3.4",
+        "M last",
+        """
+def fk_body(M, B, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T @ twist_exp(B[:, i], q[i])
+    return T @ M
+""",
+        points=0,
+        mistake="M multiplied last",
+    ),
+    Variant(
+        "3.4",
+        "reverse order",
+        """
+def fk_body(M, B, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = twist_exp(B[:, i], q[i]) @ T
+    return M @ T
+""",
+        points=1,
+        mistake="reverse order",
+    ),
+    Variant(
+        "3.4",
+        "degrees",
+        """
+def fk_body(M, B, q):
+    T = np.array(M, dtype=float)
+    for i in range(len(q)):
+        T = T @ twist_exp(B[:, i], q[i] * np.pi / 180)
+    return T
+""",
+        points=0,
+        mistake="degrees",
+    ),
+    Variant(
+        "3.4",
+        "M left out",
+        """
+def fk_body(M, B, q):
+    T = np.eye(4)
+    for i in range(len(q)):
+        T = T @ twist_exp(B[:, i], q[i])
+    return T
+""",
+        points=0,
+        mistake="M left out",
+    ),
+    Variant(
+        "3.4",
+        "first joint skipped",
+        """
+def fk_body(M, B, q):
+    T = np.array(M, dtype=float)
+    for i in range(1, len(q)):
+        T = T @ twist_exp(B[:, i], q[i])
+    return T
+""",
+        mistake="first joint left out",
+    ),
+    Variant(
+        "3.4",
+        "built on a twist_exp with translation v·θ",
+        """
+def fk_body(M, B, q):
+    T = np.array(M, dtype=float)
+    for i in range(len(q)):
+        T = T @ twist_exp(B[:, i], q[i])
+    return T
+""",
+        points=1,
+        mistake="your twist_exp",
+        also=(("twist_exp", _TWIST_V_THETA),),
+    ),
+    Variant(
+        "3.4",
+        "urkin's fk_body",
+        "def fk_body(M, B, q):\n    return urkin.poe.fk_body(M, B, q)\n",
+        points=0,
+    ),
+]

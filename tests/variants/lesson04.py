@@ -1,0 +1,774 @@
+"""Lesson 04 — Jacobians and singularities: correct and wrong versions of the exercise
+functions."""
+
+from tests.variants import Variant
+
+
+def _jacobian_with(column: str, frames: str = "urkin.fk_frames(robot, np.asarray(q, float))"):
+    """A geometric_jacobian whose column i is computed by ``column`` (from z, o, p, i)."""
+    return f"""
+def geometric_jacobian(robot, q):
+    frames = {frames}
+    p = frames[6][:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        z, o = frames[i][:3, 2], frames[i][:3, 3]
+        J[:, i] = {column}
+    return J
+"""
+
+
+_SHOULDER = "a2 * np.cos(q2) + a3 * np.cos(q2 + q3) + d5 * np.sin(q2 + q3 + q4)"
+
+
+def _singularities_with(
+    shoulder=_SHOULDER,
+    elbow="abs(np.sin(q3)) <= tol",
+    wrist="abs(np.sin(q5)) <= tol",
+    angles="q[1], q[2], q[3], q[4]",
+    tol="tol",
+):
+    """A singularities function with one piece swapped for a wrong one."""
+    return f"""
+def singularities(robot, q, tol=1e-9):
+    tol = {tol}
+    q2, q3, q4, q5 = {angles}
+    a2, a3, d4, d5 = robot.a2, robot.a3, robot.d4, robot.d5
+    found = set()
+    if abs({shoulder}) <= tol:
+        found.add("shoulder")
+    if {elbow}:
+        found.add("elbow")
+    if {wrist}:
+        found.add("wrist")
+    return found
+"""
+
+
+def _numeric_with(column: str, extra: str = ""):
+    """A numeric_jacobian whose column j is computed by ``column`` (from f, q, h, e)."""
+    return f"""
+def numeric_jacobian(f, q, h=1e-6):
+    q = np.asarray(q, dtype=float)
+    {extra}
+    columns = []
+    for j in range(q.size):
+        e = np.zeros(q.size)
+        e[j] = 1.0
+        columns.append({column})
+    return np.column_stack(columns)
+"""
+
+
+CORRECT = [
+    # ------------------------------------------------------------------------------ 4.1
+    Variant(
+        "4.1",
+        "vectorised over the frames",
+        """
+def geometric_jacobian(robot, q):
+    frames = urkin.fk_frames(robot, q)
+    z, o, p = frames[:6, :3, 2], frames[:6, :3, 3], frames[6, :3, 3]
+    return np.vstack([np.cross(z, p - o).T, z.T])
+""",
+    ),
+    Variant(
+        "4.1",
+        "own DH products, skew matrices",
+        """
+def dh(theta, d, a, alpha):
+    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+    return np.array([[ct, -st * ca, st * sa, a * ct],
+                     [st, ct * ca, -ct * sa, a * st],
+                     [0.0, sa, ca, d],
+                     [0.0, 0.0, 0.0, 1.0]])
+
+
+def hat(w):
+    return np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+
+
+def geometric_jacobian(robot, q):
+    T = np.eye(4)
+    frames = [T]
+    for i in range(6):
+        T = T @ dh(q[i], robot.d[i], robot.a[i], robot.alpha[i])
+        frames.append(T)
+    p = frames[-1][:3, 3]
+    columns = []
+    for i in range(6):
+        z, o = frames[i][:3, 2], frames[i][:3, 3]
+        columns.append(np.concatenate([hat(z) @ (p - o), z]))
+    return np.array(columns).T
+""",
+    ),
+    Variant(
+        "4.1",
+        "screw axes of the moved frames, then v = v_s − p × ω",
+        """
+def geometric_jacobian(robot, q):
+    frames = urkin.fk_frames(robot, q)
+    p = urkin.fk(robot, q)[:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        w, point = frames[i][:3, 2], frames[i][:3, 3]
+        v_space = -np.cross(w, point)  # the current screw axis (w, v_s)
+        J[:3, i] = v_space - np.cross(p, w)
+        J[3:, i] = w
+    return J
+""",
+    ),
+    Variant(
+        "4.1",
+        "float32",
+        _jacobian_with(
+            "np.concatenate([np.cross(z, p - o), z]).astype(np.float32)",
+            "urkin.fk_frames(robot, q).astype(np.float32)",
+        ).replace("np.zeros((6, 6))", "np.zeros((6, 6), dtype=np.float32)"),
+    ),
+    Variant(
+        "4.1",
+        "column by column, hstack of lists",
+        """
+def geometric_jacobian(robot, q):
+    frames = urkin.fk_frames(robot, q)
+    p = frames[-1][:3, 3]
+    Jv = [np.cross(frames[i][:3, 2], p - frames[i][:3, 3]) for i in range(6)]
+    Jw = [frames[i][:3, 2] for i in range(6)]
+    return np.vstack([np.column_stack(Jv), np.column_stack(Jw)])
+""",
+    ),
+    # ------------------------------------------------------------------------------ 4.2
+    Variant(
+        "4.2",
+        "vectorised over h·I",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    q = np.asarray(q, dtype=float)
+    steps = h * np.eye(len(q))
+    return np.array([np.asarray(f(q + s)) - np.asarray(f(q - s)) for s in steps]).T / (2 * h)
+""",
+    ),
+    Variant(
+        "4.2",
+        "nudge a copy and restore it",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    x = np.array(q, dtype=float)
+    m = np.size(f(x))
+    J = np.zeros((m, x.size))
+    for j in range(x.size):
+        x[j] += h
+        f_plus = np.asarray(f(x), dtype=float)
+        x[j] -= 2 * h
+        f_minus = np.asarray(f(x), dtype=float)
+        x[j] += h
+        J[:, j] = (f_plus - f_minus) / (2 * h)
+    return J
+""",
+    ),
+    Variant(
+        "4.2",
+        "divides by the step actually taken",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    q = np.asarray(q, dtype=float)
+    columns = []
+    for j in range(len(q)):
+        up, down = q.copy(), q.copy()
+        up[j] += h
+        down[j] -= h
+        columns.append((np.asarray(f(up)) - np.asarray(f(down))) / (up[j] - down[j]))
+    return np.stack(columns, axis=1)
+""",
+    ),
+    Variant(
+        "4.2",
+        "float32 answer",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    q = np.asarray(q, dtype=np.float32)
+    J = []
+    for j in range(q.size):
+        step = np.zeros_like(q)
+        step[j] = h
+        J.append((np.asarray(f(q + step), dtype=np.float32)
+                  - np.asarray(f(q - step), dtype=np.float32)) / np.float32(2 * h))
+    return np.array(J, dtype=np.float32).T
+""",
+    ),
+    Variant(
+        "4.2",
+        "float32 steps, float64 f",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    q = np.asarray(q, dtype=np.float32)
+    columns = []
+    for j in range(q.size):
+        step = np.zeros_like(q)
+        step[j] = h
+        columns.append((np.asarray(f(q + step)) - np.asarray(f(q - step))) / (2 * h))
+    return np.column_stack(columns)
+""",
+    ),
+    Variant(
+        "4.2",
+        "lists and atleast_1d",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    q = [float(x) for x in q]
+    columns = []
+    for j in range(len(q)):
+        plus = q[:j] + [q[j] + h] + q[j + 1:]
+        minus = q[:j] + [q[j] - h] + q[j + 1:]
+        columns.append((np.atleast_1d(f(np.array(plus))) - np.atleast_1d(f(np.array(minus))))
+                       / (2 * h))
+    return np.array(columns).T
+""",
+    ),
+    # ------------------------------------------------------------------------------ 4.3
+    Variant(
+        "4.3",
+        "factors zipped with the names, a sorted list",
+        """
+def singularities(robot, q, tol=1e-9):
+    q = np.asarray(q, dtype=float)
+    factors = [
+        robot.a2 * np.cos(q[1]) + robot.a3 * np.cos(q[1] + q[2]) + robot.d5 * np.sin(q[1:4].sum()),
+        np.sin(q[2]),
+        np.sin(q[4]),
+    ]
+    return sorted(n for n, f in zip(["shoulder", "elbow", "wrist"], factors) if abs(f) <= tol)
+""",
+    ),
+    Variant(
+        "4.3",
+        "np.isclose with atol = tol, a tuple",
+        """
+def singularities(robot, q, tol=1e-9):
+    q1, q2, q3, q4, q5, q6 = q
+    names = []
+    shoulder = robot.a2 * np.cos(q2) + robot.a3 * np.cos(q2 + q3) + robot.d5 * np.sin(q2 + q3 + q4)
+    if np.isclose(shoulder, 0.0, atol=tol):
+        names.append("shoulder")
+    if np.isclose(np.sin(q3), 0.0, atol=tol):
+        names.append("elbow")
+    if np.isclose(np.sin(q5), 0.0, atol=tol):
+        names.append("wrist")
+    return tuple(names)
+""",
+    ),
+    Variant(
+        "4.3",
+        "math module, strict <, capitalised names",
+        """
+import math
+
+
+def singularities(robot, q, tol=1e-9):
+    s = robot.a2 * math.cos(q[1]) + robot.a3 * math.cos(q[1] + q[2]) \\
+        + robot.d5 * math.sin(q[1] + q[2] + q[3])
+    result = set()
+    if abs(s) < tol:
+        result.add("Shoulder")
+    if abs(math.sin(q[2])) < tol:
+        result.add("Elbow")
+    if abs(math.sin(q[4])) < tol:
+        result.add("Wrist")
+    return result
+""",
+    ),
+    Variant(
+        "4.3",
+        "{} when regular",
+        """
+def singularities(robot, q, tol=1e-9):
+    factors = urkin_factors(robot, q)
+    names = [n for n, f in zip(("shoulder", "elbow", "wrist"), factors) if abs(f) <= tol]
+    if not names:
+        return {}
+    return set(names)
+
+
+def urkin_factors(robot, q):
+    q2, q3, q4, q5 = q[1:5]
+    return (
+        robot.a2 * np.cos(q2) + robot.a3 * np.cos(q2 + q3) + robot.d5 * np.sin(q2 + q3 + q4),
+        np.sin(q3),
+        np.sin(q5),
+    )
+""",
+    ),
+    Variant(
+        "4.3",
+        "the shoulder from the wrist centre's distance to the plane",
+        """
+def singularities(robot, q, tol=1e-9):
+    frames = urkin.fk_frames(robot, q)
+    wrist_centre = frames[5][:3, 3]
+    normal = np.cross([0.0, 0.0, 1.0], frames[1][:3, 2])  # ⟂ the base axis and the shoulder axis
+    normal = normal / np.linalg.norm(normal)
+    found = set()
+    if abs(np.dot(wrist_centre, normal)) <= tol:
+        found.add("shoulder")
+    if abs(np.sin(q[2])) <= tol:
+        found.add("elbow")
+    if abs(np.sin(q[4])) <= tol:
+        found.add("wrist")
+    return found
+""",
+    ),
+]
+
+WRONG = [
+    # ------------------------------------------------------------------------------ 4.1
+    Variant(
+        "4.1",
+        "twist order",
+        _jacobian_with("np.concatenate([z, np.cross(z, p - o)])"),
+        points=0,
+        mistake="twist order",
+    ),
+    Variant(
+        "4.1",
+        "axis of frame i",
+        """
+def geometric_jacobian(robot, q):
+    frames = urkin.fk_frames(robot, q)
+    p = frames[6][:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        z, o = frames[i + 1][:3, 2], frames[i + 1][:3, 3]
+        J[:3, i] = np.cross(z, p - o)
+        J[3:, i] = z
+    return J
+""",
+        points=0,
+        mistake="frame i − 1",
+    ),
+    Variant(
+        "4.1",
+        "lever arm reversed",
+        _jacobian_with("np.concatenate([np.cross(p - o, z), z])"),
+        points=1,
+        mistake="wrong way",
+    ),
+    Variant(
+        "4.1",
+        "lever arm from the base origin",
+        _jacobian_with("np.concatenate([np.cross(z, p), z])"),
+        points=1,
+        mistake="base origin",
+    ),
+    Variant(
+        "4.1",
+        "lever arm from frame i's origin",
+        """
+def geometric_jacobian(robot, q):
+    frames = urkin.fk_frames(robot, q)
+    p = frames[6][:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        z = frames[i][:3, 2]
+        J[:3, i] = np.cross(z, p - frames[i + 1][:3, 3])
+        J[3:, i] = z
+    return J
+""",
+        points=None,
+        mistake="frame i's origin",
+    ),
+    Variant(
+        "4.1",
+        "x axis of the frame",
+        """
+def geometric_jacobian(robot, q):
+    frames = urkin.fk_frames(robot, q)
+    p = frames[6][:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        x, o = frames[i][:3, 0], frames[i][:3, 3]
+        J[:, i] = np.concatenate([np.cross(x, p - o), x])
+    return J
+""",
+        points=0,
+        mistake="wrong column",
+    ),
+    Variant(
+        "4.1",
+        "z from the third row",
+        """
+def geometric_jacobian(robot, q):
+    frames = urkin.fk_frames(robot, q)
+    p = frames[6][:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        z, o = frames[i][2, :3], frames[i][:3, 3]
+        J[:, i] = np.concatenate([np.cross(z, p - o), z])
+    return J
+""",
+        points=0,
+        mistake="third row",
+    ),
+    Variant(
+        "4.1",
+        "the wrist centre's velocity",
+        _jacobian_with("np.concatenate([np.cross(z, frames[5][:3, 3] - o), z])"),
+        points=1,
+        mistake="wrist centre",
+    ),
+    Variant(
+        "4.1",
+        "the space Jacobian",
+        _jacobian_with("np.concatenate([z, -np.cross(z, o)])"),
+        points=0,
+        mistake="space Jacobian",
+    ),
+    Variant(
+        "4.1",
+        "angular rows left empty",
+        _jacobian_with("np.concatenate([np.cross(z, p - o), np.zeros(3)])"),
+        points=1,
+        mistake="angular rows left at zero",
+    ),
+    Variant(
+        "4.1",
+        "transposed",
+        _jacobian_with("np.concatenate([np.cross(z, p - o), z])").replace(
+            "    return J\n", "    return J.T\n"
+        ),
+        points=0,
+        mistake="transposed",
+    ),
+    Variant(
+        "4.1",
+        "own DH frames with positive a2, a3",
+        """
+def geometric_jacobian(robot, q):
+    T = np.eye(4)
+    frames = [T]
+    for i in range(6):
+        T = T @ urkin.kinematics.dh_transform(q[i], robot.d[i], abs(robot.a[i]), robot.alpha[i])
+        frames.append(T)
+    p = T[:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        z, o = frames[i][:3, 2], frames[i][:3, 3]
+        J[:, i] = np.concatenate([np.cross(z, p - o), z])
+    return J
+""",
+        points=1,
+        mistake="wrong sign",
+    ),
+    Variant(
+        "4.1",
+        "only the linear rows",
+        """
+def geometric_jacobian(robot, q):
+    frames = urkin.fk_frames(robot, q)
+    p = frames[6][:3, 3]
+    return np.column_stack([np.cross(frames[i][:3, 2], p - frames[i][:3, 3]) for i in range(6)])
+""",
+        points=0,
+        mistake="only the three linear rows",
+    ),
+    Variant(
+        "4.1",
+        "urkin.jacobian",
+        "def geometric_jacobian(robot, q):\n    return urkin.jacobian(robot, q)\n",
+        points=0,
+    ),
+    # ------------------------------------------------------------------------------ 4.2
+    Variant(
+        "4.2",
+        "forward differences",
+        _numeric_with("(np.asarray(f(q + h * e)) - f0) / h", "f0 = np.asarray(f(q))"),
+        points=1,
+        mistake="forward differences",
+    ),
+    Variant(
+        "4.2",
+        "backward differences",
+        _numeric_with("(f0 - np.asarray(f(q - h * e))) / h", "f0 = np.asarray(f(q))"),
+        points=1,
+        mistake="backward differences",
+    ),
+    Variant(
+        "4.2",
+        "divided by h",
+        _numeric_with("(np.asarray(f(q + h * e)) - np.asarray(f(q - h * e))) / h"),
+        points=0,
+        mistake="divided by h",
+    ),
+    Variant(
+        "4.2",
+        "divided by 2",
+        _numeric_with("(np.asarray(f(q + h * e)) - np.asarray(f(q - h * e))) / 2"),
+        points=0,
+        mistake="divided by 2 instead",
+    ),
+    Variant(
+        "4.2",
+        "h ignored",
+        _numeric_with("(np.asarray(f(q + 1e-6 * e)) - np.asarray(f(q - 1e-6 * e))) / 2e-6"),
+        points=2,
+        mistake="h argument is ignored",
+    ),
+    Variant(
+        "4.2",
+        "steps of ±h/2",
+        _numeric_with("(np.asarray(f(q + h / 2 * e)) - np.asarray(f(q - h / 2 * e))) / h"),
+        points=2,
+        mistake="±h/2",
+    ),
+    Variant(
+        "4.2",
+        "all entries nudged at once",
+        _numeric_with("(np.asarray(f(q + h)) - np.asarray(f(q - h))) / (2 * h)"),
+        points=0,
+        mistake="nudged at once",
+    ),
+    Variant(
+        "4.2",
+        "steps pile up",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    up = np.array(q, dtype=float)
+    down = np.array(q, dtype=float)
+    columns = []
+    for j in range(len(up)):
+        up[j] += h
+        down[j] -= h
+        columns.append((np.asarray(f(up)) - np.asarray(f(down))) / (2 * h))
+    return np.column_stack(columns)
+""",
+        points=0,
+        mistake="pile up",
+    ),
+    Variant(
+        "4.2",
+        "q_plus and q_minus alias q",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    q = np.asarray(q, dtype=float)
+    J = np.zeros((np.size(f(q)), q.size))
+    for j in range(q.size):
+        q_plus = q
+        q_plus[j] += h
+        q_minus = q
+        q_minus[j] -= h
+        J[:, j] = (np.asarray(f(q_plus)) - np.asarray(f(q_minus))) / (2 * h)
+    return J
+""",
+        points=0,
+        mistake="same array",
+    ),
+    Variant(
+        "4.2",
+        "q_plus aliases q, f(q_plus) taken first",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    q = np.asarray(q, dtype=float)
+    J = np.zeros((np.size(f(q)), q.size))
+    for j in range(q.size):
+        q_plus = q
+        q_plus[j] += h
+        f_plus = np.asarray(f(q_plus))
+        q_minus = q
+        q_minus[j] -= h
+        J[:, j] = (f_plus - np.asarray(f(q_minus))) / (2 * h)
+    return J
+""",
+        points=0,
+        mistake="share q's memory",
+    ),
+    Variant(
+        "4.2",
+        "one row per input",
+        """
+def numeric_jacobian(f, q, h=1e-6):
+    q = np.asarray(q, dtype=float)
+    rows = []
+    for j in range(q.size):
+        e = np.zeros(q.size)
+        e[j] = h
+        rows.append((np.asarray(f(q + e)) - np.asarray(f(q - e))) / (2 * h))
+    return np.array(rows)
+""",
+        points=0,
+        mistake="transposed",
+    ),
+    Variant(
+        "4.2",
+        "zeros",
+        "def numeric_jacobian(f, q, h=1e-6):\n    return np.zeros((np.size(f(q)), len(q)))\n",
+        points=0,
+    ),
+    Variant(
+        "4.2",
+        "default step 1e-2",
+        _numeric_with("(np.asarray(f(q + h * e)) - np.asarray(f(q - h * e))) / (2 * h)").replace(
+            "h=1e-6", "h=1e-2"
+        ),
+        points=3,
+        mistake="default step",
+    ),
+    # ------------------------------------------------------------------------------ 4.3
+    Variant(
+        "4.3",
+        "elbow with cos q3",
+        _singularities_with(elbow="abs(np.cos(q3)) <= tol"),
+        points=0,
+        mistake="cos q3",
+    ),
+    Variant(
+        "4.3",
+        "wrist with cos q5",
+        _singularities_with(wrist="abs(np.cos(q5)) <= tol"),
+        points=0,
+        mistake="cos q5",
+    ),
+    Variant(
+        "4.3",
+        "wrist only at q5 = 0",
+        _singularities_with(wrist="abs(q5) <= tol"),
+        points=None,
+        mistake="±π too",
+    ),
+    Variant(
+        "4.3",
+        "elbow compared with 0 exactly",
+        _singularities_with(elbow="np.sin(q3) == 0"),
+        points=None,
+        mistake="compared with 0 exactly",
+    ),
+    Variant(
+        "4.3",
+        "elbow tested on the angle",
+        _singularities_with(
+            elbow="min(abs(q3), abs(abs(q3) - np.pi)) <= tol",
+        ),
+        points=3,
+        mistake="±2π",
+    ),
+    Variant(
+        "4.3",
+        "no abs on sin q3",
+        _singularities_with(elbow="np.sin(q3) <= tol"),
+        points=None,
+        mistake="absolute value is missing",
+    ),
+    Variant(
+        "4.3",
+        "no abs on the shoulder factor",
+        _singularities_with().replace("if abs(a2 * np.cos", "if (a2 * np.cos"),
+        points=None,
+        mistake="absolute value is missing",
+    ),
+    Variant(
+        "4.3",
+        "default tol 1e-6",
+        _singularities_with().replace("tol=1e-9", "tol=1e-6"),
+        points=None,
+        mistake="default of tol",
+    ),
+    Variant(
+        "4.3",
+        "tol ignored",
+        _singularities_with(tol="1e-9"),
+        points=4,
+        mistake="tol argument is ignored",
+    ),
+    Variant(
+        "4.3",
+        "np.isclose's default tolerance",
+        """
+def singularities(robot, q, tol=1e-9):
+    q2, q3, q4, q5 = q[1], q[2], q[3], q[4]
+    shoulder = robot.a2 * np.cos(q2) + robot.a3 * np.cos(q2 + q3) + robot.d5 * np.sin(q2 + q3 + q4)
+    flags = np.isclose([shoulder, np.sin(q3), np.sin(q5)], 0.0)
+    return {name for name, flag in zip(["shoulder", "elbow", "wrist"], flags) if flag}
+""",
+        points=None,
+        mistake="tol argument is ignored",
+    ),
+    Variant(
+        "4.3",
+        "shoulder without the wrist term",
+        _singularities_with(shoulder="a2 * np.cos(q2) + a3 * np.cos(q2 + q3)"),
+        points=None,
+        mistake="without its wrist term",
+    ),
+    Variant(
+        "4.3",
+        "shoulder with − d5",
+        _singularities_with(
+            shoulder="a2 * np.cos(q2) + a3 * np.cos(q2 + q3) - d5 * np.sin(q2 + q3 + q4)"
+        ),
+        points=None,
+        mistake="wrong sign",
+    ),
+    Variant(
+        "4.3",
+        "shoulder with d4",
+        _singularities_with(
+            shoulder="a2 * np.cos(q2) + a3 * np.cos(q2 + q3) + d4 * np.sin(q2 + q3 + q4)"
+        ),
+        points=None,
+        mistake="d4",
+    ),
+    Variant(
+        "4.3",
+        "joint numbers off by one",
+        _singularities_with(angles="q[2], q[3], q[4], q[5]"),
+        points=0,
+        mistake="off by one",
+    ),
+    Variant(
+        "4.3",
+        "if / elif",
+        """
+def singularities(robot, q, tol=1e-9):
+    shoulder = robot.a2 * np.cos(q[1]) + robot.a3 * np.cos(q[1] + q[2]) \\
+        + robot.d5 * np.sin(q[1] + q[2] + q[3])
+    if abs(shoulder) <= tol:
+        return {"shoulder"}
+    elif abs(np.sin(q[2])) <= tol:
+        return {"elbow"}
+    elif abs(np.sin(q[4])) <= tol:
+        return {"wrist"}
+    return set()
+""",
+        points=4,
+        mistake="only one family",
+    ),
+    Variant(
+        "4.3",
+        "flags instead of names",
+        """
+def singularities(robot, q, tol=1e-9):
+    shoulder = robot.a2 * np.cos(q[1]) + robot.a3 * np.cos(q[1] + q[2]) \\
+        + robot.d5 * np.sin(q[1] + q[2] + q[3])
+    return [bool(abs(shoulder) <= tol), bool(abs(np.sin(q[2])) <= tol),
+            bool(abs(np.sin(q[4])) <= tol)]
+""",
+        points=0,
+        mistake="True/False flags",
+    ),
+    Variant(
+        "4.3",
+        "names with a suffix",
+        _singularities_with().replace('"shoulder"', '"shoulder singularity"'),
+        points=None,
+        mistake="exactly 'shoulder'",
+    ),
+    Variant(
+        "4.3", "always none", "def singularities(robot, q, tol=1e-9):\n    return set()\n", points=0
+    ),
+    Variant(
+        "4.3",
+        "urkin's singularities",
+        "def singularities(robot, q, tol=1e-9):\n"
+        "    return set(urkin.kinematics.singularities(robot, q, tol))\n",
+        points=0,
+    ),
+]

@@ -1,0 +1,191 @@
+"""The reports of a grading run, written once every submission process has ended.
+
+Into the output folder:
+
+* ``gradebook.csv`` — one row per submission (even one that could not be graded): one column
+  per exercise, the total, the maximum, the status, the named mistakes and the reason;
+* ``feedback/<submission>.md`` — what the student reads: the score first, then each exercise's
+  report (the failed input, expected and received values, the likely mistake); no test source;
+* ``results/<submission>.json`` — one Gradescope ``results.json`` per submission (and, when a
+  single submission is graded, ``results.json`` itself, which is Gradescope's file);
+* ``summary.json`` — the class at a glance.
+
+Every file is written atomically (a temporary file renamed into place), the folder and its
+sub-folders must not be symbolic links, file names are made from the submission's name so
+that two submissions never share one, and text that came from a submission is cleaned of
+control characters and cannot start a spreadsheet formula.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+import re
+import tempfile
+from pathlib import Path
+
+from urkin.course.grading.runner import SubmissionResult
+from urkin.course.lessons import lessons
+
+__all__ = ["feedback_text", "gradescope_result", "report_names", "write_reports"]
+
+_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f\u202a-\u202e\u2066-\u2069]")
+
+
+def _clean(text: str) -> str:
+    """Text from a submission with control and bidirectional-override characters removed."""
+    return _CONTROL.sub("?", str(text)).replace("```", "'''")
+
+
+def _cell(text: str) -> str:
+    """A spreadsheet cell that cannot start a formula."""
+    text = _clean(text).replace("\n", " ")
+    return "'" + text if text[:1] in ("=", "+", "-", "@", "\t") else text
+
+
+def report_names(results: list[SubmissionResult]) -> list[str]:
+    """File names (no extension) for the reports: safe characters, unique, stable."""
+    names, seen = [], set()
+    for result in results:
+        base = re.sub(r"[^A-Za-z0-9._-]+", "_", result.name).strip("._-")[:100] or "submission"
+        if base.endswith(".ipynb"):
+            base = base[: -len(".ipynb")]
+        name, k = base, 1
+        while name.lower() in seen:
+            k += 1
+            name = f"{base}-{k}"
+        seen.add(name.lower())
+        names.append(name)
+    return names
+
+
+def feedback_text(result: SubmissionResult) -> str:
+    """What the student reads: the verdict first, then each exercise; never test source."""
+    lines = [f"# {_clean(result.name)}"]
+    if result.status != "graded":
+        lines += ["", f"Not graded: {_clean(result.reason)}", "", f"Score: 0 / {result.points:g}"]
+        return "\n".join(lines) + "\n"
+    lines += ["", f"Lesson {result.lesson}: {result.earned:g} / {result.points:g} points"]
+    problems = [e for e in result.exercises if e.earned < e.points]
+    if problems:
+        lines.append("To look at: " + ", ".join(f"{e.exercise} ({e.status})" for e in problems))
+    if result.mistakes:
+        lines += ["", "Likely mistakes:"] + [f"- {_clean(m)}" for m in result.mistakes]
+    if result.notes:
+        lines += ["", "About the notebook:"] + [f"- {_clean(note)}" for note in result.notes]
+    for e in result.exercises:
+        lines += ["", "```", _clean(e.report()), "```"]
+    lines += ["", f"(inputs drawn with seed {result.seed})"]
+    return "\n".join(lines) + "\n"
+
+
+def gradescope_result(result: SubmissionResult) -> dict:
+    """Gradescope's ``results.json`` document for one submission."""
+    tests = [
+        {
+            "name": f"Exercise {e.exercise} · {e.function}",
+            "score": e.earned,
+            "max_score": e.points,
+            "status": "passed" if e.earned == e.points else "failed",
+            "output": _clean(e.report()),
+        }
+        for e in result.exercises
+    ]
+    if result.status == "graded":
+        output = "\n".join(_clean(n) for n in result.notes)
+    else:
+        output = f"Not graded: {_clean(result.reason)}"
+    return {
+        "score": result.earned,
+        "output": output,
+        "visibility": "visible",
+        "stdout_visibility": "hidden",
+        "tests": tests,
+    }
+
+
+def _safe_folder(path: Path) -> Path:
+    if path.is_symlink():
+        raise ValueError(f"{path} is a symbolic link: the grader does not write through links")
+    path.mkdir(parents=True, exist_ok=True)
+    if path.is_symlink() or not path.is_dir():
+        raise ValueError(f"{path} is not a plain folder")
+    return path
+
+
+def _write(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` atomically (a temporary file in the same folder, renamed)."""
+    fd, temporary = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=path.suffix)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="") as handle:
+            handle.write(text)
+        os.chmod(temporary, 0o644)
+        os.replace(temporary, path)
+    except BaseException:
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+        raise
+
+
+def _gradebook(results: list[SubmissionResult]) -> str:
+    known = lessons()
+    present = sorted({r.lesson for r in results if r.lesson in known})
+    columns = [ex.id for number in present for ex in known[number].exercises]
+    buffer = io.StringIO()
+    writer = csv.writer(buffer)
+    writer.writerow(
+        ["submission", "lesson", *columns, "total", "max", "status", "mistakes", "reason"]
+    )
+    for r in results:
+        earned = {e.exercise: f"{e.earned:g}" for e in r.exercises}
+        reason = r.reason or "; ".join(
+            f"{e.exercise}: {e.status}" for e in r.exercises if e.earned < e.points
+        )
+        writer.writerow(
+            [
+                _cell(r.name),
+                r.lesson or "",
+                *(earned.get(c, "") for c in columns),
+                f"{r.earned:g}",
+                f"{r.points:g}",
+                r.status,
+                _cell("; ".join(r.mistakes)),
+                _cell(reason),
+            ]
+        )
+    return buffer.getvalue()
+
+
+def write_reports(results: list[SubmissionResult], out_dir: str | Path) -> Path:
+    """Write the reports of ``results`` into ``out_dir`` (see the module docstring)."""
+    out = _safe_folder(Path(out_dir))
+    feedback, gradescope = _safe_folder(out / "feedback"), _safe_folder(out / "results")
+    names = report_names(results)
+    for result, name in zip(results, names):
+        _write(feedback / f"{name}.md", feedback_text(result))
+        _write(gradescope / f"{name}.json", json.dumps(gradescope_result(result), indent=1))
+    if len(results) == 1:
+        _write(out / "results.json", json.dumps(gradescope_result(results[0]), indent=1))
+    summary = [
+        {
+            "submission": _clean(r.name),
+            "lesson": r.lesson,
+            "score": r.earned,
+            "max_score": r.points,
+            "status": r.status,
+            "mistakes": [_clean(m) for m in r.mistakes],
+            "feedback": f"feedback/{name}.md",
+            "results": f"results/{name}.json",
+        }
+        for r, name in zip(results, names)
+    ]
+    seeds = sorted({r.seed for r in results})
+    isolation = sorted({r.isolation for r in results if r.isolation})
+    _write(
+        out / "summary.json",
+        json.dumps({"seeds": seeds, "isolation": isolation, "submissions": summary}, indent=1),
+    )
+    _write(out / "gradebook.csv", _gradebook(results))
+    return out

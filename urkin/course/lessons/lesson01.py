@@ -1,0 +1,811 @@
+"""Lesson 01 — rigid-body transforms."""
+
+from __future__ import annotations
+
+import ast
+
+import numpy as np
+
+from urkin.course import concepts
+from urkin.course.compare import (
+    Mismatch,
+    as_array,
+    close,
+    compare,
+    identify_mistake,
+    require_rotation,
+    require_transform,
+)
+from urkin.course.exercise import Check, Exercise, Lesson
+from urkin.course.inputs import random_pose, random_rotation
+from urkin.course.submission import StudentRaised
+from urkin.transforms import (
+    inv_transform,
+    make_transform,
+    rot_x,
+    rot_y,
+    rot_z,
+    rotation_to_rpy,
+    rpy_to_rotation,
+    skew,
+    so3_exp,
+)
+
+
+def _in_dtype(value, like):
+    """``value`` in the floating dtype of the student's answer ``like`` (so that :func:`close`
+    judges a float32 answer at float32's precision)."""
+    dtype = like.dtype if np.issubdtype(like.dtype, np.floating) else np.float64
+    return np.asarray(value, dtype=np.float64).astype(dtype)
+
+
+def _named(exc: Mismatch, got, hypotheses) -> Mismatch:
+    """``exc`` with the likely mistake named, when one of ``hypotheses`` reproduces ``got``."""
+    if exc.mistake is None:
+        exc.mistake = identify_mistake(got, hypotheses)
+    return exc
+
+
+def _matrix(value, shape, what, inputs, wrong_shapes):
+    """The student's answer as an array of ``shape``; a known wrong shape names its mistake."""
+    try:
+        return as_array(value, shape, what, inputs)
+    except Mismatch as exc:
+        try:
+            got_shape = np.shape(value)
+        except Exception:  # a ragged answer: no shape to read a mistake from
+            raise exc from None
+        exc.mistake = exc.mistake or wrong_shapes.get(got_shape)
+        raise
+
+
+def _wrap(angles):
+    """Angles in (−π, π]."""
+    return -np.remainder(-np.asarray(angles, dtype=float) + np.pi, 2 * np.pi) + np.pi
+
+
+# ------------------------------------------------------------------------------ 1.1 rot_z
+
+
+def _rot_z_hypotheses(theta):
+    c, s = np.cos(theta), np.sin(theta)
+    return {
+        "transposed: the sin θ entries have swapped signs (that is Rz(−θ))": lambda: rot_z(-theta),
+        "θ treated as degrees": lambda: rot_z(np.radians(theta)),
+        "θ converted to degrees before cos and sin (they take radians)": lambda: rot_z(
+            np.degrees(theta)
+        ),
+        "rotation about x instead of z": lambda: rot_x(theta),
+        "rotation about y instead of z": lambda: rot_y(theta),
+        "both sin θ entries have the same sign: [[c, s], [s, c]] is not a rotation": lambda: (
+            np.array([[c, s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        ),
+        "both sin θ entries are negative: [[c, −s], [−s, c]] is not a rotation": lambda: np.array(
+            [[c, -s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]]
+        ),
+        "sin and cos swapped": lambda: np.array([[s, -c, 0.0], [c, s, 0.0], [0.0, 0.0, 1.0]]),
+        "the bottom-right entry must be 1: a turn about z leaves z where it is": lambda: np.array(
+            [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 0.0]]
+        ),
+        "returned the identity: θ is not used": lambda: np.eye(3),
+    }
+
+
+_ROT_Z_SHAPES = {
+    (2, 2): "a 2×2 plane rotation: Rz is 3×3, with a 1 for the z axis",
+    (4, 4): "a 4×4 homogeneous transform: rot_z returns the 3×3 rotation",
+}
+
+
+def _rot_z_angles(rng):
+    """Eight angles in (−π, π) and two beyond ±π (up to ±8 rad): any angle is allowed."""
+    return [rng.uniform(-np.pi, np.pi) for _ in range(8)] + [
+        rng.choice([-1.0, 1.0]) * rng.uniform(np.pi, 8.0) for _ in range(2)
+    ]
+
+
+def _rot_z_call(sub, theta):
+    inputs = {"theta": theta}
+    R = _matrix(sub.rot_z(theta), (3, 3), "rot_z(theta)", inputs, _ROT_Z_SHAPES)
+    return R, inputs
+
+
+def _rot_z_is_rotation_by_theta(sub, rng):
+    for theta in _rot_z_angles(rng):
+        R, inputs = _rot_z_call(sub, theta)
+        hypotheses = _rot_z_hypotheses(theta)
+        try:
+            require_rotation(R, "rot_z(theta)", inputs)
+            compare(
+                np.trace(R),
+                1 + 2 * np.cos(theta),
+                what="a rotation by θ has trace 1 + 2 cos θ",
+                inputs=inputs,
+            )
+        except Mismatch as exc:
+            raise _named(exc, R, hypotheses) from None
+
+
+def _rot_z_matches(sub, rng):
+    for theta in _rot_z_angles(rng):
+        R, inputs = _rot_z_call(sub, theta)
+        compare(
+            R,
+            rot_z(theta),
+            what="Rz(θ) = [[cos θ, −sin θ, 0], [sin θ, cos θ, 0], [0, 0, 1]]",
+            inputs=inputs,
+            hypotheses=_rot_z_hypotheses(theta),
+        )
+
+
+# -------------------------------------------------------------------- 1.2 transform_inverse
+
+
+def _inverse_hypotheses(T):
+    R, p = T[:3, :3], T[:3, 3]
+
+    def pose(rotation, translation, bottom=(0.0, 0.0, 0.0, 1.0)):
+        out = make_transform(rotation, translation)
+        out[3] = bottom
+        return out
+
+    translation_in_bottom_row = np.eye(4)
+    translation_in_bottom_row[:3, :3] = R.T
+    translation_in_bottom_row[3, :3] = -R.T @ p
+    return {
+        "the translation was not rotated: use −Rᵀp, not −p": lambda: pose(R.T, -p),
+        "R was not transposed: the inverse rotation is Rᵀ": lambda: pose(R, -R @ p),
+        "only the translation was negated: the inverse is [[Rᵀ, −Rᵀp], [0, 1]]": lambda: pose(
+            R, -p
+        ),
+        "the translation used R, not Rᵀ: −Rᵀp (if you overwrote T's rotation block first, "
+        "R = T[:3, :3] is a view and changed with it)": lambda: pose(R.T, -R @ p),
+        "the minus sign is missing: the translation is −Rᵀp": lambda: pose(R.T, R.T @ p),
+        "the whole 4×4 matrix was transposed: only the rotation block is": lambda: T.T,
+        "the translation went into the bottom row instead of the last column": lambda: (
+            translation_in_bottom_row
+        ),
+        "the bottom row must be [0, 0, 0, 1] (an array of zeros needs its 1)": lambda: pose(
+            R.T, -R.T @ p, (0.0, 0.0, 0.0, 0.0)
+        ),
+        "returned T unchanged": lambda: T,
+    }
+
+
+_INVERSE_SHAPES = {
+    (3, 3): "only the rotation block came back: the inverse is the whole 4×4 transform",
+    (3, 4): "the bottom row [0, 0, 0, 1] is missing: the inverse is 4×4",
+}
+
+
+def _reciprocal_mistake(value, T):
+    """Whether ``value`` is T's entries inverted one by one (1/T or T**-1 of an array)."""
+    try:
+        got = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return None
+    if got.shape != (4, 4):
+        return None
+    nonzero = T != 0
+    with np.errstate(all="ignore"):
+        if np.allclose(got[nonzero], 1.0 / T[nonzero], rtol=1e-6, atol=0.0):
+            return (
+                "the entries were inverted one by one (1/T or T**-1 of an array): the inverse "
+                "of a matrix is not taken entry by entry"
+            )
+    return None
+
+
+def _inverse_call(sub, T):
+    inputs = {"T": T}
+    value = sub.transform_inverse(T.copy())
+    try:
+        got = _matrix(value, (4, 4), "transform_inverse(T)", inputs, _INVERSE_SHAPES)
+    except Mismatch as exc:
+        exc.mistake = exc.mistake or _reciprocal_mistake(value, T)
+        raise
+    return got, inputs
+
+
+def _inverse_is_transform(sub, rng):
+    for _ in range(5):
+        T = random_pose(rng)
+        got, inputs = _inverse_call(sub, T)
+        try:
+            require_transform(got, "transform_inverse(T)", inputs)
+            compare(
+                got[:3, :3],
+                T[:3, :3].T,
+                what="the rotation block of the inverse is Rᵀ",
+                inputs=inputs,
+            )
+        except Mismatch as exc:
+            raise _named(exc, got, _inverse_hypotheses(T)) from None
+
+
+def _inverse_composes_to_identity(sub, rng):
+    for _ in range(10):
+        T = random_pose(rng)
+        T[:3, 3] *= rng.uniform(0.5, 3.0)  # translations up to a few metres
+        got, inputs = _inverse_call(sub, T)
+        compare(
+            got,
+            inv_transform(T),
+            what="T @ transform_inverse(T) must be the identity: the inverse is "
+            "[[Rᵀ, −Rᵀp], [0, 1]]",
+            inputs=inputs,
+            hypotheses=_inverse_hypotheses(T),
+        )
+
+
+_GENERAL_INVERSES = {"inv", "pinv", "solve", "lstsq", "tensorinv", "tensorsolve"}
+_GENERAL_INVERSE = "a general matrix inverse (np.linalg.inv or alike), not the transpose formula"
+
+
+def _is_negative_constant(node):
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+        node = node.operand
+        return isinstance(node, ast.Constant) and isinstance(node.value, (int, float))
+    return (
+        isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and node.value < 0
+    )
+
+
+def _general_inverses_in(source: str, own: set[str]) -> list[str]:
+    """What in ``source`` inverts a matrix in general: np.linalg.inv, pinv, solve, ``**-1``,
+    a numpy matrix's ``.I``, matrix_power(…, −1).  Names of the student's own functions
+    (``own``) do not count."""
+    try:
+        tree = ast.parse(source)
+    except SyntaxError:
+        return []
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call):
+            name = node.func.attr if isinstance(node.func, ast.Attribute) else None
+            name = node.func.id if isinstance(node.func, ast.Name) else name
+            if name in _GENERAL_INVERSES and name not in own:
+                found.append(f"{ast.unparse(node.func)}()")
+            elif name == "matrix_power" and any(_is_negative_constant(a) for a in node.args[1:]):
+                found.append("matrix_power(…, −1)")
+        elif isinstance(node, ast.Attribute) and node.attr == "I":
+            found.append("a numpy matrix's .I")
+        elif (
+            isinstance(node, ast.BinOp)
+            and isinstance(node.op, ast.Pow)
+            and _is_negative_constant(node.right)
+            and not isinstance(node.left, ast.Constant)
+        ):
+            found.append("** −1")
+    return found
+
+
+def _non_rigid_probe(rng):
+    """A 4×4 [[A, p], [0, 1]] whose A is far from orthonormal: its general inverse differs
+    from the transpose formula [[Aᵀ, −Aᵀp], [0, 1]]."""
+    A = random_rotation(rng) @ np.diag(rng.uniform(1.5, 2.5, 3))
+    return make_transform(A, rng.uniform(-1.0, 1.0, 3))
+
+
+def _inverse_is_structured(sub, rng):
+    T = random_pose(rng)
+    got, inputs = _inverse_call(sub, T)
+    compare(
+        got,
+        inv_transform(T),
+        what="the transpose formula [[Rᵀ, −Rᵀp], [0, 1]] (this point needs a right inverse first)",
+        inputs=inputs,
+        hypotheses=_inverse_hypotheses(T),
+    )
+    code = sub.code("transform_inverse")
+    for name, source in code.items():
+        found = _general_inverses_in(source, set(code))
+        if found:
+            raise Mismatch(
+                f"{name} inverts a matrix in general ({', '.join(sorted(set(found)))}): the "
+                "exercise asks for the transpose formula [[Rᵀ, −Rᵀp], [0, 1]], no general inverse",
+                inputs={},
+                mistake=_GENERAL_INVERSE,
+            )
+    # A matrix that is not a rigid transform, outside the function's contract: any exception,
+    # and any answer other than the general inverse, is fine.
+    probe = _non_rigid_probe(rng)
+    try:
+        value = sub.transform_inverse(probe.copy())
+    except StudentRaised as exc:
+        if exc.kind == "ForbiddenCallError":
+            raise
+        return
+    try:
+        answer = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return
+    general = np.linalg.inv(probe)
+    if answer.shape == (4, 4) and close(answer, general, 1e-6):
+        raise Mismatch(
+            "given a 4×4 matrix whose block A is not a rotation, transform_inverse returned its "
+            "general inverse A⁻¹; the transpose formula returns Aᵀ: the exercise asks for the "
+            "formula, no general inverse",
+            inputs={"T (not a rigid transform)": probe},
+            expected=make_transform(probe[:3, :3].T, -probe[:3, :3].T @ probe[:3, 3]),
+            got=answer,
+            mistake=_GENERAL_INVERSE,
+        )
+
+
+# ---------------------------------------------------------------------- 1.3 rotation_to_rpy
+
+_RPY_SHAPES = {
+    (3, 3): "a 3×3 matrix came back: the answer is the three angles (roll, pitch, yaw)",
+    (1, 3): "an array of shape (1, 3): return a flat array of the three angles",
+    (3, 1): "an array of shape (3, 1): return a flat array of the three angles",
+}
+
+
+def _second_solution(rpy):
+    roll, pitch, yaw = rpy
+    return _wrap([roll + np.pi, np.pi - pitch, yaw + np.pi])
+
+
+def _rpy_hypotheses(R):
+    rpy = rotation_to_rpy(R)
+    return {
+        "returned degrees: seed 000's helper does, but angles are radians here": lambda: np.degrees(
+            rpy
+        ),
+        "returned (yaw, pitch, roll): the order is reversed": lambda: rpy[::-1],
+        "the matrix was read transposed (R[i, j] for R[j, i])": lambda: rotation_to_rpy(R.T),
+        "the angles of R = Rx(roll) Ry(pitch) Rz(yaw): the product is Rz(yaw) Ry(pitch) "
+        "Rx(roll)": lambda: -rotation_to_rpy(R.T),
+        "pitch has the wrong sign: r31 = −sin(pitch)": lambda: rpy * [1.0, -1.0, 1.0],
+        "arctan(a / b) instead of atan2(a, b): it cannot tell the quadrant": lambda: np.array(
+            [np.arctan(R[2, 1] / R[2, 2]), rpy[1], np.arctan(R[1, 0] / R[0, 0])]
+        ),
+        "the second solution (cos pitch < 0): pitch belongs in [−π/2, π/2]": lambda: (
+            _second_solution(rpy)
+        ),
+        "roll and yaw wrapped into [0, 2π) instead of (−π, π]": lambda: [
+            np.mod(rpy[0], 2 * np.pi),
+            rpy[1],
+            np.mod(rpy[2], 2 * np.pi),
+        ],
+        "angles wrapped into [0, 2π) instead of (−π, π] (pitch in [−π/2, π/2])": lambda: np.mod(
+            rpy, 2 * np.pi
+        ),
+    }
+
+
+def _rpy_diagnosis(got, expected):
+    """Which of the three angles are wrong, when the hypotheses do not say."""
+    difference = _wrap(np.asarray(got, dtype=float) - expected)
+    names = ("roll", "pitch", "yaw")
+    wrong = [n for n, d in zip(names, difference) if abs(d) > 1e-6]
+    right = [n for n in names if n not in wrong]
+    if not wrong or not right:
+        return None
+    if all(abs(abs(d) - np.pi) < 1e-6 for n, d in zip(names, difference) if n in wrong):
+        return (
+            f"{' and '.join(wrong)} off by π: arctan(a / b) cannot tell the quadrant, atan2(a, b) "
+            "can"
+        )
+    return (
+        f"{' and '.join(wrong)} wrong, {' and '.join(right)} right: check which entries of R "
+        f"{'its formula reads' if len(wrong) == 1 else 'their formulas read'}"
+    )
+
+
+def _rpy_mistake(got, R):
+    return identify_mistake(got, _rpy_hypotheses(R)) or _rpy_diagnosis(got, rotation_to_rpy(R))
+
+
+def _rpy_call(sub, R, what="rotation_to_rpy(R)"):
+    inputs = {"R": R}
+    rpy = _matrix(sub.rotation_to_rpy(R.copy()), (3,), what, inputs, _RPY_SHAPES)
+    return rpy, inputs
+
+
+def _rotations(rng):
+    """Rotations with roll and yaw in every quadrant, pitch of both signs, and random ones."""
+    rotations = []
+    for roll_quadrant in range(4):
+        for yaw_quadrant in range(4):
+            roll = -np.pi + (roll_quadrant + rng.uniform(0.05, 0.95)) * np.pi / 2
+            yaw = -np.pi + (yaw_quadrant + rng.uniform(0.05, 0.95)) * np.pi / 2
+            pitch = rng.choice([-1.0, 1.0]) * rng.uniform(0.05, 1.5)
+            rotations.append(rpy_to_rotation([roll, pitch, yaw]))
+    rotations += [random_rotation(rng) for _ in range(8)]
+    order = rng.permutation(len(rotations))
+    return [rotations[i] for i in order]
+
+
+def _rebuilt(rpy):
+    return _in_dtype(rpy_to_rotation(np.asarray(rpy, dtype=float)), rpy)
+
+
+def _rpy_rebuilds_rotation(sub, rng):
+    for R in _rotations(rng):
+        rpy, inputs = _rpy_call(sub, R)
+        if not close(_rebuilt(rpy), R, 1e-9):
+            raise Mismatch(
+                "Rz(yaw) @ Ry(pitch) @ Rx(roll) does not give R back",
+                inputs=inputs,
+                expected=rotation_to_rpy(R),
+                got=rpy,
+                mistake=_rpy_mistake(rpy, R),
+            )
+
+
+def _rpy_in_range(sub, rng):
+    for R in _rotations(rng):
+        rpy, inputs = _rpy_call(sub, R)
+        expected = rotation_to_rpy(R)
+        if not close(rpy, expected, 1e-9):
+            raise Mismatch(
+                "roll and yaw belong in (−π, π] and pitch in [−π/2, π/2], in radians: away "
+                "from the gimbal lock, only one set of angles in those ranges rebuilds R",
+                inputs=inputs,
+                expected=expected,
+                got=rpy,
+                mistake=_rpy_mistake(rpy, R),
+            )
+
+
+def _locked_rotation(pitch_sign: float, roll: float, yaw: float) -> np.ndarray:
+    """Rz(yaw) Ry(±π/2) Rx(roll) with its zeros exactly zero, as a hand-typed pose would be.
+
+    (``rpy_to_rotation`` at ±π/2 leaves cos(π/2) = 6e-17 in place of those zeros, which lets
+    formulas without a gimbal-lock branch get lucky.)
+    """
+    if pitch_sign > 0:
+        s, c = np.sin(roll - yaw), np.cos(roll - yaw)
+        return np.array([[0.0, s, c], [0.0, c, -s], [-1.0, 0.0, 0.0]])
+    s, c = np.sin(roll + yaw), np.cos(roll + yaw)
+    return np.array([[0.0, -s, -c], [0.0, c, -s], [1.0, 0.0, 0.0]])
+
+
+def _locked_hypotheses(R):
+    pitch = np.pi / 2 if R[2, 0] < 0 else -np.pi / 2
+    turn = np.arctan2(-R[1, 2], R[1, 1])  # r − y at +90°, r + y at −90°
+    into_yaw = -turn if pitch > 0 else turn
+    plus_90_only = "the locked branch is right only at pitch = +90°: use roll = atan2(−r23, r22)"
+    return {
+        "no separate gimbal-lock branch: the general formulas meet atan2(0, 0) = 0 there": (
+            lambda: [0.0, pitch, 0.0]
+        ),
+        "at the gimbal lock the turn went into yaw: the convention is yaw = 0, all of it in "
+        "roll": lambda: [0.0, pitch, into_yaw],
+        f"{plus_90_only} (atan2(r12, r22) fails at −90°)": lambda: [
+            np.arctan2(R[0, 1], R[1, 1]),
+            pitch,
+            0.0,
+        ],
+        f"{plus_90_only} (atan2(r12, r13) fails at −90°)": lambda: [
+            np.arctan2(R[0, 1], R[0, 2]),
+            pitch,
+            0.0,
+        ],
+        "the locked roll has the wrong sign of r23: roll = atan2(−r23, r22)": lambda: [
+            np.arctan2(R[1, 2], R[1, 1]),
+            pitch,
+            0.0,
+        ],
+        "returned degrees: angles are radians here": lambda: np.degrees([turn, pitch, 0.0]),
+    }
+
+
+def _rpy_gimbal_lock(sub, rng):
+    for pitch_sign in (1.0, -1.0, 1.0, -1.0):
+        R = _locked_rotation(pitch_sign, rng.uniform(-np.pi, np.pi), rng.uniform(-np.pi, np.pi))
+        inputs = {"R": R}
+        what = "rotation_to_rpy(R) at pitch = ±90°"
+        value = sub.rotation_to_rpy(R.copy())
+        try:
+            rpy = _matrix(value, (3,), what, inputs, _RPY_SHAPES)
+        except Mismatch as exc:
+            if exc.mistake is None and "NaN" in exc.what:
+                exc.mistake = (
+                    "no separate gimbal-lock branch: the general formulas divide 0 by 0 there"
+                )
+            raise
+        hypotheses = _locked_hypotheses(R)
+        if not close(_rebuilt(rpy), R, 1e-9):
+            raise Mismatch(
+                "at pitch = ±90° only roll ∓ yaw is defined, and the general formulas meet "
+                "atan2(0, 0): handle this case separately (yaw = 0, roll = atan2(−r23, r22))",
+                inputs=inputs,
+                expected=rotation_to_rpy(R),
+                got=rpy,
+                mistake=identify_mistake(rpy, hypotheses),
+            )
+        if not close(rpy[2], 0.0, 1e-9):
+            raise Mismatch(
+                "at the gimbal lock the convention sets yaw = 0 and puts the whole turn into roll",
+                inputs=inputs,
+                expected=rotation_to_rpy(R),
+                got=rpy,
+                mistake=identify_mistake(rpy, hypotheses)
+                or "at the gimbal lock the turn went into yaw: the convention is yaw = 0, all of "
+                "it in roll",
+            )
+
+
+# ---------------------------------------------------------------- 1.4 axis_angle_to_rotation
+
+
+def _rodrigues_unnormalised(axis, angle):
+    K = skew(axis)
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+def _outer_unnormalised(axis, angle):
+    return (
+        np.cos(angle) * np.eye(3)
+        + np.sin(angle) * skew(axis)
+        + (1 - np.cos(angle)) * np.outer(axis, axis)
+    )
+
+
+def _rodrigues(unit, angle, sin=np.sin, cos=np.cos, square=lambda K: K @ K):
+    K = skew(unit)
+    return np.eye(3) + sin(angle) * K + (1 - cos(angle)) * square(K)
+
+
+def _axis_angle_inputs(rng):
+    axis = rng.normal(size=3)
+    axis *= 10 ** rng.uniform(-1.5, 1.5) / np.linalg.norm(axis)  # deliberately not a unit vector
+    return axis, rng.uniform(-np.pi, np.pi)
+
+
+def _axis_angle_hypotheses(axis, angle):
+    unit = axis / np.linalg.norm(axis)
+    return {
+        "the axis was not normalised to a unit vector first": lambda: _rodrigues_unnormalised(
+            axis, angle
+        ),
+        "the axis was not normalised to a unit vector first (in k kᵀ)": lambda: _outer_unnormalised(
+            axis, angle
+        ),
+        "transposed: that is the rotation by −θ (a sign in [k] or in sin θ)": lambda: so3_exp(
+            -unit * angle
+        ),
+        "θ treated as degrees": lambda: so3_exp(unit * np.radians(angle)),
+        "K**2 squares entry by entry: [k]² is the matrix product K @ K": lambda: _rodrigues(
+            unit, angle, square=lambda K: K * K
+        ),
+        "(1 + cos θ) instead of (1 − cos θ)": lambda: (
+            np.eye(3) + np.sin(angle) * skew(unit) + (1 + np.cos(angle)) * skew(unit) @ skew(unit)
+        ),
+        "sin θ and cos θ swapped": lambda: _rodrigues(unit, angle, sin=np.cos, cos=np.sin),
+        "half the angle: Rodrigues' formula takes θ itself (θ/2 belongs to quaternions)": (
+            lambda: so3_exp(unit * angle / 2)
+        ),
+        "twice the angle": lambda: so3_exp(unit * angle * 2),
+        "[k] written without its signs: the skew matrix is [[0, −k3, k2], [k3, 0, −k1], "
+        "[−k2, k1, 0]]": lambda: _rodrigues_unsigned(unit, angle),
+    }
+
+
+def _rodrigues_unsigned(unit, angle):
+    k1, k2, k3 = unit
+    K = np.array([[0.0, k3, k2], [k3, 0.0, k1], [k2, k1, 0.0]])
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+_AXIS_ANGLE_SHAPES = {(4, 4): "a 4×4 transform came back: the answer is the 3×3 rotation"}
+
+
+def _axis_angle_call(sub, axis, angle, shown_axis=None):
+    inputs = {"axis": axis if shown_axis is None else shown_axis, "angle": angle}
+    what = "axis_angle_to_rotation(axis, angle)"
+    zero_over_zero = (
+        "a division by the angle (or by |axis · angle|): at angle 0 that is 0/0, yet R = I there"
+    )
+    try:
+        value = sub.axis_angle_to_rotation(axis.copy(), angle)
+    except StudentRaised as exc:
+        if angle != 0.0 or exc.kind not in (
+            "ValueError",
+            "ZeroDivisionError",
+            "FloatingPointError",
+        ):
+            raise
+        first = exc.message.strip().splitlines()[0][:200] if exc.message.strip() else ""
+        where = f" ({exc.where})" if exc.where else ""
+        raise Mismatch(
+            f"{what} raised {exc.kind} at angle 0: {first}{where}",
+            inputs=inputs,
+            mistake=zero_over_zero,
+        ) from None
+    try:
+        R = _matrix(value, (3, 3), what, inputs, _AXIS_ANGLE_SHAPES)
+    except Mismatch as exc:
+        if exc.mistake is None and "NaN" in exc.what and angle == 0.0:
+            exc.mistake = zero_over_zero
+        raise
+    return R, inputs
+
+
+def _axis_angle_is_rotation(sub, rng):
+    for _ in range(10):
+        axis, angle = _axis_angle_inputs(rng)
+        R, inputs = _axis_angle_call(sub, axis, angle)
+        try:
+            require_rotation(R, "axis_angle_to_rotation(axis, angle)", inputs)
+            compare(
+                np.trace(R),
+                1 + 2 * np.cos(angle),
+                what="a rotation by θ has trace 1 + 2 cos θ",
+                inputs=inputs,
+            )
+        except Mismatch as exc:
+            raise _named(exc, R, _axis_angle_hypotheses(axis, angle)) from None
+
+
+def _axis_angle_matches(sub, rng):
+    cases = [_axis_angle_inputs(rng) for _ in range(10)]
+    cases += [(_axis_angle_inputs(rng)[0], 0.0), (_axis_angle_inputs(rng)[0], np.pi)]
+    for axis, angle in cases:
+        R, inputs = _axis_angle_call(sub, axis, angle)
+        unit = axis / np.linalg.norm(axis)
+        compare(
+            R,
+            so3_exp(unit * angle),
+            what="R = I + sin θ [k] + (1 − cos θ) [k]² with k the unit axis",
+            inputs=inputs,
+            hypotheses=_axis_angle_hypotheses(axis, angle),
+        )
+
+
+def _axis_is_fixed(sub, rng):
+    for _ in range(10):
+        axis, angle = _axis_angle_inputs(rng)
+        R, inputs = _axis_angle_call(sub, axis, angle)
+        unit = axis / np.linalg.norm(axis)
+        across = np.cross(unit, rng.normal(size=3))
+        across /= np.linalg.norm(across)
+        hypotheses = _axis_angle_hypotheses(axis, angle)
+        turned = _in_dtype(R.astype(float) @ unit, R)
+        if not close(turned, unit, 1e-9):
+            raise Mismatch(
+                "a rotation leaves its own axis where it is: R k = k (k the unit axis)",
+                inputs=inputs,
+                expected=unit,
+                got=turned,
+                mistake=identify_mistake(R, hypotheses),
+            )
+        cosine = _in_dtype(across @ R.astype(float) @ across, R)
+        if not close(cosine, np.cos(angle), 1e-9):
+            raise Mismatch(
+                "a vector v perpendicular to the axis turns by the angle: v · R v = cos θ",
+                inputs={**inputs, "v": across},
+                expected=np.cos(angle),
+                got=cosine,
+                mistake=identify_mistake(R, hypotheses),
+            )
+
+
+def _list_mistake(exc: StudentRaised) -> str | None:
+    if exc.kind == "AttributeError" and "'list'" in exc.message:
+        return "array methods used on a list: convert the axis with np.asarray first"
+    if exc.kind == "TypeError" and ("'list'" in exc.message or "sequence" in exc.message):
+        return (
+            "the axis list was used like an array (a list divided by a number fails): "
+            "convert it with np.asarray first"
+        )
+    return None
+
+
+def _axis_as_list(sub, rng):
+    for _ in range(3):
+        axis, angle = _axis_angle_inputs(rng)
+        listed = [round(float(x), 4) for x in axis]
+        inputs = {"axis": f"the list {listed}", "angle": angle}
+        what = "axis_angle_to_rotation(axis, angle) with axis a list"
+        try:
+            value = sub.axis_angle_to_rotation(list(listed), angle)
+        except StudentRaised as exc:
+            mistake = _list_mistake(exc)
+            if mistake is None:
+                raise
+            first = exc.message.strip().splitlines()[0][:200]
+            where = f" ({exc.where})" if exc.where else ""
+            raise Mismatch(
+                f"{what} raised {exc.kind}: {first}{where}", inputs=inputs, mistake=mistake
+            ) from None
+        R = _matrix(value, (3, 3), what, inputs, _AXIS_ANGLE_SHAPES)
+        unit = np.array(listed) / np.linalg.norm(listed)
+        compare(
+            R,
+            so3_exp(unit * angle),
+            what="the axis may be a list of three numbers, not only an array",
+            inputs=inputs,
+            hypotheses=_axis_angle_hypotheses(np.array(listed), angle),
+        )
+
+
+LESSON = Lesson(
+    number="01",
+    title="Rigid-body transforms",
+    summary="rigid-body transforms: rotations, homogeneous transforms, inverse, roll–pitch–yaw, "
+    "exp and log",
+    exercises=(
+        Exercise(
+            id="1.1",
+            function="rot_z",
+            title="rotation about the z axis",
+            checks=(
+                Check(
+                    "returns a 3×3 rotation matrix (orthonormal, det = +1) by the angle θ",
+                    1,
+                    _rot_z_is_rotation_by_theta,
+                ),
+                Check("matches Rz(θ) on random angles", 2, _rot_z_matches),
+            ),
+            answer=concepts.ELEMENTARY_ROTATIONS,
+        ),
+        Exercise(
+            id="1.2",
+            function="transform_inverse",
+            title="inverse of a rigid-body transform",
+            checks=(
+                Check(
+                    "returns a homogeneous transform whose rotation block is Rᵀ",
+                    1,
+                    _inverse_is_transform,
+                ),
+                Check(
+                    "T @ transform_inverse(T) = I on random poses", 2, _inverse_composes_to_identity
+                ),
+                Check(
+                    "uses the transpose formula, not a general matrix inverse",
+                    1,
+                    _inverse_is_structured,
+                ),
+            ),
+            answer=concepts.RIGID_INVERSE,
+        ),
+        Exercise(
+            id="1.3",
+            function="rotation_to_rpy",
+            title="roll, pitch and yaw of a rotation",
+            checks=(
+                Check(
+                    "Rz(yaw) Ry(pitch) Rx(roll) rebuilds R for random rotations",
+                    2,
+                    _rpy_rebuilds_rotation,
+                ),
+                Check(
+                    "angles in radians, roll and yaw in (−π, π], pitch in [−π/2, π/2]",
+                    1,
+                    _rpy_in_range,
+                ),
+                Check(
+                    "copes with the gimbal lock (pitch = ±90°): yaw = 0, R rebuilt",
+                    1,
+                    _rpy_gimbal_lock,
+                ),
+            ),
+            answer=concepts.RPY,
+        ),
+        Exercise(
+            id="1.4",
+            function="axis_angle_to_rotation",
+            title="Rodrigues' formula",
+            checks=(
+                Check("returns a rotation matrix by the given angle", 1, _axis_angle_is_rotation),
+                Check(
+                    "matches Rodrigues' formula for axes of any length and angles (0 and π too)",
+                    2,
+                    _axis_angle_matches,
+                ),
+                Check(
+                    "turns about its axis: R k = k, and vectors across it turn by θ",
+                    1,
+                    _axis_is_fixed,
+                ),
+                Check("accepts the axis as a list", 1, _axis_as_list),
+            ),
+            answer=concepts.SO3_EXP,
+        ),
+    ),
+)

@@ -1,0 +1,933 @@
+"""Lesson 04 — Jacobians and singularities."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+import urkin
+from urkin.course import concepts, wire
+from urkin.course.compare import (
+    Mismatch,
+    as_array,
+    close,
+    compare,
+    identify_mistake,
+    unless_right,
+)
+from urkin.course.exercise import Check, Exercise, Lesson
+from urkin.course.inputs import negated_a, random_arm, random_q
+from urkin.kinematics import SINGULARITIES, dh_transform, singularity_factors
+from urkin.poe import space_from_geometric
+
+_fk, _fk_frames, _jacobian = urkin.fk, urkin.fk_frames, urkin.jacobian
+
+# ------------------------------------------------------------------------------------ helpers
+
+
+# ------------------------------------------------------------------- 4.1 geometric_jacobian
+
+
+def _columns(frames, p, axis=lambda F: F[:3, 2], shift=0, lever=lambda o, p: p - o):
+    """A Jacobian built column by column from a list of frames, with the recipe's pieces
+    swappable (which frame, which axis, which lever arm)."""
+    J = np.zeros((6, 6))
+    for i in range(6):
+        F = frames[i + shift]
+        z = axis(F)
+        J[:3, i] = np.cross(z, lever(F[:3, 3], p))
+        J[3:, i] = z
+    return J
+
+
+def _own_frames(robot, q, convention="standard") -> list[np.ndarray]:
+    frames = [np.eye(4)]
+    for i in range(6):
+        link = dh_transform(q[i], robot.d[i], robot.a[i], robot.alpha[i], convention)
+        frames.append(frames[-1] @ link)
+    return frames
+
+
+def _own_columns(arm, q, convention) -> np.ndarray:
+    frames = _own_frames(arm, q, convention)
+    return _columns(frames, frames[-1][:3, 3])
+
+
+def _jacobian_hypotheses(arm, q):
+    J = _jacobian(arm, q)
+    frames = list(_fk_frames(arm, q))
+    p = frames[-1][:3, 3]
+    R = frames[-1][:3, :3]
+    hypotheses = {
+        "rows in twist order (ω; v): the geometric Jacobian stacks v first, then ω": lambda: (
+            np.vstack([J[3:], J[:3]])
+        ),
+        "joint i turns about z of frame i − 1 (the base z for joint 1), not of frame i": lambda: (
+            _columns(frames, p, shift=1)
+        ),
+        "the angular rows from frame i: joint i turns about z_(i−1), the base z for joint 1": (
+            lambda: np.vstack([J[:3], _columns(frames, p, shift=1)[3:]])
+        ),
+        "the linear rows from frame i: joint i turns about z_(i−1) through p_(i−1)": (
+            lambda: np.vstack([_columns(frames, p, shift=1)[:3], J[3:]])
+        ),
+        "the lever arm points the wrong way: v_i = z_(i−1) × (p − p_(i−1)), from the joint to "
+        "the flange": lambda: _columns(frames, p, lever=lambda o, p: o - p),
+        "the lever arm from the base origin (z × p): it runs from the joint's origin p_(i−1) "
+        "to the flange, p − p_(i−1)": lambda: _columns(frames, p, lever=lambda o, p: p),
+        "the lever arm from frame i's origin: it runs from p_(i−1), on joint i's axis, to the "
+        "flange": lambda: np.vstack(
+            [
+                np.column_stack(
+                    [np.cross(frames[i][:3, 2], p - frames[i + 1][:3, 3]) for i in range(6)]
+                ),
+                J[3:],
+            ]
+        ),
+        "the joint axis taken from the wrong column of the frame: z is the third column, "
+        "frame[:3, 2]": lambda: _columns(frames, p, axis=lambda F: F[:3, 0]),
+        "the joint axis taken from the third row of the rotation: z is the third column, "
+        "frame[:3, 2]": lambda: _columns(frames, p, axis=lambda F: F[2, :3]),
+        "the velocity of the wrist centre (frame 5's origin), not of the flange: p is frame "
+        "6's origin": lambda: _columns(frames, frames[5][:3, 3]),
+        "the space Jacobian (ω; v_s), which measures velocity at the base origin": lambda: (
+            space_from_geometric(J, _fk(arm, q))
+        ),
+        "v measured at the base origin (v + p × ω, the space Jacobian's v_s), not at the "
+        "flange": lambda: np.vstack([space_from_geometric(J, _fk(arm, q))[3:], J[3:]]),
+        "the body Jacobian (ω_b; v_b), in flange coordinates: the geometric one is in base "
+        "coordinates, [v; ω]": lambda: np.vstack([R.T @ J[3:], R.T @ J[:3]]),
+        "[v; ω] in flange coordinates (Rᵀ v; Rᵀ ω): the geometric Jacobian is in base "
+        "coordinates": lambda: np.vstack([R.T @ J[:3], R.T @ J[3:]]),
+        "the Jacobian transposed": lambda: J.T,
+        "the angular rows left at zero: rows 3–5 of column i hold the joint's axis "
+        "z_(i−1)": lambda: np.vstack([J[:3], np.zeros((3, 6))]),
+        "q treated as degrees": lambda: _jacobian(arm, np.radians(q)),
+        "a2 and a3 with the wrong sign in your DH frames (UR publishes them negative)": lambda: (
+            _jacobian(negated_a(arm), q)
+        ),
+        "frames built with modified (Craig) DH link transforms from the standard-DH table": (
+            lambda: _own_columns(arm, q, "modified")
+        ),
+    }
+    return unless_right(hypotheses, J)
+
+
+def _differences(arm, q, h=1e-6):
+    """∂p/∂q and the angular velocity columns of the flange, by central differences of urkin's
+    forward kinematics: (3, 6) and (3, 6)."""
+    steps = h * np.eye(6)
+    plus, minus = _fk(arm, q + steps), _fk(arm, q - steps)
+    dp = (plus[:, :3, 3] - minus[:, :3, 3]).T / (2 * h)
+    W = (plus[:, :3, :3] - minus[:, :3, :3]) / (2 * h) @ _fk(arm, q)[:3, :3].T  # [ω_i]
+    omega = 0.5 * np.stack(
+        [W[:, 2, 1] - W[:, 1, 2], W[:, 0, 2] - W[:, 2, 0], W[:, 1, 0] - W[:, 0, 1]]
+    )
+    return dp, omega
+
+
+_JACOBIAN_SHAPES = {
+    (3, 6): "only the three linear rows: the geometric Jacobian is 6 × 6, [v; ω]",
+    (6, 3): "only three columns, or the linear rows transposed: J is 6 × 6, one column per joint",
+}
+
+
+def _jacobian_call(sub, arm, q) -> np.ndarray:
+    inputs = {"robot": arm.name, "q": q}
+    value = sub.geometric_jacobian(arm, q)
+    return as_array(value, (6, 6), "geometric_jacobian(robot, q)", inputs, _JACOBIAN_SHAPES)
+
+
+def _compare_rows(got, rows, expected, *, what, arm, q):
+    """Compare some rows of the student's J; a mistake is named from the whole matrix (a few
+    rows cannot tell, say, the twist order from the space Jacobian)."""
+    try:
+        compare(got[rows], expected, what=what, inputs={"robot": arm.name, "q": q}, atol=1e-7)
+    except Mismatch as exc:
+        exc.mistake = identify_mistake(got, _jacobian_hypotheses(arm, q))
+        raise
+
+
+def _linear_rows_are_derivatives(sub, rng):
+    for _ in range(5):
+        arm, q = random_arm(rng), random_q(rng)
+        got = _jacobian_call(sub, arm, q)
+        _compare_rows(
+            got,
+            slice(0, 3),
+            _differences(arm, q)[0],
+            what="the first three rows must be ∂p/∂q, the rate at which the flange moves as each "
+            "joint turns (checked with central differences of the flange position, h = 1e-6)",
+            arm=arm,
+            q=q,
+        )
+
+
+def _angular_rows_are_rates_of_turn(sub, rng):
+    for _ in range(5):
+        arm, q = random_arm(rng), random_q(rng)
+        got = _jacobian_call(sub, arm, q)
+        _compare_rows(
+            got,
+            slice(3, 6),
+            _differences(arm, q)[1],
+            what="the last three rows must be the flange's angular velocity per joint rate: "
+            "[ω_i] = (∂R/∂q_i) Rᵀ (checked with central differences of the flange orientation, "
+            "h = 1e-6)",
+            arm=arm,
+            q=q,
+        )
+
+
+def _jacobian_matches(sub, rng):
+    for _ in range(10):
+        arm, q = random_arm(rng), random_q(rng)
+        compare(
+            _jacobian_call(sub, arm, q),
+            _jacobian(arm, q),
+            what="column i = [z_(i−1) × (p − p_(i−1)); z_(i−1)], from the DH frames",
+            inputs={"robot": arm.name, "q": q},
+            hypotheses=_jacobian_hypotheses(arm, q),
+        )
+
+
+# ---------------------------------------------------------------------- 4.2 numeric_jacobian
+
+
+def _dyadic(rng, n: int, span: float, bits: int = 8) -> np.ndarray:
+    """Random multiples of 2^-bits in [−span, span]: with few binary digits, q ± h (h a power
+    of 2) is exact even in float32, so a float32 implementation is judged on its arithmetic,
+    not on the rounding of its steps."""
+    largest = int(span * 2**bits)
+    return rng.integers(-largest, largest + 1, n) / 2**bits
+
+
+def _values(f, x) -> np.ndarray:
+    return np.asarray(f(np.asarray(x, dtype=float)), dtype=float).ravel()
+
+
+def _differentiate(f, q, h, offsets=(1.0, -1.0), base=None) -> np.ndarray:
+    """Finite differences of f at q, column j = (f(q + a h e_j) − f(q + b h e_j)) / (2h) for
+    ``offsets = (a, b)``; ``base(j)`` replaces e_j (for the mis-stepped hypotheses)."""
+    q = np.asarray(q, dtype=float)
+    columns = []
+    for j in range(q.size):
+        e = np.eye(q.size)[j] if base is None else base(j)
+        a, b = offsets
+        columns.append((_values(f, q + a * h * e) - _values(f, q + b * h * e)) / (2 * h))
+    return np.column_stack(columns)
+
+
+def _central(f, q, h) -> np.ndarray:
+    return _differentiate(f, q, h)
+
+
+_TRANSPOSED = (
+    "transposed: row i is output i, column j is input q_j (shape (m, n)) — np.column_stack, "
+    "or np.array(columns).T"
+)
+
+
+def _difference_hypotheses(f, q, h, resolution=1e-6) -> dict[str, Callable[[], np.ndarray]]:
+    """Finite-difference slips; two whose answers cannot be told apart at this ``resolution``
+    (zeros and J·h, for a small h) are left out."""
+    n = np.size(q)
+    size = float(np.abs(_central(f, q, h)).max())
+    hypotheses = {
+        "forward differences (f(q + h) − f(q)) / h: only first-order accurate; use central "
+        "differences (f(q + h) − f(q − h)) / 2h": lambda: 2 * _differentiate(f, q, h, (1, 0)),
+        "backward differences (f(q) − f(q − h)) / h: only first-order accurate; use central "
+        "differences (f(q + h) − f(q − h)) / 2h": lambda: 2 * _differentiate(f, q, h, (0, -1)),
+        "divided by h instead of 2h": lambda: 2 * _central(f, q, h),
+        "the step h argument is ignored (a fixed step is used): use the h you are given": (
+            lambda: _central(f, q, 1e-6)
+        ),
+        "steps of ±h/2 (f(q + h/2) − f(q − h/2)) / h: the lesson's central difference steps "
+        "by ±h": lambda: 2 * _differentiate(f, q, h, (0.5, -0.5)),
+        "every entry of q nudged at once (q + h): nudge one entry at a time, q + h e_j": lambda: (
+            _differentiate(f, q, h, base=lambda j: np.ones(n))
+        ),
+        "the steps pile up from column to column: start every column from a fresh copy of q": (
+            lambda: _differentiate(f, q, h, base=lambda j: (np.arange(n) <= j).astype(float))
+        ),
+        "(f(q + h) − f(q)) / 2h: the nudged copies share q's memory (q_plus = q does not copy): "
+        "use q.copy() or q + h e_j": lambda: _differentiate(f, q, h, (1, 0)),
+        _TRANSPOSED: lambda: _central(f, q, h).T,
+    }
+    if h * size > 10 * resolution:  # else zeros and J·h look alike
+        hypotheses[
+            "all zeros: q_plus and q_minus are the same array (q itself), so f(q_plus) − "
+            "f(q_minus) = 0; use q.copy() or q + h e_j"
+        ] = lambda: np.zeros((np.size(_values(f, q)), n))
+        hypotheses["divided by 2 instead of 2h"] = lambda: h * _central(f, q, h)
+    return unless_right(hypotheses, _central(f, q, h))
+
+
+def _numeric_shapes(m: int, n: int) -> dict[tuple[int, ...], str]:
+    shapes = {
+        (m * n,): "a flat vector: return the (m, n) matrix, one row per output, one column per "
+        "input",
+    }
+    if m != n:
+        shapes[(n, m)] = _TRANSPOSED
+    return shapes
+
+
+def _fd_atol(got, atol: float, h: float, f_scale: float, q_scale: float, J_scale: float):
+    """``atol`` for float64 answers; for a float32 answer, float32's round-off of f and of
+    q ± h amplified by 1/h, which is what a correct float32 implementation produces."""
+    dtype = got.dtype
+    if dtype.itemsize >= 8:
+        return atol
+    eps = float(np.finfo(dtype).eps)
+    return max(atol, 64 * eps * (J_scale + (f_scale + q_scale * J_scale) / h))
+
+
+def _judge_difference(sub, f, q, h, expected, *, what, inputs, atol, as_list=False):
+    """Call numeric_jacobian(f, q, h) and compare with ``expected`` (float32 answers to their
+    round-off amplified by 1/h)."""
+    m, n = np.size(_values(f, q)), np.size(q)
+    value = sub.numeric_jacobian(f, q.tolist() if as_list else q, h)
+    got = as_array(value, (m, n), "numeric_jacobian(f, q, h)", inputs, _numeric_shapes(m, n))
+    scales = (
+        float(np.abs(_values(f, q)).max()),
+        float(np.abs(q).max()),
+        float(np.abs(expected).max()),
+    )
+    atol = _fd_atol(got, atol, h, *scales)
+    compare(
+        got,
+        expected,
+        what=what,
+        inputs=inputs,
+        hypotheses=_difference_hypotheses(f, q, h, max(1e-6, atol)),
+        atol=atol,
+    )
+    return got
+
+
+_SHAPES = ((2, 5), (4, 2), (1, 3), (5, 3), (3, 6), (6, 4))
+
+
+def _exact_on_linear(sub, rng):
+    order = rng.permutation(len(_SHAPES))
+    for case in range(4):
+        m, n = _SHAPES[order[case]]
+        A, b = rng.normal(size=(m, n)), rng.normal(size=m)
+        q, h = _dyadic(rng, n, 1.0), 2.0 ** -int(rng.integers(2, 8))
+        f = wire.Function("linear", A=A, b=b)
+        as_list = case == 0
+        _judge_difference(
+            sub,
+            f,
+            q,
+            h,
+            A,
+            what=f"for f(q) = A q + b ({m} outputs, {n} inputs) the Jacobian is A, shape ({m}, {n})"
+            + (", with q given as a list" if as_list else ""),
+            inputs={"A": A, "b": b, "q": q.tolist() if as_list else q, "h": h},
+            atol=1e-9,
+            as_list=as_list,
+        )
+
+
+def _smooth_derivative(x):
+    return np.array(
+        [
+            [np.cos(x[0]) * x[1] ** 2, 2 * np.sin(x[0]) * x[1], 0.0],
+            [x[1], x[0], 0.5 * np.exp(0.5 * x[2])],
+            [0.0, -x[2] * np.sin(x[1] * x[2]), -x[1] * np.sin(x[1] * x[2])],
+        ]
+    )
+
+
+_SMOOTH = "f(x) = (sin x₀ · x₁², exp(x₂/2) + x₀ x₁, cos(x₁ x₂))"
+
+
+def _central_at_h(sub, rng):
+    smooth = wire.Function("smooth3")
+    for h in (2.0**-2, 2.0**-3, 2.0**-4):
+        q = _dyadic(rng, 3, 1.0)
+        _judge_difference(
+            sub,
+            smooth,
+            q,
+            h,
+            _central(smooth, q, h),
+            what=f"central differences with the step h = {h:g} you are given: column j is "
+            "(f(q + h e_j) − f(q − h e_j)) / 2h",
+            inputs={"f": _SMOOTH, "q": q, "h": h},
+            atol=1e-9,
+        )
+    arm = random_arm(rng)
+    q, h = _dyadic(rng, 6, np.pi, bits=6), 2.0**-4
+    flange = wire.Function("flange_position", robot=arm)
+    _judge_difference(
+        sub,
+        flange,
+        q,
+        h,
+        _central(flange, q, h),
+        what=f"central differences with the step h = {h:g} of the {arm.name}'s flange position "
+        "(3 outputs, 6 inputs)",
+        inputs={"f": f"the {arm.name}'s flange position p(q)", "q": q, "h": h},
+        atol=1e-9,
+    )
+    for _ in range(2):
+        q, h = _dyadic(rng, 3, 1.0), 2.0**-10
+        _judge_difference(
+            sub,
+            smooth,
+            q,
+            h,
+            _smooth_derivative(q),
+            what="with h ≈ 1e-3 central differences are within ~1e-6 of the derivative "
+            "(second order)",
+            inputs={"f": _SMOOTH, "q": q, "h": h},
+            atol=2e-5,
+        )
+
+
+def _float32_steps(f, q, h) -> np.ndarray:
+    """Central differences with q and h in float32 (f in float64): what a correct float32
+    implementation that differentiates a float64 function returns."""
+    x, step = np.asarray(q, dtype=np.float32), np.float32(h)
+    columns = []
+    for j in range(x.size):
+        e = np.zeros_like(x)
+        e[j] = step
+        columns.append((_values(f, x + e) - _values(f, x - e)) / (2 * h))
+    return np.column_stack(columns)
+
+
+def _default_step_hypotheses(f, q) -> dict[str, Callable[[], np.ndarray]]:
+    hypotheses = dict(_difference_hypotheses(f, q, 1e-6))
+    for h in (1e-2, 1e-3, 1e-4, 1e-8):
+        hypotheses[f"the default step is not the lesson's h = 1e-6 (this looks like h = {h:g})"] = (
+            lambda h=h: _central(f, q, h)
+        )
+    return unless_right(hypotheses, _central(f, q, 1e-6))
+
+
+def _on_the_arm(sub, rng):
+    arm, q = random_arm(rng), random_q(rng)
+    flange = wire.Function("flange_position", robot=arm)
+    inputs = {"f": f"the {arm.name}'s flange position p(q)", "q": q}
+    what = "∂p/∂q of the flange position (a 3 × 6 matrix), with the default step h = 1e-6"
+    got = as_array(
+        sub.numeric_jacobian(flange, q),
+        (3, 6),
+        "numeric_jacobian(f, q)",
+        inputs,
+        _numeric_shapes(3, 6),
+    )
+    exact = _jacobian(arm, q)[:3]
+    if got.dtype.itemsize >= 8:
+        steps32 = _float32_steps(flange, q, 1e-6)
+        if close(got, steps32, 1e-6 * float(np.abs(exact).max())):
+            return  # q ± h rounded to float32: as good as float32 steps can be
+        compare(
+            got,
+            exact,
+            what=what + " (central differences there are accurate to ~1e-10, forward ones to "
+            "~1e-7; the tolerance is 1e-8)",
+            inputs=inputs,
+            atol=1e-8,
+            hypotheses=_default_step_hypotheses(flange, q),
+        )
+        return
+    # a float32 answer: at h = 1e-6 its round-off (~ε₃₂/h) swamps the derivative, so it is
+    # judged there to that precision, and again at h = 2⁻⁸, where float32 is accurate
+    atol = _fd_atol(got, 1e-7, 1e-6, 1.0, float(np.abs(q).max()), float(np.abs(exact).max()))
+    compare(
+        got,
+        exact,
+        what=what,
+        inputs=inputs,
+        atol=atol,
+        hypotheses=_difference_hypotheses(flange, q, 1e-6),
+    )
+    q = _dyadic(rng, 6, np.pi, bits=6)
+    _judge_difference(
+        sub,
+        flange,
+        q,
+        2.0**-8,
+        _central(flange, q, 2.0**-8),
+        what=what.replace(
+            "the default step h = 1e-6",
+            "h = 2⁻⁸ (a float32 answer is also judged where float32 is accurate)",
+        ),
+        inputs={**inputs, "q": q, "h": 2.0**-8},
+        atol=1e-9,
+    )
+
+
+# ----------------------------------------------------------------------- 4.3 singularities
+
+_FAMILY_JOINT = {"elbow": 2, "wrist": 4}
+
+
+def _factor(arm, q) -> float:
+    """The shoulder factor a2 cos q2 + a3 cos(q2 + q3) + d5 sin(q2 + q3 + q4), metres."""
+    return float(singularity_factors(arm, q)[0])
+
+
+def _wrap(angle: float) -> float:
+    return float((angle + np.pi) % (2 * np.pi) - np.pi)
+
+
+def _shoulder_q4(arm, q, target: float) -> float | None:
+    """q4 that makes the shoulder factor equal ``target`` (None if the wrist cannot)."""
+    reach = arm.a2 * np.cos(q[1]) + arm.a3 * np.cos(q[1] + q[2])
+    s = (target - reach) / arm.d5
+    if abs(s) > 0.95:
+        return None
+    return _wrap(np.arcsin(s) - q[1] - q[2])
+
+
+def _configuration(arm, rng, families=(), near: dict | None = None) -> np.ndarray:
+    """A configuration on exactly ``families`` (or, for ``near = {family: value}``, with that
+    family's factor equal to the value); the other factors are far from zero."""
+    near = near or {}
+    while True:
+        q = random_q(rng)
+        for family, joint in _FAMILY_JOINT.items():
+            if family in families:
+                q[joint] = rng.choice([0.0, np.pi, -np.pi])
+            elif family in near:
+                q[joint] = _wrap(np.arcsin(near[family]) + rng.choice([0.0, np.pi]))
+        if "shoulder" in families or "shoulder" in near:
+            target = near.get("shoulder", 0.0)
+            # choose q2 so that the reach is within the wrist's d5 of the target
+            A, B = arm.a2 + arm.a3 * np.cos(q[2]), -arm.a3 * np.sin(q[2])
+            K = float(np.hypot(A, B))
+            reach = rng.uniform(-0.8, 0.8) * min(arm.d5, K)
+            q[1] = _wrap(np.arctan2(B, A) + rng.choice([-1.0, 1.0]) * np.arccos(reach / K))
+            q4 = _shoulder_q4(arm, q, target)
+            if q4 is None:
+                continue
+            q[3] = q4
+        factors = np.abs(singularity_factors(arm, q))
+        wanted = [name in families for name in SINGULARITIES]
+        ok = all(
+            (f <= 1e-12) if want else (name in near or f >= (0.02 if name == "shoulder" else 0.2))
+            for name, f, want in zip(SINGULARITIES, factors, wanted)
+        )
+        if ok:
+            return q
+
+
+def _regular_configuration(arm, rng) -> np.ndarray:
+    q = _configuration(arm, rng)
+    if rng.random() < 0.5:  # cos q3 = 0 or cos q5 = 0: where a cosine test goes wrong
+        q[2] = rng.choice([np.pi / 2, -np.pi / 2])
+    else:
+        q[4] = rng.choice([np.pi / 2, -np.pi / 2])
+    if abs(_factor(arm, q)) < 0.02:
+        return _regular_configuration(arm, rng)
+    return q
+
+
+_NAMES_HINT = "a set of names such as {'wrist'} (empty when q is regular)"
+
+
+def _names(value, inputs) -> set[str]:
+    what = "singularities(robot, q)"
+    if value is None:
+        raise Mismatch(f"{what} returned None: is a `return` statement missing?", inputs=inputs)
+    if isinstance(value, dict) and not value:
+        return set()  # {} for the empty set: a common slip that means the same here
+    if isinstance(value, dict) and all(isinstance(v, (bool, np.bool_)) for v in value.values()):
+        raise Mismatch(
+            f"{what} must return {_NAMES_HINT}; got a dict of flags {value!r:.80}",
+            inputs=inputs,
+            mistake="a dict of True/False flags: return the set of the names that are present",
+        )
+    if isinstance(value, str):
+        raise Mismatch(
+            f"{what} must return {_NAMES_HINT}; got the string {value!r:.80}",
+            inputs=inputs,
+            mistake="a single string: return a set of names, even for one family",
+        )
+    if not isinstance(value, (set, frozenset, list, tuple, dict)):
+        raise Mismatch(
+            f"{what} must return {_NAMES_HINT}; got {type(value).__name__} {value!r:.80}",
+            inputs=inputs,
+            mistake="not a set of names: return {'shoulder', 'elbow', 'wrist'} or a subset",
+        )
+    items = list(value)
+    if items and all(isinstance(v, (bool, np.bool_)) for v in items):
+        raise Mismatch(
+            f"{what} must return {_NAMES_HINT}; got the flags {items!r:.80}",
+            inputs=inputs,
+            mistake="True/False flags for (shoulder, elbow, wrist): return the names of the "
+            "families that are present",
+        )
+    names = {str(v).strip().lower() for v in items}
+    unknown = names - set(SINGULARITIES)
+    if unknown:
+        raise Mismatch(
+            f"{what} returned unknown names {sorted(unknown)}; use "
+            f"{', '.join(repr(s) for s in SINGULARITIES)}",
+            inputs=inputs,
+            mistake="the family names must be exactly 'shoulder', 'elbow' and 'wrist'",
+        )
+    return names
+
+
+def _ask(sub, arm, q, tol=None) -> set[str]:
+    inputs = {"robot": arm.name, "q": q} | ({} if tol is None else {"tol": f"{tol:.1e}"})
+    value = sub.singularities(arm, q) if tol is None else sub.singularities(arm, q, tol)
+    return _names(value, inputs)
+
+
+def _flags(sub, arm, q, family, tol=None) -> bool | None:
+    """Whether the student's function flags ``family`` at q (None if it fails there)."""
+    try:
+        return family in _ask(sub, arm, q, tol)
+    except Exception:  # a probe that fails tells us nothing
+        return None
+
+
+def _zero_along(G, q, joint) -> np.ndarray | None:
+    """q with q[joint] moved to a zero of G (a sign change on a grid, then bisection)."""
+    grid = np.linspace(-np.pi, np.pi, 181)
+    values = []
+    for x in grid:
+        probe = q.copy()
+        probe[joint] = x
+        values.append(G(probe))
+    for k in range(len(grid) - 1):
+        if values[k] == 0 or values[k] * values[k + 1] < 0:
+            lo, hi = grid[k], grid[k + 1]
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                probe = q.copy()
+                probe[joint] = lo
+                g_lo = G(probe)
+                probe[joint] = mid
+                if g_lo * G(probe) <= 0:
+                    hi = mid
+                else:
+                    lo = mid
+            probe = q.copy()
+            probe[joint] = 0.5 * (lo + hi)
+            return probe
+    return None
+
+
+_NO_ABS = (
+    "the absolute value is missing: a factor of −1 is not ≤ tol; a family is present when "
+    "|factor| ≤ tol"
+)
+_OFF_BY_ONE = (
+    "joint numbers off by one: q_k is q[k − 1] in Python (0-based) — q2 is q[1], q3 is q[2], "
+    "q5 is q[4]"
+)
+
+
+def _shoulder_candidates(arm) -> dict[str, Callable[[np.ndarray], float]]:
+    a2, a3, d4, d5 = arm.a2, arm.a3, arm.d4, arm.d5
+
+    def reach(q):
+        return a2 * np.cos(q[1]) + a3 * np.cos(q[1] + q[2])
+
+    return {
+        "the shoulder factor without its wrist term: it is a2 cos q2 + a3 cos(q2+q3) "
+        "+ d5 sin(q2+q3+q4)": reach,
+        "the wrist term of the shoulder factor with the wrong sign: + d5 sin(q2+q3+q4)": (
+            lambda q: reach(q) - d5 * np.sin(q[1] + q[2] + q[3])
+        ),
+        "d4 in the shoulder factor where d5 belongs: a2 cos q2 + a3 cos(q2+q3) "
+        "+ d5 sin(q2+q3+q4)": lambda q: reach(q) + d4 * np.sin(q[1] + q[2] + q[3]),
+        "cos(q2+q3+q4) in the shoulder factor where sin(q2+q3+q4) belongs": (
+            lambda q: reach(q) + d5 * np.cos(q[1] + q[2] + q[3])
+        ),
+        "a2 and a3 taken positive in the shoulder factor (UR's are negative: use robot.a2, "
+        "robot.a3)": lambda q: -reach(q) + d5 * np.sin(q[1] + q[2] + q[3]),
+        "sin and cos swapped in the shoulder factor: a2 cos q2 + a3 cos(q2+q3) "
+        "+ d5 sin(q2+q3+q4)": lambda q: (
+            a2 * np.sin(q[1]) + a3 * np.sin(q[1] + q[2]) + d5 * np.cos(q[1] + q[2] + q[3])
+        ),
+        _OFF_BY_ONE: lambda q: (
+            a2 * np.cos(q[2]) + a3 * np.cos(q[2] + q[3]) + d5 * np.sin(q[2] + q[3] + q[4])
+        ),
+    }
+
+
+def _family_probes(sub, arm, name, joint, base) -> str | None:
+    """Name a mistake in the elbow or wrist test from the student's answers near ``base``."""
+    label = f"q{joint + 1}"
+    at = {}
+    for value in (np.pi / 2, -np.pi / 2, 0.0, np.pi, 1e-12, 2 * np.pi):
+        probe = base.copy()
+        probe[joint] = value
+        at[value] = _flags(sub, arm, probe, name)
+    if at[-np.pi / 2] and at[np.pi / 2] is False:
+        return _NO_ABS
+    if at[np.pi / 2]:
+        return f"the {name} tested with cos {label}: it is singular where sin {label} = 0"
+    shifted = base.copy()
+    shifted[joint + 1] = 0.0  # the next joint at zero, this one regular
+    if (
+        (joint + 1 != 3 or abs(_factor(arm, shifted)) > 0.02)
+        and _flags(sub, arm, base, name) is False
+        and _flags(sub, arm, shifted, name)
+    ):
+        return _OFF_BY_ONE
+    if at[0.0] and at[np.pi] is False:
+        if at[1e-12]:
+            return (
+                f"the {name} is singular at {label} = ±π too, not only at 0: test "
+                f"|sin {label}| ≤ tol"
+            )
+        return (
+            f"the {name} compared with 0 exactly: sin π is 1.2e-16 in floating point, "
+            f"not 0 — test |sin {label}| ≤ tol"
+        )
+    if at[0.0] and at[np.pi] and at[2 * np.pi] is False:
+        return (
+            f"the {name} tested on the angle {label} (0 and ±π) instead of sin {label}: "
+            f"{label} = ±2π is the same singular configuration"
+        )
+    return None
+
+
+def _shoulder_probes(sub, arm, rng) -> str | None:
+    """Name a mistake in the shoulder factor: the student flags the zero of a wrong one."""
+    for label, G in _shoulder_candidates(arm).items():
+        tried = 0
+        for _ in range(6):
+            base = _configuration(arm, rng)
+            for joint in (3, 1):
+                probe = _zero_along(G, base, joint)
+                if probe is None:
+                    continue
+                factors = np.abs(singularity_factors(arm, probe))
+                if factors[0] < 0.02 or factors[1] < 0.1 or factors[2] < 0.1:
+                    continue
+                flagged = _flags(sub, arm, probe, "shoulder")
+                if flagged:
+                    return label
+                tried += 1
+            if tried >= 2:
+                break
+    return None
+
+
+def _shoulder_sign_probe(sub, arm, rng) -> str | None:
+    """The absolute value missing: the shoulder flagged wherever its factor is negative."""
+    signs = {}
+    for _ in range(40):
+        q = _configuration(arm, rng)
+        sign = float(np.sign(_factor(arm, q)))
+        if sign not in signs:
+            signs[sign] = _flags(sub, arm, q, "shoulder")
+        if len(signs) == 2:
+            return _NO_ABS if signs[-1.0] and signs[1.0] is False else None
+    return None
+
+
+def _diagnose(sub, arm, q, expected: set, got: set, rng, tol=None) -> str | None:
+    """Name the likely mistake by asking the student's function about related configurations."""
+    base = _configuration(arm, rng)
+    for name, joint in _FAMILY_JOINT.items():
+        if (name in expected) != (name in got):
+            found = _family_probes(sub, arm, name, joint, base)
+            if found:
+                return found
+    if ("shoulder" in expected) != ("shoulder" in got):
+        found = _shoulder_sign_probe(sub, arm, rng) or _shoulder_probes(sub, arm, rng)
+        if found:
+            return found
+    alone = all(_flags(sub, arm, _configuration(arm, rng, (f,)), f) for f in expected - got)
+    if len(expected) > 1 and len(got) == 1 and got < expected and alone:
+        return (
+            "only one family returned (an if/elif chain or an early return): at an "
+            "intersection several families hold at once"
+        )
+    factors = np.abs(singularity_factors(arm, q))
+    for name in sorted(expected ^ got):
+        size = float(factors[SINGULARITIES.index(name)])
+        if size < 1e-12 or not alone:
+            continue
+        if tol is None and _flags(sub, arm, q, name, 1e-9) == (name in expected):
+            return "the default of tol is not the lesson's 1e-9: singularities(robot, q, tol=1e-9)"
+        loose, strict = _flags(sub, arm, q, name, 10 * size), _flags(sub, arm, q, name, size / 10)
+        if loose is not None and loose == strict:
+            return (
+                "the tol argument is ignored (a fixed tolerance, or np.isclose's default): "
+                "a family is present when its factor is at most tol"
+            )
+    return None
+
+
+def _expected(arm, q, tol=1e-9) -> set[str]:
+    factors = np.abs(singularity_factors(arm, q))
+    return {name for name, f in zip(SINGULARITIES, factors) if f <= tol}
+
+
+_DET = (
+    "det J = a2 a3 · sin q3 · sin q5 · (a2 cos q2 + a3 cos(q2+q3) + d5 sin(q2+q3+q4)): a "
+    "family is present when its factor is at most tol"
+)
+
+
+def _shown(factors) -> str:
+    return "(" + ", ".join(f"{f:.2g}" for f in factors) + ")"
+
+
+def _compare_names(sub, arm, q, expected: set, rng, tol=None, what=_DET):
+    got = _ask(sub, arm, q, tol)
+    if got == expected:
+        return
+    inputs = {"robot": arm.name, "q": q} | ({} if tol is None else {"tol": f"{tol:.1e}"})
+    factors = singularity_factors(arm, q)
+    raise Mismatch(
+        what,
+        inputs={**inputs, "factors (shoulder m, sin q3, sin q5)": _shown(factors)},
+        expected=", ".join(sorted(expected)) or "none",
+        got=", ".join(sorted(got)) or "none",
+        mistake=_diagnose(sub, arm, q, expected, got, rng, tol),
+    )
+
+
+def _regular(sub, rng):
+    for _ in range(8):
+        arm = random_arm(rng)
+        _compare_names(sub, arm, _regular_configuration(arm, rng), set(), rng)
+    for family in SINGULARITIES:  # and not "none" everywhere
+        arm = random_arm(rng)
+        q = _configuration(arm, rng, (family,))
+        got = _ask(sub, arm, q)
+        if not got:
+            raise Mismatch(
+                f"q is singular (the {family} family) but no family was found: " + _DET,
+                inputs={
+                    "robot": arm.name,
+                    "q": q,
+                    "factors (shoulder m, sin q3, sin q5)": _shown(singularity_factors(arm, q)),
+                },
+                expected=family,
+                got="none",
+                mistake=_diagnose(sub, arm, q, {family}, got, rng),
+            )
+
+
+def _single_families(sub, rng):
+    for family in SINGULARITIES:
+        for k in range(4):
+            arm = random_arm(rng)
+            q = _configuration(arm, rng, (family,))
+            while family in _FAMILY_JOINT and k == 3:  # at ±2π: one full turn from 0
+                q[_FAMILY_JOINT[family]] = rng.choice([2 * np.pi, -2 * np.pi])
+                if _expected(arm, q) == {family}:
+                    break
+                q = _configuration(arm, rng, (family,))
+            _compare_names(sub, arm, q, {family}, rng)
+
+
+def _intersections(sub, rng):
+    for families in (
+        ("shoulder", "elbow"),
+        ("elbow", "wrist"),
+        ("shoulder", "wrist"),
+        ("shoulder", "elbow", "wrist"),
+    ):
+        arm = random_arm(rng)
+        _compare_names(sub, arm, _configuration(arm, rng, families), set(families), rng)
+
+
+def _respects_tol(sub, rng):
+    for family in SINGULARITIES:
+        for exponents in ((np.log10(1.5e-8), -7.0), (-5.0, -3.0)):  # just off it, and further
+            arm = random_arm(rng)
+            factor = float(10 ** rng.uniform(*exponents)) * rng.choice([-1.0, 1.0])
+            q = _configuration(arm, rng, near={family: factor})
+            size = abs(singularity_factors(arm, q)[SINGULARITIES.index(family)])
+            for tol, expected in ((None, set()), (10 * size, {family}), (size / 10, set())):
+                shown = "1.0e-09, the default" if tol is None else f"{tol:.1e}"
+                _compare_names(
+                    sub,
+                    arm,
+                    q,
+                    expected,
+                    rng,
+                    tol,
+                    what=f"the {family} factor is {size:.1e} here: a family is present when its "
+                    f"factor is at most tol (tol = {shown})",
+                )
+
+
+LESSON = Lesson(
+    number="04",
+    title="Jacobians and singularities",
+    summary="Jacobians: geometric, numeric, space and body; the UR's shoulder, elbow and wrist "
+    "singularities; manipulability",
+    exercises=(
+        Exercise(
+            id="4.1",
+            function="geometric_jacobian",
+            title="the geometric Jacobian, column by column",
+            checks=(
+                Check(
+                    "its linear rows are the derivative of the flange position",
+                    1,
+                    _linear_rows_are_derivatives,
+                ),
+                Check(
+                    "its angular rows are the flange's rate of turn",
+                    1,
+                    _angular_rows_are_rates_of_turn,
+                ),
+                Check("matches [v; ω] for random arms and configurations", 2, _jacobian_matches),
+            ),
+            answer=concepts.JACOBIAN,
+        ),
+        Exercise(
+            id="4.2",
+            function="numeric_jacobian",
+            title="the Jacobian of any function by central differences",
+            checks=(
+                Check(
+                    "is exact for linear functions of any shape, q an array or a list",
+                    1,
+                    _exact_on_linear,
+                ),
+                Check(
+                    "takes central differences with the step h it is given (second order)",
+                    2,
+                    _central_at_h,
+                ),
+                Check(
+                    "gives the UR flange's position Jacobian (3 × 6) with the default step",
+                    1,
+                    _on_the_arm,
+                ),
+            ),
+        ),
+        Exercise(
+            id="4.3",
+            function="singularities",
+            title="which singular families hold at q",
+            checks=(
+                Check(
+                    "finds none at regular configurations (cos q3 = 0 or cos q5 = 0 included), "
+                    "and some at singular ones",
+                    1,
+                    _regular,
+                ),
+                Check("names the shoulder, elbow and wrist families", 2, _single_families),
+                Check("names every family at their intersections", 1, _intersections),
+                Check(
+                    "respects tol: factors 1e-8 … 1e-3 from zero count only when tol allows",
+                    1,
+                    _respects_tol,
+                ),
+            ),
+            answer=concepts.SINGULARITIES,
+        ),
+    ),
+)

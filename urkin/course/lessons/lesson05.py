@@ -1,0 +1,671 @@
+"""Lesson 05 — Newton–Raphson inverse kinematics."""
+
+from __future__ import annotations
+
+import numpy as np
+
+import urkin
+from urkin.course import concepts
+from urkin.course.compare import Mismatch, as_array, close, compare, tolerance
+from urkin.course.exercise import Check, Exercise, Lesson
+from urkin.course.inputs import random_arm, random_pose, random_regular_q
+from urkin.course.submission import StudentRaised
+from urkin.numerical_ik import orientation_error
+from urkin.transforms import make_transform, rotation_angle, so3_exp
+
+_fk, _ik, _jacobian = urkin.fk, urkin.ik, urkin.jacobian
+_orientation_error = orientation_error
+
+
+def _wrap(q):
+    return (np.asarray(q, dtype=float) + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def _unit(rng) -> np.ndarray:
+    axis = rng.normal(size=3)
+    return axis / np.linalg.norm(axis)
+
+
+# ---------------------------------------------------------------------------- 5.2 pose_error
+
+
+def _expected_error(T, T_target):
+    e_p = T_target[:3, 3] - T[:3, 3]
+    return np.r_[e_p, _orientation_error(T[:3, :3], T_target[:3, :3])]
+
+
+_CROSS = (
+    "the seeds' cross-product error ½ Σ rᵢ × tᵢ = sin φ·k, not the rotation vector φ·k: it "
+    "shrinks for large errors and vanishes at 180°"
+)
+_HALF_TURN_AXIS = (
+    "no half-turn branch: near φ = π, s = sin φ·k has (almost) vanished and lost the axis; read "
+    "k from the symmetric part ½(R_e + R_eᵀ) − cos φ I = (1 − cos φ) k kᵀ"
+)
+_HALF_TURN_SIGN = (
+    "the sign of k near a half turn: the column of the symmetric part gives ±k; pick the sign "
+    "that agrees with s"
+)
+_ZERO_ANGLE = (
+    "0/0 at φ = 0: φ / sin φ is undefined there (and arccos of the trace gives φ = 0 for tiny "
+    "angles); use e_o = s when φ is tiny"
+)
+_TOOL_FRAME = (
+    "the orientation error is in the tool frame, log(Rᵀ R_target); it belongs in the base "
+    "frame, log(R_target Rᵀ), like the Jacobian's ω"
+)
+
+
+_REVERSED = (
+    "the orientation part points the wrong way: log(R R_targetᵀ) is the rotation back from the "
+    "target, log(R_target Rᵀ) the one towards it"
+)
+
+
+def _pose_error_hypotheses(T, T_target):
+    right = _expected_error(T, T_target)
+    e_p, e_o = right[:3], right[3:]
+    cross = _orientation_error(T[:3, :3], T_target[:3, :3], "cross")
+    angle = np.linalg.norm(e_o)
+    return {
+        _CROSS: lambda: np.r_[e_p, cross],
+        "the error points the wrong way: current − target, not target − current": lambda: -right,
+        _REVERSED: lambda: np.r_[e_p, -e_o],
+        "the position part points the wrong way: p − p_target, not p_target − p": lambda: np.r_[
+            -e_p, e_o
+        ],
+        _TOOL_FRAME: lambda: np.r_[e_p, T[:3, :3].T @ e_o],
+        "(orientation; position) order: the geometric Jacobian puts position first": lambda: np.r_[
+            e_o, e_p
+        ],
+        "the vee of R_e − R_eᵀ is 2 sin φ·k: the factor ½ in s is missing": lambda: np.r_[
+            e_p, 2.0 * e_o
+        ],
+        "φ·s = φ sin φ·k: s must be divided by sin φ, e_o = (φ / sin φ) s": lambda: np.r_[
+            e_p, np.sin(angle) * e_o
+        ],
+        "the rotation vector in degrees; radians belong with metres": lambda: np.r_[
+            e_p, np.degrees(e_o)
+        ],
+    }
+
+
+def _pose_inputs(T, T_target):
+    return {"T": T, "T_target": T_target}
+
+
+def _call_pose_error(sub, T, T_target, nan_mistake=None):
+    inputs = _pose_inputs(T, T_target)
+    try:
+        return as_array(
+            sub.pose_error(T.copy(), T_target.copy()), (6,), "pose_error(T, T_target)", inputs
+        )
+    except Mismatch as exc:
+        if nan_mistake and "NaN" in exc.what:
+            exc.mistake = nan_mistake
+        raise
+
+
+def _right_at(sub, rng, angle: float, form: str = "log") -> bool:
+    """Whether the student's orientation error is right (``form="cross"``: is sin φ·k) for a
+    turn of ``angle`` about a random axis: a probe that tells similar mistakes apart."""
+    T = random_pose(rng)
+    T_target = T @ make_transform(so3_exp(_unit(rng) * angle))
+    try:
+        got = np.asarray(sub.pose_error(T.copy(), T_target.copy()), dtype=float)
+    except (StudentRaised, TypeError, ValueError):
+        return False
+    expected = _orientation_error(T[:3, :3], T_target[:3, :3], form)
+    return got.shape == (6,) and close(got[3:], expected, 1e-6)
+
+
+def _pose_error_mistake(sub, rng, got, T, T_target, sign_free=False, atol=1e-6):
+    """The named mistake that reproduces ``got`` (with ``sign_free``, up to the sign of e_o)."""
+    for name, hypothesis in _pose_error_hypotheses(T, T_target).items():
+        if sign_free and name == _REVERSED:
+            continue  # at a half turn, −e_o is as right as e_o
+        value = np.asarray(hypothesis(), dtype=float)
+        candidates = [value, np.r_[value[:3], -value[3:]]] if sign_free else [value]
+        if any(close(got, c, atol) for c in candidates):
+            near_half_turn = rotation_angle(T[:3, :3], T_target[:3, :3]) > 2.6
+            if name == _REVERSED and near_half_turn and _right_at(sub, rng, 1.0):
+                return _HALF_TURN_SIGN  # reversed only where the symmetric part gives the axis
+            return name
+    return None
+
+
+def _compare_pose_error(sub, rng, got, T, T_target, what, atol_mistake=1e-6):
+    try:
+        compare(got, _expected_error(T, T_target), what=what, inputs=_pose_inputs(T, T_target))
+    except Mismatch as exc:
+        exc.mistake = _pose_error_mistake(sub, rng, got, T, T_target, atol=atol_mistake)
+        raise
+
+
+def _pose_error_matches(sub, rng):
+    for _ in range(15):
+        T, T_target = random_pose(rng), random_pose(rng)
+        got = _call_pose_error(sub, T, T_target)
+        _compare_pose_error(
+            sub,
+            rng,
+            got,
+            T,
+            T_target,
+            "e = [p_target − p; log(R_target Rᵀ)] (rotation vector, base frame)",
+        )
+
+
+def _signed_permutation(rng) -> np.ndarray:
+    """A rotation whose entries are 0 and ±1: R Rᵀ = I holds exactly in floating point."""
+    R = np.eye(3)[rng.permutation(3)] * rng.choice([-1.0, 1.0], 3)
+    if np.linalg.det(R) < 0:
+        R[:, 0] = -R[:, 0]
+    return R
+
+
+def _pose_error_edge_angles(sub, rng):
+    # no turn at all (R_target Rᵀ = I exactly, as for a pose in a grid-aligned orientation),
+    # and a turn far too small for arccos of the trace
+    for angle in (0.0, 10 ** rng.uniform(-12, -9)):
+        T = random_pose(rng)
+        if angle == 0.0:
+            T[:3, :3] = _signed_permutation(rng)
+        T_target = make_transform(so3_exp(_unit(rng) * angle), rng.uniform(-0.1, 0.1, 3)) @ T
+        got = _call_pose_error(sub, T, T_target, nan_mistake=_ZERO_ANGLE)
+        turn = "no turn" if angle == 0 else f"a turn of {angle:.1e} rad"
+        _compare_pose_error(
+            sub, rng, got, T, T_target, f"{turn}: e_o = φ·k, zero or tiny", atol_mistake=1e-13
+        )  # tiny values: the hypotheses differ by less
+    # exactly half a turn: e_o = ±π k, either sign
+    for _ in range(2):
+        T, u = random_pose(rng), _unit(rng)
+        T_target = T @ make_transform(so3_exp(np.pi * u), rng.uniform(-0.1, 0.1, 3))
+        got = _call_pose_error(sub, T, T_target, nan_mistake=_HALF_TURN_AXIS)
+        k = T[:3, :3] @ u  # the turn's axis, in the base frame
+        e_p = T_target[:3, 3] - T[:3, 3]
+        candidates = (np.r_[e_p, np.pi * k], np.r_[e_p, -np.pi * k])
+        # 1e-7: arccos of the trace may lose its last digits at exactly π; no mistake hides there
+        if any(close(got, c, 1e-7) for c in candidates):
+            continue
+        if np.linalg.norm(got[3:]) < 1e-6:
+            mistake = _CROSS if _right_at(sub, rng, 2 * np.pi / 3, "cross") else _HALF_TURN_AXIS
+        else:
+            mistake = _pose_error_mistake(sub, rng, got, T, T_target, sign_free=True)
+            if mistake is None and close(got[:3], e_p, 1e-6):
+                mistake = _HALF_TURN_AXIS
+        raise Mismatch(
+            "a target turned by 180° must give an orientation error of length π along the "
+            "turn's axis (either sign); the cross-product form gives 0 there, and Newton's "
+            "method would stop believing it has arrived",
+            inputs=_pose_inputs(T, T_target),
+            expected=candidates[0],
+            got=got,
+            mistake=mistake,
+        )
+    # nearly half a turn: here the sign of k is no longer free
+    for _ in range(5):
+        T, u = random_pose(rng), _unit(rng)
+        angle = np.pi - 10 ** rng.uniform(-6, -0.5)
+        T_target = T @ make_transform(so3_exp(angle * u), rng.uniform(-0.1, 0.1, 3))
+        got = _call_pose_error(sub, T, T_target, nan_mistake=_HALF_TURN_AXIS)
+        _compare_pose_error(
+            sub,
+            rng,
+            got,
+            T,
+            T_target,
+            f"a turn of π − {np.pi - angle:.1e} rad: e_o = φ·k, with the sign of k from s",
+        )
+
+
+# ----------------------------------------------------------------------------- 5.3 ik_newton
+
+
+def _plain_newton(arm, T_target, q0, limit, norm, position_only) -> bool:
+    """Whether Newton–Raphson with the pseudo-inverse, steps scaled down to ``limit`` (their
+    largest joint change, or with ``norm`` their length) and wrapped angles reaches the target
+    within 1e-10 in 100 iterations."""
+    q = np.array(q0, dtype=float)
+    for _ in range(100):
+        T = _fk(arm, q)
+        e = T_target[:3, 3] - T[:3, 3]
+        if not position_only:
+            e = np.r_[e, _orientation_error(T[:3, :3], T_target[:3, :3])]
+        if np.abs(e).max() < 1e-10:
+            return True
+        J = _jacobian(arm, q)
+        step = np.linalg.pinv(J[:3] if position_only else J) @ e
+        size = np.linalg.norm(step) if norm else np.abs(step).max()
+        q = _wrap(q + step * min(1.0, limit / max(size, 1e-300)))
+    return False
+
+
+#: Step limits a correct solver might use: (limit, whether it bounds the step's length).
+_LIMITS = ((1.0, False), (0.5, False), (0.3, False), (1.0, True), (0.5, True))
+
+
+def _newton_problem(rng, spread: float, position_only: bool = False):
+    """A random arm, a target pose it reaches at a configuration away from the elbow and wrist
+    singularities, and a start ``spread`` rad away per joint from which plain Newton–Raphson
+    converges with any of several step limits (largest joint change 1, 0.5 or 0.3 rad, or
+    step length 1 or 0.5 rad): the start is in the solution's basin, whatever the limit."""
+    arm = random_arm(rng)
+    while True:
+        q_true = random_regular_q(rng)
+        q0 = q_true + rng.uniform(-spread, spread, 6)
+        T_target = _fk(arm, q_true)
+        if all(
+            _plain_newton(arm, T_target, q0, limit, norm, position_only) for limit, norm in _LIMITS
+        ):
+            return arm, T_target, q0
+
+
+def _ik_inputs(arm, T_target, q0, position_only=False):
+    if position_only:
+        return {"robot": arm.name, "p_target": T_target[:3, 3], "q0": q0}
+    return {"robot": arm.name, "q0": q0, "T_target": T_target}
+
+
+_MILLIMETRES = (
+    "millimetres on one side of e = p_target − p only (seed 002 worked in mm): keep metres "
+    "throughout"
+)
+_UNCHANGED = (
+    "returns q0 unchanged: the loop never takes a step (a loop condition the wrong way round, "
+    "like seed 001's `while ‖V‖ < ε`, or a return inside the loop)"
+)
+_TOO_EARLY = (
+    "stops too early: a tolerance looser than the exercise's 1e-12 (or tol ignored), or too few "
+    "iterations"
+)
+
+
+def _check_reached(arm, q, q0, T_target, what, inputs, position_only=False):
+    """Raise Mismatch unless fk(arm, q) reaches the target within 1e-8 (float32: its precision)."""
+    if np.max(np.abs(_wrap(q - np.asarray(q0, dtype=float)))) < 1e-12:
+        raise Mismatch(
+            f"{what} returned its initial guess unchanged", inputs=inputs, got=q, mistake=_UNCHANGED
+        )
+    T = _fk(arm, _wrap(q))  # fk takes angles within a few turns: wrap the answer first
+    position = float(np.linalg.norm(T[:3, 3] - T_target[:3, 3]))
+    angle = 0.0 if position_only else float(rotation_angle(T[:3, :3], T_target[:3, :3]))
+    tol = tolerance(1e-8, like=q)
+    if position <= tol and angle <= tol:
+        return
+    mistake = None
+    if max(position, angle) < 1e-5:
+        mistake = _TOO_EARLY
+    elif position_only and close(T[:3, 3] * 1000, T_target[:3, 3], 1e-6):
+        mistake = _MILLIMETRES
+    elif not position_only and position <= tol and angle > 3.0:
+        mistake = _CROSS
+    target = "the target point" if position_only else "the target"
+    miss = f"{position:.2e} m" if position_only else f"{position:.2e} m and {angle:.2e} rad"
+    raise Mismatch(
+        f"{what}: fk(robot, q) must reach {target} within {tol:.0e} (m and rad); it misses "
+        f"by {miss}",
+        inputs=inputs,
+        got=q,
+        mistake=mistake,
+    )
+
+
+def _newton_converges(sub, rng, spread: float, count: int):
+    for _ in range(count):
+        arm, T_target, q0 = _newton_problem(rng, spread)
+        inputs = _ik_inputs(arm, T_target, q0)
+        q = as_array(
+            sub.ik_newton(arm, T_target.copy(), q0.copy()),
+            (6,),
+            "ik_newton(robot, T_target, q0)",
+            inputs,
+        )
+        _check_reached(arm, q, q0, T_target, "ik_newton", inputs)
+
+
+def _newton_close(sub, rng):
+    _newton_converges(sub, rng, 0.1, 5)
+
+
+def _newton_far(sub, rng):
+    _newton_converges(sub, rng, 0.5, 5)
+
+
+def _parallel(d, s, atol) -> bool:
+    """Whether the joint change d is c·s with c > 0 (to atol in every joint)."""
+    ss = float(s @ s)
+    if ss == 0.0:
+        return False
+    c = float(d @ s) / ss
+    return c > 0 and float(np.abs(d - c * s).max()) <= atol
+
+
+def _one_step(sub, name, arm, target, q0, max_step, inputs):
+    """The joint change of one iteration with max_iterations=1 (2 if 1 takes no step)."""
+    for count in (1, 2):
+        call = (
+            f"{name}(robot, {'p_target' if name == 'ik_position' else 'T_target'}, q0, "
+            f"max_iterations={count}, max_step={max_step})"
+        )
+        q = as_array(
+            sub.call(name, arm, target.copy(), q0.copy(), max_iterations=count, max_step=max_step),
+            (6,),
+            call,
+            inputs,
+        )
+        d = _wrap(q - q0)
+        if np.abs(d).max() > 1e-12:
+            return q, d, call
+    raise Mismatch(
+        f"{call} returned q0 unchanged: one iteration must take one step",
+        inputs=inputs,
+        got=q,
+        mistake=_UNCHANGED,
+    )
+
+
+_ITERATIONS = "max_iterations is ignored: with max_iterations=1 it must stop after one step"
+_NO_LIMIT = (
+    "the step is not scaled down to max_step (no step limit, or the max_step argument ignored)"
+)
+
+
+def _limited(step, max_step):
+    return step * min(1.0, max_step / np.abs(step).max())
+
+
+def _ignores_iterations(sub, name, arm, target, q0, max_step, q_one):
+    """A callable: whether max_iterations=2 gives the answer of max_iterations=1 (``q_one``)."""
+
+    def ignored() -> bool:
+        try:
+            q_two = sub.call(
+                name, arm, target.copy(), q0.copy(), max_iterations=2, max_step=max_step
+            )
+            return np.shape(q_two) == (6,) and close(np.asarray(q_two, dtype=float), q_one, 1e-12)
+        except (StudentRaised, TypeError, ValueError):
+            return False
+
+    return ignored
+
+
+def _judge_step(q, d, steps, max_step, call, inputs, hypotheses, ignores_iterations):
+    """Raise Mismatch unless d is one of ``steps`` scaled down to at most max_step
+    (``ignores_iterations()``: whether max_iterations=2 gives the same answer as 1)."""
+    atol = tolerance(1e-9, like=q, scale=np.pi)
+    largest = float(np.abs(d).max())
+    if any(_parallel(d, s, atol) for s in steps):
+        if largest <= max_step * (1 + 1e-9) + atol:
+            return
+        raise Mismatch(
+            f"{call}: no joint may move more than max_step = {max_step} rad in one step; one "
+            f"moved {largest:.4f} rad",
+            inputs=inputs,
+            expected=_limited(steps[0], max_step),
+            got=d,
+            mistake=_NO_LIMIT,
+        )
+    s = steps[0]
+    mistake = None
+    if any(close(d, _wrap(step), 1e-9) for step in steps):  # the whole step, then wrapped
+        mistake = _NO_LIMIT
+    elif ignores_iterations():
+        mistake = _ITERATIONS
+    elif _parallel(d, np.clip(s, -max_step, max_step), atol):
+        mistake = (
+            "each joint clipped to ±max_step separately: that changes the step's direction; "
+            "scale the whole step down instead"
+        )
+    else:
+        for label, step in hypotheses:
+            if _parallel(d, step, atol):
+                mistake = label
+                break
+    raise Mismatch(
+        f"{call}: one iteration moves q along the Newton step Δq, scaled down so that no joint "
+        "moves more than max_step",
+        inputs=inputs,
+        expected=_limited(s, max_step),
+        got=d,
+        mistake=mistake,
+    )
+
+
+def _student_step_error(sub, T, T_target):
+    """The student's own pose_error at T, if it gives one (ik_newton is meant to use it)."""
+    try:
+        e = np.asarray(sub.pose_error(T.copy(), T_target.copy()), dtype=float)
+    except (StudentRaised, TypeError, ValueError):
+        return None
+    return e if e.shape == (6,) and np.all(np.isfinite(e)) else None
+
+
+def _newton_step(sub, rng):
+    max_step = 0.05
+    for _ in range(3):
+        while True:
+            arm, T_target, q0 = _newton_problem(rng, 0.5)
+            T0, J = _fk(arm, q0), _jacobian(arm, q0)
+            e = _expected_error(T0, T_target)
+            s = np.linalg.pinv(J) @ e
+            if np.abs(s).max() > 4 * max_step:
+                break
+        inputs = _ik_inputs(arm, T_target, q0)
+        steps = [s]
+        own = _student_step_error(sub, T0, T_target)
+        if own is not None:
+            steps.append(np.linalg.pinv(J) @ own)
+        cross = np.r_[e[:3], _orientation_error(T0[:3, :3], T_target[:3, :3], "cross")]
+        hypotheses = {
+            "the step goes the wrong way: q + Δq with Δq = J⁺ e and e = target − current": -s,
+            "Jᵀ e is the Jacobian-transpose (gradient) step, not Newton's J⁺ e": J.T @ e,
+            _CROSS: np.linalg.pinv(J) @ cross,
+            _TOOL_FRAME: np.linalg.pinv(J) @ np.r_[e[:3], T0[:3, :3].T @ e[3:]],
+        }.items()
+        q, d, call = _one_step(sub, "ik_newton", arm, T_target, q0, max_step, inputs)
+        ignored = _ignores_iterations(sub, "ik_newton", arm, T_target, q0, max_step, q)
+        _judge_step(q, d, steps, max_step, call, inputs, hypotheses, ignored)
+
+
+_NOT_WRAPPED = "the angles are not wrapped into [−π, π): add (q + π) % 2π − π after each step"
+_WRAPPED_0_2PI = "the angles are wrapped into [0, 2π) instead of [−π, π)"
+
+
+def _check_wrapped(q, what, inputs):
+    tol = tolerance(1e-12, like=q, scale=np.pi)
+    if np.all(q >= -np.pi - tol) and np.all(q <= np.pi + tol):
+        return
+    mistake = _WRAPPED_0_2PI if np.all(q >= -tol) and np.all(q < 2 * np.pi + tol) else None
+    raise Mismatch(
+        f"{what} must return joint angles wrapped into [−π, π) (the same arm pose without extra "
+        "turns); this start has whole extra turns on some joints",
+        inputs=inputs,
+        expected=_wrap(q),
+        got=q,
+        mistake=mistake or _NOT_WRAPPED,
+    )
+
+
+def _call_with_list(sub, name, arg_names, args, array_args, inputs, what):
+    """Call with some arguments as plain lists.  When that raises but the same call with
+    arrays does not, the failure names the missing np.asarray; otherwise it is the student's
+    exception as it is (a stub's NotImplementedError included)."""
+    try:
+        return sub.call(name, *args)
+    except StudentRaised as exc:
+        sub.call(name, *array_args)  # raises on its own when lists are not the trouble
+        where = f" ({exc.where})" if exc.where else ""
+        raise Mismatch(
+            f"{what} with {arg_names} given as a plain list raised {exc.kind}: "
+            f"{exc.message.strip()[:200]}{where}",
+            inputs=inputs,
+            mistake=f"{arg_names} as a list: convert it with np.asarray(…, dtype=float) before "
+            "using array operations on it",
+        ) from None
+
+
+def _extra_turns(rng) -> np.ndarray:
+    turns = rng.integers(-2, 3, 6)
+    turns[rng.integers(6)] = rng.choice([-1, 1])
+    return 2 * np.pi * turns
+
+
+def _newton_wraps_and_takes_lists(sub, rng):
+    for case in range(3):
+        arm, T_target, q_start = _newton_problem(rng, 0.3)
+        q0 = q_start + _extra_turns(rng)
+        inputs = _ik_inputs(arm, T_target, q0)
+        what = "ik_newton(robot, T_target, q0)"
+        if case == 0:
+            value = _call_with_list(
+                sub,
+                "ik_newton",
+                "q0",
+                (arm, T_target.copy(), q0.tolist()),
+                (arm, T_target.copy(), q0.copy()),
+                inputs,
+                what,
+            )
+        else:
+            value = sub.ik_newton(arm, T_target.copy(), q0.copy())
+        q = as_array(value, (6,), what, inputs)
+        _check_reached(arm, q, q0, T_target, "ik_newton", inputs)
+        _check_wrapped(q, "ik_newton", inputs)
+
+
+# --------------------------------------------------------------------------- 5.1 ik_position
+
+
+def _position_converges(sub, rng):
+    for _ in range(8):
+        arm, T_target, q0 = _newton_problem(rng, 0.4, position_only=True)
+        p_target = T_target[:3, 3]
+        inputs = _ik_inputs(arm, T_target, q0, position_only=True)
+        q = as_array(
+            sub.ik_position(arm, p_target.copy(), q0.copy()),
+            (6,),
+            "ik_position(robot, p_target, q0)",
+            inputs,
+        )
+        _check_reached(arm, q, q0, T_target, "ik_position", inputs, position_only=True)
+
+
+def _position_step(sub, rng):
+    max_step = 0.05
+    for _ in range(3):
+        while True:
+            arm, T_target, q0 = _newton_problem(rng, 0.5, position_only=True)
+            p_target = T_target[:3, 3]
+            p = _fk(arm, q0)[:3, 3]
+            e = p_target - p
+            J = _jacobian(arm, q0)
+            s = np.linalg.pinv(J[:3]) @ e
+            if np.abs(s).max() > 4 * max_step:
+                break
+        inputs = _ik_inputs(arm, T_target, q0, position_only=True)
+        six_by_six = np.linalg.pinv(J) @ np.r_[e, 0.0, 0.0, 0.0]
+        hypotheses = {
+            "a 6 × 6 Jacobian with a zero orientation error keeps the orientation: that is a "
+            "different, often impossible problem; use the 3 × 6 position Jacobian": six_by_six,
+            "the bottom three rows of the geometric Jacobian are ω; the position rows (v) are "
+            "the top three": np.linalg.pinv(J[3:]) @ e,
+            "the step goes the wrong way: q + Δq with Δq = J_v⁺ e and e = p_target − p": -s,
+            "J_vᵀ e is the Jacobian-transpose (gradient) step, not Newton's J_v⁺ e": J[:3].T @ e,
+        }.items()
+        hypotheses = [
+            *hypotheses,
+            (_MILLIMETRES, np.linalg.pinv(J[:3]) @ (p_target / 1000 - p)),
+            (_MILLIMETRES, np.linalg.pinv(J[:3]) @ (p_target * 1000 - p)),
+        ]
+        q, d, call = _one_step(sub, "ik_position", arm, p_target, q0, max_step, inputs)
+        ignored = _ignores_iterations(sub, "ik_position", arm, p_target, q0, max_step, q)
+        _judge_step(q, d, [s], max_step, call, inputs, hypotheses, ignored)
+
+
+def _position_wraps_and_takes_lists(sub, rng):
+    for case in range(3):
+        arm, T_target, q_start = _newton_problem(rng, 0.3, position_only=True)
+        q0 = q_start + _extra_turns(rng)
+        p_target = T_target[:3, 3]
+        inputs = _ik_inputs(arm, T_target, q0, position_only=True)
+        what = "ik_position(robot, p_target, q0)"
+        if case == 0:
+            value = _call_with_list(
+                sub,
+                "ik_position",
+                "p_target and q0",
+                (arm, p_target.tolist(), q0.tolist()),
+                (arm, p_target.copy(), q0.copy()),
+                inputs,
+                what,
+            )
+        else:
+            value = sub.ik_position(arm, p_target.copy(), q0.copy())
+        q = as_array(value, (6,), what, inputs)
+        _check_reached(arm, q, q0, T_target, "ik_position", inputs, position_only=True)
+        _check_wrapped(q, "ik_position", inputs)
+
+
+LESSON = Lesson(
+    number="05",
+    title="Newton–Raphson inverse kinematics",
+    summary="Newton–Raphson IK: position-only and full pose, convergence, basins of attraction, "
+    "the 180° blind spot",
+    exercises=(
+        Exercise(
+            id="5.1",
+            function="ik_position",
+            title="position-only Newton–Raphson IK",
+            checks=(
+                Check("reaches random target points", 2, _position_converges),
+                Check(
+                    "one iteration is the step J_v⁺e with the 3 × 6 position Jacobian, scaled "
+                    "down to max_step",
+                    1,
+                    _position_step,
+                ),
+                Check(
+                    "returns angles wrapped into [−π, π); accepts p_target and q0 as lists",
+                    1,
+                    _position_wraps_and_takes_lists,
+                ),
+            ),
+            answer=concepts.INVERSE_KINEMATICS,
+        ),
+        Exercise(
+            id="5.2",
+            function="pose_error",
+            title="the 6-vector error between two poses",
+            checks=(
+                Check(
+                    "matches [p_t − p; log(R_t Rᵀ)] on random pose pairs", 2, _pose_error_matches
+                ),
+                Check(
+                    "sees a 180° turn (length π, along its axis), near half turns and no turn",
+                    1,
+                    _pose_error_edge_angles,
+                ),
+            ),
+            answer=concepts.ROTATION_LOG,
+        ),
+        Exercise(
+            id="5.3",
+            function="ik_newton",
+            title="full-pose Newton–Raphson IK",
+            checks=(
+                Check("reaches targets from a start 0.1 rad away", 2, _newton_close),
+                Check("reaches targets from a start 0.5 rad away", 2, _newton_far),
+                Check("one iteration is the step J⁺e, scaled down to max_step", 1, _newton_step),
+                Check(
+                    "returns angles wrapped into [−π, π); accepts q0 as a list",
+                    1,
+                    _newton_wraps_and_takes_lists,
+                ),
+            ),
+            answer=concepts.INVERSE_KINEMATICS,
+            uses=("pose_error",),
+            builds_on=("5.2",),
+        ),
+    ),
+)

@@ -1,0 +1,945 @@
+"""Lesson 07 — closed-form (geometric) inverse kinematics."""
+
+from __future__ import annotations
+
+import ast
+from collections.abc import Callable, Mapping
+from fractions import Fraction
+from functools import partial
+from typing import Any
+
+import numpy as np
+
+from urkin.analytic_ik import ik_analytic, wrap_angles
+from urkin.course import concepts
+from urkin.course.compare import Mismatch, as_array, close, format_array, tolerance
+from urkin.course.exercise import Check, Exercise, Lesson
+from urkin.course.lab import LAB_BASE_IN_WORLD, LAB_LINKS, LAB_OFFSET, fk_lab, ik_lab, lab_robot
+from urkin.course.submission import StudentRaised
+from urkin.transforms import make_transform, rot_x, rot_z
+
+# bound here, in the lesson module, which the grading guard never touches
+_fk_lab, _ik_lab, _ik_analytic = fk_lab, ik_lab, ik_analytic
+_LAB = lab_robot()
+
+_L1, _L2, _L3, _L4, _L5, _L6, _L7, _L8, _L9, _L10 = LAB_LINKS
+_OFFSET = _L2 - _L4 + _L6  # 0.110 m: the wrist's sideways offset from the arm's plane
+_BASE = np.array(LAB_BASE_IN_WORLD)
+_TURN, _DEGREE_TURN = 2 * np.pi, 360.0
+
+# ------------------------------------------------------------------------ shared: mistakes
+
+_ARCTAN = (
+    "the lab sheet's arctan(y/x): it loses the quadrant when x < 0 (behind the base); use "
+    "atan2(y, x)"
+)
+_UNSIGNED = (
+    "the lab sheet's r = √(x² + y²): it loses the sign of the reach when wrist 1 is behind the "
+    "base axis; use the signed r = x3 cos θ1 + y3 sin θ1"
+)
+_ARCTAN_HR = (
+    "the lab sheet's arctan(h/r) in θ2: once r is signed it can be negative, and arctan loses "
+    "the quadrant; use atan2 (or planar_2r on (r, −h))"
+)
+_DEGREES = "returned degrees: the course works in radians"
+_MILLIMETRES = (
+    "millimetres: the sheet's 110, 83, 141 … are millimetres; in metres they are 0.110 "
+    "(L2 − L4 + L6), 0.083 (L7), 0.141 (L8 + L10) — use OFFSET and L1 … L10"
+)
+_ATAN2_SWAPPED = "atan2(x, y): numpy's arctan2 takes y first, arctan2(y, x)"
+
+# numbers of the lab sheet in millimetres (and 1000, a conversion), which metres never need
+_MILLIMETRE_NUMBERS = {110, 83, 59, 82, 141, 152, 120, 244, 93, 213, 53.5, 150, 1000}
+
+
+def _millimetre_literals(sub: Any, function: str) -> bool:
+    """Whether the student's function (or a function it uses) writes a length in millimetres."""
+    try:
+        sources = sub.code(function)
+    except Exception:  # reading the code is only for naming a mistake
+        return False
+    for source in sources.values():
+        try:
+            tree = ast.parse(source)
+        except SyntaxError:
+            continue
+        for node in ast.walk(tree):
+            if (
+                isinstance(node, ast.Constant)
+                and isinstance(node.value, (int, float))
+                and not isinstance(node.value, bool)
+                and node.value in _MILLIMETRE_NUMBERS
+            ):
+                return True
+    return False
+
+
+def _unwired(value: Any, shape: tuple[int, ...]) -> Any:
+    """Undo what the plain-data copy does to numpy scalars and 0-d arrays (it gives them shape
+    (1,)): a float32 θ1, or a tuple of float32 angles, as the student returned it."""
+    if isinstance(value, np.ndarray) and value.shape == (1,) and shape == ():
+        return value.reshape(())
+    if (
+        isinstance(value, (list, tuple))
+        and len(shape) == 1
+        and len(value) == shape[0]
+        and any(isinstance(v, np.ndarray) for v in value)
+        and all(
+            (isinstance(v, np.ndarray) and v.shape == (1,)) or isinstance(v, (int, float))
+            for v in value
+        )
+    ):
+        parts = [np.reshape(v, ()) for v in value]
+        narrow = [v.dtype for v in parts if v.dtype.kind == "f" and v.dtype.itemsize < 8]
+        return np.array(parts, dtype=min(narrow, key=lambda d: d.itemsize) if narrow else None)
+    return value
+
+
+def _answer(
+    sub: Any,
+    function: str,
+    value: Any,
+    shape: tuple[int, ...],
+    what: str,
+    inputs: Mapping[str, Any],
+    nan_mistake: str | None = None,
+) -> np.ndarray:
+    """:func:`as_array`, naming the likely mistake when the answer is NaN."""
+    try:
+        return as_array(_unwired(value, shape), shape, what, inputs)
+    except Mismatch as exc:
+        if exc.mistake is None and "NaN" in exc.what:
+            if nan_mistake is not None:
+                exc.mistake = nan_mistake
+            elif _millimetre_literals(sub, function):
+                exc.mistake = _MILLIMETRES
+        raise
+
+
+def _domain_error(exc: StudentRaised) -> bool:
+    """Whether the student's function raised the math module's NaN: ``math.acos(1.0000001)``."""
+    return exc.kind == "ValueError" and "math domain error" in exc.message
+
+
+def _no_value(exc: StudentRaised, what: str, mistake: str | None) -> Mismatch:
+    """A ``math domain error`` as the Mismatch its NaN would have been."""
+    where = f" ({exc.where})" if exc.where else ""
+    return Mismatch(
+        f"{what} raised ValueError: math domain error{where} — a square root, acos or asin of "
+        "a number out of its range",
+        inputs=exc.inputs,
+        mistake=mistake,
+    )
+
+
+def _gap(got: Any, expected: Any, period: float = _TURN) -> np.ndarray:
+    """|got − expected| up to whole turns of ``period``."""
+    difference = np.asarray(got, dtype=float) - np.asarray(expected, dtype=float)
+    return np.abs(difference - period * np.round(difference / period))
+
+
+def _same_angles(got: np.ndarray, expected: Any, atol: float, period: float = _TURN) -> bool:
+    """Whether the angles ``got`` equal ``expected`` up to whole turns, to
+    :func:`tolerance` (``got``'s precision)."""
+    expected = np.asarray(expected, dtype=float)
+    if np.shape(got) != expected.shape or not np.all(np.isfinite(expected)):
+        return False
+    scale = float(np.abs(expected).max(initial=0.0))
+    return bool(np.all(_gap(got, expected, period) <= tolerance(atol, got, scale)))
+
+
+Hypotheses = Mapping[str, tuple[Callable[[], Any], float]]
+
+
+def _radians(compute: Callable[[], Any]) -> tuple[Callable[[], Any], float]:
+    return compute, _TURN
+
+
+def _degrees(compute: Callable[[], Any]) -> tuple[Callable[[], Any], float]:
+    return (lambda: np.degrees(compute())), _DEGREE_TURN
+
+
+def _identify(
+    got: np.ndarray, hypotheses: Hypotheses, right: Any = None, atol: float = 1e-6
+) -> str | None:
+    """The first wrong hypothesis whose angles equal ``got`` up to whole turns; a hypothesis
+    that gives the ``right`` angles for these inputs tells nothing and is skipped."""
+    for name, (compute, period) in hypotheses.items():
+        try:
+            with np.errstate(all="ignore"):
+                candidate = np.asarray(compute(), dtype=float)
+        except Exception:  # a hypothesis that cannot be evaluated simply does not match
+            continue
+        if right is not None and _same_angles(candidate, right, atol, period):
+            continue
+        if _same_angles(got, candidate, atol, period):
+            return name
+    return None
+
+
+def _identify_nan(got: np.ndarray, hypotheses: Hypotheses) -> str | None:
+    """The first wrong hypothesis with no value exactly where ``got`` is NaN, and the same
+    angles elsewhere (at least two of them: one may be a constant, such as θ5)."""
+    missing = ~np.isfinite(got)
+    if np.count_nonzero(~missing) < 2:
+        return None
+    for name, (compute, period) in hypotheses.items():
+        try:
+            with np.errstate(all="ignore"):
+                candidate = np.asarray(compute(), dtype=float)
+        except Exception:  # a hypothesis that cannot be evaluated simply does not match
+            continue
+        if candidate.shape != got.shape:
+            continue
+        if np.array_equal(~np.isfinite(candidate), missing) and _same_angles(
+            got[~missing], candidate[~missing], 1e-6, period
+        ):
+            return name
+    return None
+
+
+def _largest_gap(got: np.ndarray, expected: Any, atol: float) -> str | None:
+    gap = float(_gap(got, expected).max())
+    if gap >= 1e-3:  # visible in the 4-decimal display
+        return None
+    scale = float(np.abs(np.asarray(expected, dtype=float)).max(initial=0.0))
+    return (
+        f"largest difference {gap:.1e} rad (up to whole turns); the tolerance is "
+        f"{tolerance(atol, got, scale):.0e}"
+    )
+
+
+def _compare_angles(
+    got: np.ndarray,
+    expected: Any,
+    *,
+    what: str,
+    inputs: Mapping[str, Any],
+    hypotheses: Hypotheses,
+    atol: float,
+) -> None:
+    """Raise :class:`Mismatch` (naming a likely mistake) unless the angles ``got`` equal
+    ``expected`` up to whole turns."""
+    if _same_angles(got, expected, atol):
+        return
+    raise Mismatch(
+        what,
+        inputs=inputs,
+        expected=expected,
+        got=got,
+        mistake=_identify(got, hypotheses, right=expected),
+        difference=_largest_gap(got, expected, atol),
+    )
+
+
+# ---------------------------------------------------------------------------- 7.1 lab_theta1
+
+_UR_THETA1 = "UR's joint 1 (the lab's θ1 + π): lab_theta1 returns the lab's θ1; ik_lab adds π later"
+_OFF_BY_PI = "off by π"  # behind the base: the sheet's arctan, or UR's joint 1 (see _theta1_pi)
+
+
+def _theta1(xc, yc):
+    return np.arctan2(yc, xc) - np.arcsin(_OFFSET / np.hypot(xc, yc))
+
+
+def _theta1_hypotheses(xc: float, yc: float) -> dict:
+    rho = np.hypot(xc, yc)
+    return {
+        _OFF_BY_PI: _radians(lambda: _theta1(xc, yc) + np.pi),
+        "θc + θB: that is the other tangent (the other shoulder branch); the lab's arm uses "
+        "θ1 = θc − θB": _radians(lambda: np.arctan2(yc, xc) + np.arcsin(_OFFSET / rho)),
+        "arccos(0.110/ρ) where the figure has arcsin: θB is the angle opposite the 0.110 m "
+        "side": _radians(lambda: np.arctan2(yc, xc) - np.arccos(_OFFSET / rho)),
+        _ATAN2_SWAPPED: _radians(lambda: np.arctan2(xc, yc) - np.arcsin(_OFFSET / rho)),
+        "ρ² in place of ρ = √(x² + y²)": _radians(
+            lambda: np.arctan2(yc, xc) - np.arcsin(_OFFSET / rho**2)
+        ),
+        "θB missing: the offset wrist costs θB = asin(0.110/ρ), θ1 = θc − θB": _radians(
+            lambda: np.arctan2(yc, xc)
+        ),
+        "arctan(0.110/ρ) where the figure has arcsin (0.110 m is opposite θB, ρ the "
+        "hypotenuse)": _radians(lambda: np.arctan2(yc, xc) - np.arctan(_OFFSET / rho)),
+        "θB − θc: θ1 = θc − θB": _radians(lambda: -_theta1(xc, yc)),
+        _DEGREES: _degrees(lambda: _theta1(xc, yc)),
+        _DEGREES + " (and the sheet's arctan)": _degrees(
+            lambda: np.arctan(yc / xc) - np.arcsin(_OFFSET / rho)
+        ),
+    }
+
+
+def _wrist_centre(rng: np.random.Generator, side: str) -> tuple[float, float]:
+    """A wrist centre in reach (ρ > 0.110 m), in front of the base axis (x > 0) or behind."""
+    while True:
+        rho, angle = rng.uniform(0.115, 0.6), rng.uniform(-np.pi, np.pi)
+        x, y = rho * np.cos(angle), rho * np.sin(angle)
+        if (x > 0.03) if side == "front" else (x < -0.03):
+            return float(x), float(y)
+
+
+def _theta1_answer(sub, xc: float, yc: float) -> np.ndarray:
+    inputs = {"x_c": xc, "y_c": yc}
+    return _answer(sub, "lab_theta1", sub.lab_theta1(xc, yc), (), "lab_theta1(x_c, y_c)", inputs)
+
+
+def _theta1_pi(sub, xc: float, yc: float) -> str | None:
+    """Which mistake an answer off by π behind the base is: the sheet's arctan (right in
+    front of the base) or UR's joint 1 (off by π in front too)."""
+    try:
+        mirrored = _theta1_answer(sub, -xc, -yc)  # the same ρ, in front of the base
+    except (Mismatch, StudentRaised):
+        return None
+    if _same_angles(mirrored, _theta1(-xc, -yc), 1e-6):
+        return _ARCTAN
+    return _UR_THETA1 if _same_angles(mirrored, _theta1(-xc, -yc) + np.pi, 1e-6) else None
+
+
+def _theta1_nan(sub, xc: float, yc: float) -> str | None:
+    """The mistake behind a NaN answer: a hypothesis that has no value here either and
+    matches the student's answer for a wrist centre further out in the same direction."""
+    scale = 0.55 / np.hypot(xc, yc)
+    try:
+        further = _theta1_answer(sub, xc * scale, yc * scale)
+    except Mismatch as exc:  # NaN even 0.55 m out, where 0.110/ρ is far from 1
+        return _MILLIMETRES if "NaN" in exc.what else None
+    except StudentRaised as exc:
+        return _MILLIMETRES if _domain_error(exc) else None
+    mistake = _identify(
+        further,
+        _theta1_hypotheses(xc * scale, yc * scale),
+        right=_theta1(xc * scale, yc * scale),
+    )
+    if mistake is not None:
+        with np.errstate(all="ignore"):
+            here = _theta1_hypotheses(xc, yc)[mistake][0]()
+        if not np.all(np.isfinite(here)):
+            return mistake
+    return None
+
+
+def _theta1_matches(side: str, sub, rng):
+    what = (
+        "θ1 = atan2(y_c, x_c) − asin(0.110 / √(x_c² + y_c²)), in the lab's convention"
+        if side == "front"
+        else "behind the base (x_c < 0) θ1 must still point the arm at the wrist centre"
+    )
+    for _ in range(8):
+        xc, yc = _wrist_centre(rng, side)
+        inputs = {"x_c": xc, "y_c": yc}
+        try:
+            got = _theta1_answer(sub, xc, yc)
+        except Mismatch as exc:
+            if exc.mistake is None and "NaN" in exc.what:
+                exc.mistake = _theta1_nan(sub, xc, yc)
+            raise
+        except StudentRaised as exc:
+            if not _domain_error(exc):
+                raise
+            mistake = _MILLIMETRES if _millimetre_literals(sub, "lab_theta1") else None
+            raise _no_value(exc, "lab_theta1", mistake or _theta1_nan(sub, xc, yc)) from None
+        expected = _theta1(xc, yc)
+        if _same_angles(got, expected, 1e-9):
+            continue
+        mistake = _identify(got, _theta1_hypotheses(xc, yc), right=expected)
+        if mistake == _OFF_BY_PI:
+            mistake = _UR_THETA1 if side == "front" else _theta1_pi(sub, xc, yc)
+        raise Mismatch(
+            what,
+            inputs=inputs,
+            expected=expected,
+            got=got,
+            mistake=mistake,
+            difference=_largest_gap(got, expected, 1e-9),
+        )
+
+
+# ---------------------------------------------------------------------------- 7.2 planar_2r
+
+_OTHER_ELBOW_2R = "the other elbow (θb = −acos(…)): the exercise asks for θb = +acos(…) ≥ 0"
+_NOT_CLIPPED = (
+    "cos θb not clipped to [−1, 1]: on the ring's edge rounding puts it a hair past ±1, where "
+    "arccos has no value"
+)
+
+
+def _elbow(x, y, l1, l2):
+    return np.arccos(np.clip((x * x + y * y - l1 * l1 - l2 * l2) / (2 * l1 * l2), -1.0, 1.0))
+
+
+def _first(direction, b, l1, l2):
+    return direction - np.arctan2(l2 * np.sin(b), l1 + l2 * np.cos(b))
+
+
+def _planar(x, y, l1, l2):
+    b = _elbow(x, y, l1, l2)
+    return np.array([_first(np.arctan2(y, x), b, l1, l2), b])
+
+
+def _planar_hypotheses(x: float, y: float, l1: float, l2: float) -> dict:
+    b = _elbow(x, y, l1, l2)
+    inner = np.pi - b  # the triangle's angle at the elbow
+    return {
+        "the lab sheet's arctan(y/x) for the tip's direction: it loses the quadrant when "
+        "x < 0; use atan2(y, x)": _radians(lambda: [_first(np.arctan(y / x), b, l1, l2), b]),
+        "the triangle's inner angle at the elbow (π − θb): θb is the turn from the first "
+        "link to the second, cos θb = (x² + y² − l1² − l2²) / (2 l1 l2)": _radians(
+            lambda: [_first(np.arctan2(y, x), inner, l1, l2), inner]
+        ),
+        "θa = atan2(y, x) + atan2(…): the sign belongs to the other elbow; for θb ≥ 0 "
+        "subtract": _radians(
+            lambda: [np.arctan2(y, x) + np.arctan2(l2 * np.sin(b), l1 + l2 * np.cos(b)), b]
+        ),
+        "l1 and l2 swapped in atan2(l2 sin θb, l1 + l2 cos θb)": _radians(
+            lambda: [np.arctan2(y, x) - np.arctan2(l1 * np.sin(b), l2 + l1 * np.cos(b)), b]
+        ),
+        _ATAN2_SWAPPED: _radians(lambda: [_first(np.arctan2(x, y), b, l1, l2), b]),
+        "arctan(l2 sin θb / (l1 + l2 cos θb)): it loses the quadrant when l1 + l2 cos θb < 0; "
+        "use atan2": _radians(
+            lambda: [np.arctan2(y, x) - np.arctan(l2 * np.sin(b) / (l1 + l2 * np.cos(b))), b]
+        ),
+        "θa = atan2(y, x): the first link is turned away from the tip's direction by "
+        "atan2(l2 sin θb, l1 + l2 cos θb)": _radians(lambda: [np.arctan2(y, x), b]),
+        "returned [θb, θa]: the order is [θa, θb]": _radians(lambda: _planar(x, y, l1, l2)[::-1]),
+        _DEGREES: _degrees(lambda: _planar(x, y, l1, l2)),
+    }
+
+
+def _matching(got: np.ndarray, hypotheses: Hypotheses, names, right: Any = None) -> list[str]:
+    """The hypotheses among ``names`` whose angles equal ``got`` up to whole turns (leaving
+    out those that give the ``right`` angles here)."""
+    found = []
+    for name in names:
+        compute, period = hypotheses[name]
+        try:
+            with np.errstate(all="ignore"):
+                candidate = np.asarray(compute(), dtype=float)
+        except Exception:  # a hypothesis that cannot be evaluated simply does not match
+            continue
+        if right is not None and _same_angles(candidate, right, 1e-6, period):
+            continue
+        if _same_angles(got, candidate, 1e-6, period):
+            found.append(name)
+    return found
+
+
+# x > 0, and folded so far that l1 + l2 cos θb < 0: tells apart mistakes that give the same
+# angles elsewhere (arctan(y/x) and arctan in the angle at the origin behind the base, …)
+_PLANAR_PROBE = (0.268328 * np.cos(0.4), 0.268328 * np.sin(0.4), 0.2, 0.4)
+
+
+def _planar_mistake(sub, got: np.ndarray, x, y, l1, l2) -> str | None:
+    hypotheses = _planar_hypotheses(x, y, l1, l2)
+    names = _matching(got, hypotheses, hypotheses, right=_planar(x, y, l1, l2))
+    if len(names) < 2:
+        return names[0] if names else None
+    try:  # more than one mistake gives these angles here: ask where they differ
+        probe = np.asarray(_unwired(sub.planar_2r(*_PLANAR_PROBE), (2,)), dtype=float)
+    except (StudentRaised, TypeError, ValueError):
+        return names[0]
+    there = _matching(probe, _planar_hypotheses(*_PLANAR_PROBE), names)
+    return there[0] if len(there) == 1 else names[0]
+
+
+def _tip(angles: np.ndarray, l1: float, l2: float) -> np.ndarray:
+    a, b = np.asarray(angles, dtype=float)
+    tip = np.array([l1 * np.cos(a) + l2 * np.cos(a + b), l1 * np.sin(a) + l2 * np.sin(a + b)])
+    dtype = getattr(angles, "dtype", None)
+    return tip.astype(dtype) if dtype is not None and dtype.itemsize < 8 else tip  # its precision
+
+
+def _planar_case(
+    rng: np.random.Generator, side: str, folded: bool = False
+) -> tuple[float, float, float, float]:
+    """A target strictly inside the reachable ring, with x > 0 or x < 0; ``folded``: with a
+    long second link folded back so far that l1 + l2 cos θb < 0."""
+    while True:
+        l1, l2 = rng.uniform(0.15, 0.5), rng.uniform(0.1, 0.45)
+        if folded:
+            l1, l2 = min(l1, l2), max(l1, l2)
+            if (l1 + 0.02) / l2 > 0.9:
+                continue
+            cos_b = rng.uniform(-0.97, -(l1 + 0.02) / l2)
+            reach = np.sqrt(l1 * l1 + l2 * l2 + 2 * l1 * l2 * cos_b)
+            if not abs(l1 - l2) + 0.02 <= reach <= l1 + l2 - 0.02:
+                continue
+        else:
+            reach = rng.uniform(abs(l1 - l2) + 0.02, l1 + l2 - 0.02)
+        angle = rng.uniform(-np.pi, np.pi)
+        x, y = reach * np.cos(angle), reach * np.sin(angle)
+        if (x > 0.01) if side == "front" else (x < -0.01):
+            return float(x), float(y), float(l1), float(l2)
+
+
+def _cosines(x: float, y: float, l1: float, l2: float) -> tuple[list, list]:
+    """cos θb and the cosine of the angle at the origin as students compute them."""
+    d, s = np.hypot(x, y), np.sqrt(x * x + y * y)
+    elbow = [
+        (x * x + y * y - l1 * l1 - l2 * l2) / (2 * l1 * l2),
+        (x * x + y * y - (l1 * l1 + l2 * l2)) / (2 * l1 * l2),
+        (d**2 - l1**2 - l2**2) / (2 * l1 * l2),
+        (x**2 + y**2 - l1**2 - l2**2) / 2 / l1 / l2,
+        (s**2 - l1**2 - l2**2) / (2 * l1 * l2),
+    ]
+    origin = [
+        (l1**2 + d**2 - l2**2) / (2 * l1 * d),
+        (l1**2 + s**2 - l2**2) / (2 * l1 * s),
+        (l2**2 - l1**2 - d**2) / (-2 * l1 * d),
+        (x * x + y * y + l1 * l1 - l2 * l2) / (2 * l1 * s),
+        (l2 * l2 - l1 * l1 - s * s) / (-2 * l1 * s),
+    ]
+    return elbow, origin
+
+
+def _edge_case(rng: np.random.Generator, outer: bool) -> tuple[float, float, float, float]:
+    """A target on the ring's outer (stretched) or inner (folded) edge, with x > 0: exactly in
+    the ring, but where rounding puts cos θb, computed the usual ways, a hair past ±1 (and the
+    cosine of the angle at the origin, which the text does not ask to clip, within [−1, 1])."""
+    for _ in range(10_000):
+        l1, l2 = rng.uniform(0.15, 0.5), rng.uniform(0.1, 0.45)
+        if abs(l1 - l2) < 0.05:
+            continue
+        reach = l1 + l2 if outer else abs(l1 - l2)
+        angle = rng.uniform(-0.45 * np.pi, 0.45 * np.pi)
+        x, y = float(reach * np.cos(angle)), float(reach * np.sin(angle))
+        elbow, origin = _cosines(x, y, l1, l2)
+        if not (np.all(np.abs(elbow) > 1.0) and np.all(np.abs(origin) <= 1.0)):
+            continue
+        # the target as given (exact binary fractions) lies in the ring, on or just inside
+        # its edge: only rounding in the student's arithmetic leaves it
+        squared = Fraction(x) ** 2 + Fraction(y) ** 2
+        edge = (Fraction(float(l1)) + (1 if outer else -1) * Fraction(float(l2))) ** 2
+        if (squared <= edge) if outer else (squared >= edge):
+            return x, y, float(l1), float(l2)
+    raise RuntimeError("no edge target found")  # pragma: no cover
+
+
+def _planar_inputs(x, y, l1, l2):
+    return {"x": x, "y": y, "l1": l1, "l2": l2}
+
+
+def _planar_reaches(x, y, l1, l2, sub, where: str, edge: bool = False) -> None:
+    inputs = _planar_inputs(x, y, l1, l2)
+    try:
+        value = sub.planar_2r(x, y, l1, l2)
+    except StudentRaised as exc:
+        if edge and _domain_error(exc):
+            raise _no_value(exc, "planar_2r", _NOT_CLIPPED) from None
+        raise
+    got = _answer(
+        sub,
+        "planar_2r",
+        value,
+        (2,),
+        "planar_2r(x, y, l1, l2)",
+        inputs,
+        nan_mistake=_NOT_CLIPPED if edge else None,
+    )
+    reached = _tip(got, l1, l2)
+    # on the edge the elbow angle is a double root: an acos of 1 − ε moves by √(2ε), so a
+    # correct answer reaches the tip to about √ of its precision
+    atol = max(1e-6, float(np.sqrt(tolerance(1e-12, got)))) if edge else 1e-9
+    if not close(reached, [x, y], atol):
+        raise Mismatch(
+            "the tip (l1 cos θa + l2 cos(θa + θb), l1 sin θa + l2 sin(θa + θb)) must reach "
+            f"(x, y) {where}",
+            inputs=inputs,
+            expected=[x, y],
+            got=reached,
+            mistake=_planar_mistake(sub, got, x, y, l1, l2),
+            difference=f"your angles [θa, θb] = {format_array(got, inline=True)}",
+        )
+    if not edge and not np.sin(float(got[1])) > 0:
+        raise Mismatch(
+            "return the elbow θb = +acos(…), between 0 and π: yours reaches (x, y) with the "
+            "other elbow",
+            inputs=inputs,
+            expected=_planar(x, y, l1, l2),
+            got=got,
+            mistake=_OTHER_ELBOW_2R,
+        )
+
+
+def _planar_check(side: str, sub, rng):
+    where = "for targets with x > 0" if side == "front" else "for targets with x < 0 too"
+    for k in range(6):
+        _planar_reaches(*_planar_case(rng, side, folded=k % 3 == 2), sub, where)
+
+
+def _planar_edges(sub, rng):
+    for outer in (True, False, True, False):
+        where = "on the ring's outer edge (stretched)" if outer else "on its inner edge (folded)"
+        _planar_reaches(*_edge_case(rng, outer), sub, where, edge=True)
+
+
+# -------------------------------------------------------------------------------- 7.3 ik_lab
+
+_LAB_ANGLES = (
+    "lab angles returned: UR controller angles are the lab's plus LAB_TO_UR = [π, 0, 0, −π/2, 0, 0]"
+)
+_SHEET = (
+    "the lab sheet's formulas as printed: its arctan(y/x) loses the quadrant behind the base, "
+    "its r = √(x² + y²) the sign of the reach, its arctan(h/r) the quadrant of θ2; use atan2 "
+    "and the signed r"
+)
+_OTHER_ELBOW = "the other elbow (θ3 < 0): the lab's branch has θ3 > 0 (planar_2r's θb ≥ 0)"
+_NOT_WRAPPED = (
+    "angles not wrapped into (−π, π]: wrap after adding LAB_TO_UR (wrap_angles or "
+    "arctan2(sin, cos))"
+)
+_WRAPPED_POSITIVE = "angles wrapped into [0, 2π); the lesson wraps into (−π, π]"
+
+
+def _lab_model(
+    xw,
+    yw,
+    zw,
+    yaw,
+    *,
+    heading="atan2",
+    tangent=-1.0,
+    base=-1.0,
+    plate=-1.0,
+    signed=True,
+    direction="atan2",
+    plane=-1.0,
+    elbow=1.0,
+    height=_L8 + _L10,
+    shoulder=_L1,
+    back=_L7,
+    base_z=None,
+    theta4=lambda t2, t3: -t2 - t3,
+    theta5=-np.pi / 2,
+    theta6=lambda t1, yaw: np.pi / 2 + t1 - yaw,
+    offset=LAB_OFFSET,
+):
+    """The lab's solution (UR angles, unwrapped), with its usual mistakes switchable."""
+    x, y = xw + base * _BASE[0], yw + base * _BASE[1]
+    z = zw + (base if base_z is None else base_z) * _BASE[2]
+    xc, yc = x + plate * _L9 * np.cos(yaw), y + plate * _L9 * np.sin(yaw)
+    rho = np.hypot(xc, yc)
+    towards = np.arctan(yc / xc) if heading == "arctan" else np.arctan2(yc, xc)
+    arc = np.arccos if heading == "arccos" else np.arcsin
+    t1 = towards + tangent * arc(_OFFSET / rho)
+    x3 = xc - back * np.cos(t1) + _OFFSET * np.sin(t1)
+    y3 = yc - back * np.sin(t1) - _OFFSET * np.cos(t1)
+    r = x3 * np.cos(t1) + y3 * np.sin(t1) if signed else np.hypot(x3, y3)
+    h = z + height - shoulder
+    t3 = elbow * np.arccos((r * r + h * h - _L3 * _L3 - _L5 * _L5) / (2 * _L3 * _L5))
+    beta = np.arctan2(_L5 * np.sin(t3), _L3 + _L5 * np.cos(t3))
+    t2 = (-np.arctan(h / r) if direction == "arctan" else np.arctan2(plane * h, r)) - beta
+    lab = np.array([t1, t2, t3, theta4(t2, t3), theta5, theta6(t1, yaw)])
+    return lab + offset
+
+
+def _lab_row(xw, yw, zw, yaw, row):
+    pose = make_transform(rot_z(yaw) @ rot_x(np.pi), [xw, yw, zw])
+    return _ik_analytic(_LAB, pose[None], return_mask=True)[0][0, row]
+
+
+def _lab_hypotheses(xw, yw, zw, yaw) -> dict:
+    t = (xw, yw, zw, yaw)
+    model = partial(_lab_model, *t)
+    half = np.array([np.pi, 0.0, 0.0, 0.0, 0.0, 0.0])
+    return {
+        _ARCTAN: _radians(lambda: model(heading="arctan")),
+        _UNSIGNED: _radians(lambda: model(signed=False)),
+        _ARCTAN_HR: _radians(lambda: model(direction="arctan")),
+        _SHEET: _radians(lambda: model(heading="arctan", signed=False, direction="arctan")),
+        _ARCTAN + "; and its r = √(x² + y²)": _radians(
+            lambda: model(heading="arctan", signed=False)
+        ),
+        _ARCTAN + "; and its arctan(h/r)": _radians(
+            lambda: model(heading="arctan", direction="arctan")
+        ),
+        _LAB_ANGLES: _radians(lambda: model(offset=0.0)),
+        "LAB_TO_UR subtracted: UR angles are the lab's plus [π, 0, 0, −π/2, 0, 0]": _radians(
+            lambda: model(offset=-LAB_OFFSET)
+        ),
+        "only θ1's π of LAB_TO_UR added: θ4 needs its −π/2 too": _radians(
+            lambda: model(offset=half)
+        ),
+        "only θ4's −π/2 of LAB_TO_UR added: θ1 needs its π too": _radians(
+            lambda: model(offset=LAB_OFFSET - half)
+        ),
+        _DEGREES: _degrees(lambda: model()),
+        "yaw_w converted from degrees: it is already in radians": _radians(
+            lambda: _lab_model(xw, yw, zw, np.radians(yaw))
+        ),
+        "+ arcsin in θ1: that is the other tangent; the lab's θ1 = θc − θB": _radians(
+            lambda: model(tangent=1.0)
+        ),
+        "arccos(0.110/ρ) in θ1 where the lab has arcsin": _radians(lambda: model(heading="arccos")),
+        "the shoulder '−' branch (row 6 of urkin.ik_analytic): the lab's θ1 comes from "
+        "lab_theta1": _radians(lambda: _lab_row(*t, 6)),
+        _OTHER_ELBOW: _radians(lambda: model(elbow=-1.0)),
+        "θ5 = +π/2: the lab's gripper points down with θ5 = −π/2": _radians(
+            lambda: model(theta5=np.pi / 2)
+        ),
+        "θ6 with the wrong sign: θ6 = π/2 + θ1 − ψ": _radians(
+            lambda: model(theta6=lambda t1, yaw: yaw - t1 - np.pi / 2)
+        ),
+        "θ6 without its π/2: θ6 = π/2 + θ1 − ψ": _radians(
+            lambda: model(theta6=lambda t1, yaw: t1 - yaw)
+        ),
+        "planar_2r(r, h, …) in place of planar_2r(r, −h, …): in the lab's plane θ2 and θ3 turn "
+        "downwards": _radians(lambda: model(plane=1.0)),
+        "BASE_IN_TABLE added: base-frame coordinates are the table's minus BASE_IN_TABLE": (
+            _radians(lambda: model(base=1.0))
+        ),
+        "BASE_IN_TABLE not subtracted: the target is in the table frame, the formulas in the "
+        "base frame": _radians(lambda: model(base=0.0)),
+        "x_c = x + L9 cos ψ: the wrist centre is L9 back from the cup, x_c = x − L9 cos ψ": (
+            _radians(lambda: model(plate=1.0))
+        ),
+        "the cup used as the wrist centre: step back L9 along the yaw first": _radians(
+            lambda: model(plate=0.0)
+        ),
+        "h without L10: wrist 1 is L8 + L10 = 0.141 m above the cup": _radians(
+            lambda: model(height=_L8)
+        ),
+        "h without L8: wrist 1 is L8 + L10 = 0.141 m above the cup": _radians(
+            lambda: model(height=_L10)
+        ),
+        "h without − L1: h is the height above the shoulder axis, L1 above the base": (
+            _radians(lambda: model(shoulder=0.0))
+        ),
+        "z not moved into the base frame: z = z_w − 0.01": _radians(lambda: model(base_z=0.0)),
+        "r without the step back L7 from the wrist centre to wrist 1": _radians(
+            lambda: model(back=0.0)
+        ),
+        "θ4 = θ2 + θ3: the wrist stays level with θ4 = −θ2 − θ3": _radians(
+            lambda: model(theta4=lambda t2, t3: t2 + t3)
+        ),
+    }
+
+
+def _target_inputs(target) -> dict:
+    return dict(zip(("x_w", "y_w", "z_w", "yaw_w"), target))
+
+
+def _where(xw, yw, zw, yaw) -> tuple[float, float]:
+    """The wrist centre's x in the base frame and the signed reach r of wrist 1."""
+    xc = xw - _BASE[0] - _L9 * np.cos(yaw)
+    yc = yw - _BASE[1] - _L9 * np.sin(yaw)
+    t1 = _theta1(xc, yc)
+    return float(xc), float(xc * np.cos(t1) + yc * np.sin(t1) - _L7)
+
+
+def _lab_target(rng: np.random.Generator, kind: str) -> tuple[float, float, float, float]:
+    """A gripper target the lab's branch reaches, away from its singular edges: with the wrist
+    centre in front of the base axis, behind it, or in front with wrist 1 behind the base axis
+    (r < 0, the arm reaching back over its shoulder)."""
+    while True:
+        yaw, zw = rng.uniform(-np.pi, np.pi), rng.uniform(0.0, 0.25)
+        if kind == "over the shoulder":  # the wrist centre just outside the 0.110 m circle
+            rho, angle = rng.uniform(0.113, 0.136), rng.uniform(-0.5 * np.pi, 0.5 * np.pi)
+            xw = _BASE[0] + rho * np.cos(angle) + _L9 * np.cos(yaw)
+            yw = _BASE[1] + rho * np.sin(angle) + _L9 * np.sin(yaw)
+        else:
+            xw, yw = rng.uniform(-0.5, 0.2), rng.uniform(-0.2, 0.5)
+        target = (float(xw), float(yw), float(zw), float(yaw))
+        xc, r = _where(*target)
+        try:
+            q = _ik_lab(*target)
+        except ValueError:
+            continue
+        rho = np.hypot(xc, target[1] - _BASE[1] - _L9 * np.sin(yaw))
+        if rho < _OFFSET + 0.002 or abs(np.sin(q[2])) < 0.2:
+            continue  # near the shoulder or elbow singularity
+        if kind == "over the shoulder" and xc > 0.03 and r < -0.005:
+            return target
+        if kind == "behind" and xc < -0.03 and r > 0.005:
+            return target
+        if kind == "front" and xc > 0.03 and r > 0.005:
+            return target
+
+
+# targets that every formula of the sheet, and every mistake named here, reaches
+_EASY_TARGETS = ((0.0, 0.40, 0.05, 1.75), (0.1, 0.3, 0.1, 1.0))
+
+
+def _lab_nan(sub) -> str | None:
+    """The mistake behind a NaN answer, when the answer is NaN for the easiest targets too."""
+    for target in _EASY_TARGETS:
+        try:
+            q = np.asarray(sub.ik_lab(*target), dtype=float)
+        except StudentRaised as exc:
+            if _domain_error(exc):
+                continue
+            return None
+        except (TypeError, ValueError):
+            return None
+        if np.all(np.isfinite(q)):
+            return None
+    return _MILLIMETRES
+
+
+def _lab_answer(sub, target) -> np.ndarray:
+    inputs = _target_inputs(target)
+    what = "ik_lab(x_w, y_w, z_w, yaw_w)"
+    try:
+        return _answer(sub, "ik_lab", sub.ik_lab(*target), (6,), what, inputs)
+    except StudentRaised as exc:
+        if not _domain_error(exc):
+            raise
+        mistake = _MILLIMETRES if _millimetre_literals(sub, "ik_lab") else None
+        raise _no_value(exc, "ik_lab", mistake or _lab_nan(sub)) from None
+    except Mismatch as exc:
+        if exc.mistake is None and "NaN" in exc.what and exc.got is not None:
+            exc.mistake = _identify_nan(np.asarray(exc.got), _lab_hypotheses(*target))
+            exc.mistake = exc.mistake or _lab_nan(sub)
+        raise
+
+
+def _round_trip(sub, target, where: str) -> np.ndarray:
+    """The student's angles for ``target``, which fk_lab must take back to the target."""
+    q = _lab_answer(sub, target)
+    inputs = _target_inputs(target)
+    if np.abs(q).max() > 4 * np.pi:
+        raise Mismatch(
+            "ik_lab returned joint angles far outside ±2π: angles are in radians",
+            inputs=inputs,
+            expected=_ik_lab(*target),
+            got=q,
+            mistake=_identify(q, _lab_hypotheses(*target), right=_ik_lab(*target)),
+        )
+    reached = _fk_lab(q.astype(float))
+    expected = np.array([*target[:3], wrap_angles(target[3])])
+    error = np.r_[reached[:3] - expected[:3], wrap_angles(reached[3] - expected[3])]
+    if not np.abs(error).max() <= tolerance(1e-8, q, np.pi):
+        raise Mismatch(
+            f"fk_lab(ik_lab(x_w, y_w, z_w, yaw_w)) must give back the target {where}",
+            inputs=inputs,
+            expected=expected,
+            got=reached,
+            mistake=_identify(q, _lab_hypotheses(*target), right=_ik_lab(*target)),
+            difference=f"your ik_lab returned q = {format_array(q, inline=True)}",
+        )
+    return q
+
+
+def _lab_round_trips(kind: str, sub, rng):
+    where = {
+        "front": "(wrist centre in front of the base)",
+        "behind": "(wrist centre behind the base, x_c < 0)",
+        "over the shoulder": "(wrist 1 behind the base axis, r < 0)",
+    }[kind]
+    for _ in range(6):
+        _round_trip(sub, _lab_target(rng, kind), where)
+
+
+def _lab_branch(sub, rng):
+    for kind in ("front", "behind", "front", "behind"):
+        target = _lab_target(rng, kind)
+        q = _lab_answer(sub, target)
+        _compare_angles(
+            q,
+            _ik_lab(*target),
+            what="the lab's branch: θ1 from lab_theta1 (shoulder '+'), θ5 = −π/2 and the elbow "
+            "θ3 > 0 (compared up to whole turns)",
+            inputs=_target_inputs(target),
+            hypotheses=_lab_hypotheses(*target),
+            atol=1e-8,
+        )
+
+
+def _wrap_target(rng: np.random.Generator, kind: str, theta6: bool):
+    """A target whose unwrapped UR angles leave (−π, π]: θ1 (the lab's θ1 > 0), and θ6 too
+    when ``theta6``."""
+    while True:
+        target = _lab_target(rng, kind)
+        raw = _lab_model(*target)
+        if raw[0] > np.pi and (not theta6 or not -np.pi < raw[5] <= np.pi):
+            return target
+
+
+def _in_range(q: np.ndarray) -> bool:
+    return bool(np.all((q > -np.pi) & (q <= np.pi + tolerance(1e-12, q, np.pi))))
+
+
+def _lab_wrapped(sub, rng):
+    for k, kind in enumerate(("front", "behind") * 3):
+        target = _wrap_target(rng, kind, theta6=k < 4)
+        q = _round_trip(sub, target, "(and every angle in (−π, π])")
+        if not _in_range(q):
+            positive = np.all((q >= 0) & (q < _TURN))
+            raise Mismatch(
+                "return UR angles wrapped into (−π, π], as wrap_angles does",
+                inputs=_target_inputs(target),
+                expected=_ik_lab(*target),
+                got=q,
+                mistake=_WRAPPED_POSITIVE if positive else _NOT_WRAPPED,
+            )
+
+
+LESSON = Lesson(
+    number="07",
+    title="Closed-form (geometric) inverse kinematics",
+    summary="closed-form IK: the UR3 lab's top-down gripper solution, fixed; all eight UR "
+    "solutions; singular poses",
+    exercises=(
+        Exercise(
+            id="7.1",
+            function="lab_theta1",
+            title="the lab's base angle θ1 (lab convention)",
+            checks=(
+                Check(
+                    "right for wrist centres in front of the base",
+                    1,
+                    partial(_theta1_matches, "front"),
+                ),
+                Check(
+                    "right behind the base, where arctan(y/x) fails",
+                    2,
+                    partial(_theta1_matches, "behind"),
+                ),
+            ),
+            answer=concepts.LAB_IK,
+        ),
+        Exercise(
+            id="7.2",
+            function="planar_2r",
+            title="the planar two-link sub-problem",
+            checks=(
+                Check(
+                    "reaches targets with x > 0, elbow θb = +acos(…)",
+                    1,
+                    partial(_planar_check, "front"),
+                ),
+                Check("reaches targets with x < 0 too", 2, partial(_planar_check, "behind")),
+                Check(
+                    "reaches targets on the edges of the ring (cos θb clipped to [−1, 1])",
+                    1,
+                    _planar_edges,
+                ),
+            ),
+        ),
+        Exercise(
+            id="7.3",
+            function="ik_lab",
+            title="the lab's top-down gripper IK, fixed",
+            checks=(
+                Check(
+                    "round-trips targets in front of the base",
+                    1,
+                    partial(_lab_round_trips, "front"),
+                ),
+                Check(
+                    "round-trips targets behind the base", 1, partial(_lab_round_trips, "behind")
+                ),
+                Check(
+                    "round-trips targets so close that wrist 1 is behind the base axis (r < 0)",
+                    1,
+                    partial(_lab_round_trips, "over the shoulder"),
+                ),
+                Check(
+                    "returns the lab's branch (θ1 from lab_theta1, θ5 = −π/2, θ3 > 0)",
+                    1,
+                    _lab_branch,
+                ),
+                Check("returns UR angles wrapped into (−π, π]", 1, _lab_wrapped),
+            ),
+            answer=concepts.LAB_IK,
+            builds_on=("7.1", "7.2"),
+        ),
+    ),
+)

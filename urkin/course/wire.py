@@ -1,0 +1,321 @@
+"""The plain data that passes between the checks and a submission's functions.
+
+Checks never touch an object a submission made: every argument a check passes and every value
+a student's function returns is turned into plain data — numbers, strings, numpy arrays (their
+dtype kept, so that a float32 answer is judged at float32's precision), lists, tuples, dicts
+and sets of those — and rebuilt on the other side.  In the autograder this is the JSON that
+crosses the pipe between the trusted grader and the isolated child running the submission; in
+a notebook's check cell the same round trip gives the check the same values it would get when
+graded.
+
+Two kinds of argument are rebuilt from a description rather than copied: a UR arm
+(:class:`urkin.Robot`, by its DH lengths) and an input function (:class:`Function`, by a kind
+and its parameters, for exercises that take a function such as ``numeric_jacobian(f, q)``).
+Anything else a student's function returns that is not plain data arrives as :class:`Opaque`.
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "MAX_MESSAGE_BYTES",
+    "Function",
+    "Opaque",
+    "WireError",
+    "copy",
+    "decode",
+    "dumps",
+    "encode",
+    "loads",
+]
+
+#: Largest message (one argument list or one answer) either side accepts, in bytes.
+MAX_MESSAGE_BYTES = 32 * 2**20
+_MAX_DEPTH = 32
+_MAX_TEXT = 2000
+_DTYPES = {
+    "bool",
+    "int8",
+    "int16",
+    "int32",
+    "int64",
+    "uint8",
+    "uint16",
+    "uint32",
+    "uint64",
+    "float16",
+    "float32",
+    "float64",
+    "complex64",
+    "complex128",
+}
+
+
+class WireError(ValueError):
+    """A value that cannot cross: too large, too deep, or malformed."""
+
+
+@dataclass(frozen=True)
+class Opaque:
+    """Something a student's function returned that is not plain data (its type and repr)."""
+
+    type_name: str
+    text: str
+
+    def __repr__(self) -> str:
+        return f"<{self.type_name}: {self.text}>"
+
+
+def _linear(A, b):
+    A, b = np.asarray(A, dtype=float), np.asarray(b, dtype=float)
+    return lambda x: A @ np.asarray(x, dtype=float) + b
+
+
+def _smooth3(x):
+    x = np.asarray(x)
+    return np.array(
+        [np.sin(x[0]) * x[1] ** 2, np.exp(0.5 * x[2]) + x[0] * x[1], np.cos(x[1] * x[2])]
+    )
+
+
+def _flange_position(robot):
+    from urkin.kinematics import fk
+
+    return lambda q: fk(robot, np.asarray(q, dtype=float))[:3, 3]
+
+
+_FUNCTION_KINDS = {
+    "linear": _linear,  # f(x) = A x + b
+    "smooth3": lambda: _smooth3,  # a fixed smooth map R³ → R³
+    "flange_position": _flange_position,  # q ↦ the robot's flange position
+}
+
+
+@dataclass(frozen=True, eq=False)
+class Function:
+    """An input function described by data, so that it can be rebuilt wherever it is called.
+
+    Examples
+    --------
+    >>> f = Function("linear", A=[[1.0, 2.0]], b=[0.5])
+    >>> f([1.0, 1.0])
+    array([3.5])
+    """
+
+    kind: str
+    params: dict[str, Any]
+
+    def __init__(self, kind: str, **params: Any) -> None:
+        if kind not in _FUNCTION_KINDS:
+            raise ValueError(f"unknown function kind {kind!r}; known: {sorted(_FUNCTION_KINDS)}")
+        object.__setattr__(self, "kind", kind)
+        object.__setattr__(self, "params", params)
+        object.__setattr__(self, "_built", _FUNCTION_KINDS[kind](**params))
+
+    def __call__(self, x: Any) -> Any:
+        return self._built(x)  # type: ignore[attr-defined]
+
+    def __repr__(self) -> str:
+        return f"Function({self.kind!r})"
+
+
+def _array(value: np.ndarray) -> dict:
+    array = np.require(value, requirements="C")  # keeps 0-d arrays 0-d
+    if array.dtype.name not in _DTYPES:
+        raise WireError(f"arrays of {array.dtype} cannot be sent")
+    if array.nbytes > MAX_MESSAGE_BYTES:
+        raise WireError(f"an array of {array.nbytes} bytes is too large")
+    data = base64.b64encode(array.tobytes()).decode("ascii")
+    return {"$a": [array.dtype.name, list(array.shape), data]}
+
+
+def _robot(robot: Any) -> dict:
+    return {
+        "$robot": {
+            "name": robot.name,
+            "lengths": [float(x) for x in robot.lengths],
+            "joint_limits": [[float(lo), float(hi)] for lo, hi in robot.joint_limits],
+            "base": _array(np.asarray(robot.base, dtype=float)),
+            "tool": _array(np.asarray(robot.tool, dtype=float)),
+        }
+    }
+
+
+def _float(x: float) -> Any:
+    if math.isfinite(x):
+        return x
+    return {"$f": "nan" if math.isnan(x) else ("inf" if x > 0 else "-inf")}
+
+
+def encode(value: Any, lenient: bool = False, _depth: int = 0) -> Any:
+    """JSON-ready form of ``value``.
+
+    Parameters
+    ----------
+    value : object
+    lenient : bool
+        How a submission's answer is sent: array-likes that are not arrays (numpy matrices,
+        SymPy matrices of numbers, objects with ``__array__``) become arrays, and anything else
+        becomes an :class:`Opaque` description instead of an error.
+    """
+    if _depth > _MAX_DEPTH:
+        raise WireError("the value is nested too deeply")
+    if value is None or isinstance(value, (bool, str)):
+        return value if not isinstance(value, str) else value[:_MAX_TEXT]
+    if isinstance(value, int):
+        return value if abs(value) < 2**63 else _float(float(value))
+    if isinstance(value, float):
+        return _float(value)
+    if isinstance(value, complex):
+        return {"$c": [_float(value.real), _float(value.imag)]}
+    if isinstance(value, (np.ndarray, np.generic)):
+        if isinstance(value, np.ndarray) and value.dtype == object:
+            if not lenient:
+                raise WireError("object arrays cannot be sent")
+            try:
+                return _array(value.astype(float))
+            except (TypeError, ValueError):
+                return _opaque(value)
+        return _array(np.asarray(value))
+    if isinstance(value, (list, tuple, set, frozenset)):
+        items = [encode(v, lenient, _depth + 1) for v in value]
+        if isinstance(value, list):
+            return items
+        return {"$t" if isinstance(value, tuple) else "$s": items}
+    if isinstance(value, dict):
+        return {
+            "$d": [
+                [encode(k, lenient, _depth + 1), encode(v, lenient, _depth + 1)]
+                for k, v in value.items()
+            ]
+        }
+    if isinstance(value, Function):
+        return {"$fn": [value.kind, encode(value.params, lenient, _depth + 1)]}
+    if type(value).__name__ == "Robot" and hasattr(value, "lengths"):
+        return _robot(value)
+    if not lenient:
+        raise WireError(f"a {type(value).__name__} cannot be sent")
+    if hasattr(value, "__array__") or type(value).__module__.startswith("sympy"):
+        try:
+            return _array(np.asarray(value, dtype=float))
+        except (TypeError, ValueError):
+            pass
+    return _opaque(value)
+
+
+def _opaque(value: Any) -> dict:
+    try:
+        text = repr(value)[:200]
+    except Exception:
+        text = "?"
+    return {"$o": [type(value).__name__[:80], text]}
+
+
+def _decode_array(spec: Any) -> np.ndarray:
+    if not (isinstance(spec, list) and len(spec) == 3):
+        raise WireError("malformed array")
+    dtype, shape, data = spec
+    if dtype not in _DTYPES or not isinstance(shape, list) or not isinstance(data, str):
+        raise WireError("malformed array")
+    if len(shape) > 32 or not all(isinstance(n, int) and 0 <= n < 2**40 for n in shape):
+        raise WireError("malformed array shape")
+    raw = base64.b64decode(data.encode("ascii"), validate=True)
+    itemsize = np.dtype(dtype).itemsize
+    if len(raw) != math.prod(shape) * itemsize:
+        raise WireError("array data does not match its shape")
+    return np.frombuffer(raw, dtype=dtype).reshape(shape).copy()
+
+
+def _decode_robot(spec: Any) -> Any:
+    from urkin.robots import Robot
+
+    return Robot(
+        str(spec["name"]),
+        *(float(x) for x in spec["lengths"]),
+        joint_limits=tuple((float(lo), float(hi)) for lo, hi in spec["joint_limits"]),
+        base=_decode_array(spec["base"]["$a"]),
+        tool=_decode_array(spec["tool"]["$a"]),
+    )
+
+
+def decode(data: Any, trusted: bool = False, _depth: int = 0) -> Any:
+    """Rebuild a value from :func:`encode`'s form.
+
+    Parameters
+    ----------
+    data : object
+        Parsed JSON.
+    trusted : bool
+        Whether ``data`` came from the checks (robots and functions are rebuilt) or from a
+        submission (they arrive as :class:`Opaque`).
+    """
+    if _depth > _MAX_DEPTH:
+        raise WireError("the value is nested too deeply")
+    if data is None or isinstance(data, (bool, int, float, str)):
+        return data
+    if isinstance(data, list):
+        return [decode(v, trusted, _depth + 1) for v in data]
+    if not isinstance(data, dict) or len(data) != 1:
+        raise WireError("malformed value")
+    ((tag, body),) = data.items()
+    if tag == "$a":
+        return _decode_array(body)
+    if tag == "$f" and body in ("nan", "inf", "-inf"):
+        return float(body)
+    if tag == "$c" and isinstance(body, list) and len(body) == 2:
+        return complex(decode(body[0], trusted, _depth + 1), decode(body[1], trusted, _depth + 1))
+    if tag in ("$t", "$s") and isinstance(body, list):
+        items = [decode(v, trusted, _depth + 1) for v in body]
+        if tag == "$t":
+            return tuple(items)
+        try:
+            return set(items)
+        except TypeError:
+            return Opaque("set", repr(items)[:200])
+    if tag == "$d" and isinstance(body, list):
+        out = {}
+        for pair in body:
+            if not (isinstance(pair, list) and len(pair) == 2):
+                raise WireError("malformed dict")
+            key = decode(pair[0], trusted, _depth + 1)
+            try:
+                out[key] = decode(pair[1], trusted, _depth + 1)
+            except TypeError:
+                raise WireError("a dict key that is not hashable") from None
+        return out
+    if tag == "$o" and isinstance(body, list) and len(body) == 2:
+        return Opaque(str(body[0])[:80], str(body[1])[:200])
+    if tag == "$robot":
+        return _decode_robot(body) if trusted else Opaque("Robot", "a robot")
+    if tag == "$fn" and isinstance(body, list) and len(body) == 2:
+        if not trusted:
+            return Opaque("Function", str(body[0])[:80])
+        return Function(str(body[0]), **decode(body[1], trusted, _depth + 1))
+    raise WireError(f"unknown tag {tag!r}")
+
+
+def dumps(message: Any) -> bytes:
+    """One message as a line of JSON (``message`` already encoded)."""
+    return json.dumps(message, separators=(",", ":"), allow_nan=False).encode() + b"\n"
+
+
+def loads(line: bytes) -> Any:
+    """Parse one line of JSON, refusing anything too large or malformed."""
+    if len(line) > MAX_MESSAGE_BYTES:
+        raise WireError("the message is too large")
+    try:
+        return json.loads(line)
+    except (ValueError, RecursionError) as exc:
+        raise WireError(f"malformed message: {exc}") from None
+
+
+def copy(value: Any, lenient: bool = False, trusted: bool = True) -> Any:
+    """``decode(encode(value))``: the value as the other side of the wire would see it."""
+    return decode(encode(value, lenient), trusted)
