@@ -33,9 +33,9 @@ import urkin
 import urkin.kinematics
 import urkin.plot
 from urkin.course import below, check
-from urkin.numerical_ik import orientation_error
 from urkin.course.seeds import SEED002_ARM, seed002_jacobian, seed002_position
 from urkin.course.seeds import SEED002_SHIFT as SHIFT
+from urkin.numerical_ik import orientation_error
 from urkin.transforms import make_transform, rotation_angle
 
 np.set_printoptions(precision=4, suppress=True)
