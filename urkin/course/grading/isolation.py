@@ -365,18 +365,7 @@ def start(
             "cwd": "/tmp",
             "pass_fds": list(pass_fds),
         }
-        command = [
-            sys.executable,
-            "-I",
-            "-B",
-            str(JAIL),
-            _json(config),
-            sys.executable,
-            "-I",
-            "-B",
-            script,
-            *arguments,
-        ]
+        command = _jailed(config, [script, *arguments])
         cwd = "/"
     else:
         script = str(view / "urkin" / "course" / "grading" / "child.py")
@@ -400,6 +389,12 @@ def start(
             except OSError:
                 pass
     return Process(popen, group, scratch)
+
+
+def _jailed(config: dict, python_arguments: list[str]) -> list[str]:
+    """The command that runs this Python with ``python_arguments`` in the jail of ``config``."""
+    python = [sys.executable, "-I", "-B"]
+    return [*python, str(JAIL), _json(config), *python, *python_arguments]
 
 
 def _json(value: dict) -> str:
@@ -464,18 +459,7 @@ def _probe(memory: str) -> Support:
         Path(secret).touch()
         probe = f"import os; print(os.getpid(), os.path.exists({secret!r}))"
         result = subprocess.run(
-            [
-                sys.executable,
-                "-I",
-                "-B",
-                str(JAIL),
-                _json(config),
-                sys.executable,
-                "-I",
-                "-B",
-                "-c",
-                probe,
-            ],
+            _jailed(config, ["-c", probe]),
             capture_output=True,
             text=True,
             timeout=30,
