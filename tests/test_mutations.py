@@ -18,7 +18,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from tests.lesson_dev import solution_namespace, variant
+from tests.namespaces import solution_namespace, variant
 from tests.notebooks import solution_path, student_notebook, write
 from urkin.course.answers import answer_for
 from urkin.course.build import BEGIN, END

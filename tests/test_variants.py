@@ -12,7 +12,7 @@ import importlib
 
 import pytest
 
-from tests.lesson_dev import solution_namespace, variant
+from tests.namespaces import solution_namespace, variant
 from urkin.course.answers import answer_for
 from urkin.course.cell import check_result
 from urkin.course.exercise import run_exercise

@@ -1,11 +1,11 @@
 """A lesson's solution functions in this process, for testing its checks.
 
-    .venv/bin/python tests/lesson_dev.py 02            # every exercise of lesson 02, seeds 0, 1, 7
-    .venv/bin/python tests/lesson_dev.py 02 2.2 seed=5 # one exercise, one seed
+    .venv/bin/python -m tests.namespaces 02            # every exercise of lesson 02, seeds 0, 1, 7
+    .venv/bin/python -m tests.namespaces 02 2.2 seed=5 # one exercise, one seed
 
 :func:`solution_namespace` executes the definitions of ``solutions/NN_*.py`` that the
 exercises need, selected as the grader selects them (no demonstrations, no plots);
-:func:`variant` puts another version of a function in a copy of it.  The script prints each
+:func:`variant` puts another version of an exercise's cell in its place.  The script prints each
 exercise's report for the solution's own functions.
 """
 
