@@ -43,6 +43,13 @@ __all__ = [
 
 #: Largest notebook file the grader reads.
 MAX_NOTEBOOK_BYTES = 20 * 2**20
+#: Most code cells, characters in one cell, top-level statements and characters of code in all
+#: the grader reads (a course notebook has about 60 cells and 50 000 characters; these keep the
+#: grader's memory and time small whatever it is given).
+MAX_CODE_CELLS = 2000
+MAX_CELL_CHARACTERS = 50_000
+MAX_STATEMENTS = 10_000
+MAX_CODE_CHARACTERS = 1_000_000
 
 # cell magics whose body is Python; any other cell magic (%%bash, %%html …) is not code
 _PYTHON_CELL_MAGICS = {"time", "timeit", "capture", "prun", "debug", "memit", "skip"}
@@ -391,7 +398,7 @@ def read_notebook(path: str | Path, lesson: str | None = None) -> Notebook:
         return notebook
     if notebook.lesson is None:
         notebook.lesson = _lesson_from_metadata(data) or lesson_from_filename(path)
-    number = 0
+    number, read = 0, 0
     for cell in cells:
         if not isinstance(cell, dict) or cell.get("cell_type") != "code":
             continue
@@ -400,6 +407,19 @@ def read_notebook(path: str | Path, lesson: str | None = None) -> Notebook:
         if text is None:
             notebook.notes.append(f"code cell {number} is malformed: it was skipped")
             continue
+        if len(text) > MAX_CELL_CHARACTERS:
+            notebook.notes.append(
+                f"code cell {number} has more than {MAX_CELL_CHARACTERS} characters: skipped"
+            )
+            continue
+        read += len(text)
+        if number > MAX_CODE_CELLS or read > MAX_CODE_CHARACTERS:
+            notebook.notes.append(
+                f"the notebook has more than {MAX_CODE_CELLS} code cells or "
+                f"{MAX_CODE_CHARACTERS} characters of code: code cell {number} and the ones "
+                "after it were not read"
+            )
+            break
         if isinstance(cell.get("id"), str):
             notebook.cell_ids[number] = cell["id"]
         source, why_not = _python_source(text)
@@ -417,6 +437,12 @@ def read_notebook(path: str | Path, lesson: str | None = None) -> Notebook:
         except (ValueError, RecursionError, MemoryError) as exc:
             notebook.notes.append(f"code cell {number} cannot be read ({exc!s:.100})")
             continue
+        if len(notebook.sites) + len(tree.body) > MAX_STATEMENTS:
+            notebook.notes.append(
+                f"the notebook has more than {MAX_STATEMENTS} statements: code cell {number} "
+                "and the ones after it were not read"
+            )
+            break
         notebook.cells[number] = source
         notebook.sites += [_site(number, i, node) for i, node in enumerate(tree.body)]
     return notebook

@@ -103,6 +103,9 @@ class SubmissionResult:
         }
 
 
+_READING = threading.Lock()
+
+
 def new_seed() -> int:
     """A fresh, non-zero seed for one grading run (zero is the notebooks' visible seed)."""
     return secrets.randbelow(2**31 - 1) + 1
@@ -236,7 +239,8 @@ class Grader:
         """Grade one file (only the ``exercises`` named, if given); never raises for anything
         the file contains or does."""
         path = Path(path)
-        notebook = read_notebook(path, lesson)
+        with _READING:  # one notebook parsed at a time: the grader's memory stays small
+            notebook = read_notebook(path, lesson)
         result = SubmissionResult(
             name or path.name,
             str(path),
