@@ -48,7 +48,7 @@ __all__ = [
 ]
 
 #: Wall-clock seconds the calls of one exercise of one submission may take.
-DEFAULT_TIME_LIMIT = 20.0
+DEFAULT_TIME_LIMIT = 60.0
 #: Memory (MiB) the process of one exercise may use, with everything it starts.
 DEFAULT_MEMORY_LIMIT_MB = 1024
 #: Seconds for starting that process and executing the notebook's definitions.
