@@ -978,18 +978,17 @@ for method in ["nr", "poe"]:
 # fewest restarts and iterations, and is urkin's default for that reason. (One LM "iteration"
 # includes any rejected trial, which costs a forward kinematics evaluation but no new
 # Jacobian.) **Newton–Raphson** with the pseudo-inverse and a 1 rad step limit is better than
-# its reputation — it reaches every target in the end — but a third of its first attempts
-# fail, and restarts repair the damage. **The PoE solver** is Newton on a different error
-# measure and behaves much like it, with the lowest first-attempt rate; with 20 restarts it
-# still misses one target — one whose generating configuration has the elbow only 0.0015 rad
-# from straight. **Fixed-λ DLS** has the second-best first attempts — damping helps
-# on the way — but it is the only method that fails for a *systematic* reason. The targets it
-# misses (the orange hump in its histogram, after hundreds of iterations and all 20 restarts)
-# stopped where the smallest singular value of $J$ has a median of 0.0025, against 0.09 at
-# the solutions LM found: they are section 3's slow, linear convergence, stalled short of
-# $10^{-10}$. Restarts help little when the trouble is at the solution rather than at the
-# start. (One of the 27 stopped between $10^{-10}$ and $10^{-9}$: it passes our looser check
-# but not urkin's own tolerance, hence the "verified" column's extra 0.1 %.)
+# its reputation — restarts reach all but at most a few targets of the thousand — but a third
+# of its first attempts fail, and restarts repair the damage. **The PoE solver** is Newton on a
+# different error measure (*Modern Robotics*' `IKinSpace`, here with the same 1 rad step
+# limit) and behaves much like it; the table and the lines above say how many targets each
+# left. **Fixed-λ DLS** has good first attempts — damping
+# helps on the way — but it is the only method that fails for a *systematic* reason. The
+# targets it misses (the orange hump in its histogram, after hundreds of iterations and all 20
+# restarts) stopped where the smallest singular value of $J$ is a few thousandths (the median
+# printed above), against about 0.09 at the solutions LM found: they are section 3's slow,
+# linear convergence, stalled short of $10^{-10}$. Restarts help little when the trouble is at
+# the solution rather than at the start, and urkin's failure reason for them says so.
 #
 # All of this is on targets drawn uniformly in joint space; the histograms show the long
 # tails of the restarts. `bench/ik.py` in the repository runs the same comparison against

@@ -983,9 +983,13 @@ print(f"row 2 has θ5 = −π/2 everywhere: {np.allclose(lab_rows[:, 4], -np.pi 
 #
 # At these poses the number of distinct solutions drops — and numerically they are delicate,
 # because rounding can push an argument of `arccos` or a square root just past its limit.
-# urkin clamps such arguments (and treats values within $10^{-12}$ of ±1 as exactly ±1), so
-# every singular pose is still solved exactly. Here are a UR5 pose on each family and on all
-# three at once:
+# urkin clamps such arguments, so every singular pose is still solved exactly, and it merges
+# two branches only when they are apart by no more than rounding (the wrist point a few
+# $10^{-16}$ m from the cylinder, the elbow as close to full stretch): a pose $10^{-12}$ m
+# off the shoulder family still has both θ1 branches, about $10^{-5}$ rad apart, both exact.
+# It also reads θ5 from its sine *and* cosine, `atan2`, never from `arccos` of a cosine near
+# ±1, whose rounding would move θ5 by the square root of the error. Here are a UR5 pose on
+# each family and on all three at once:
 
 # %%
 def shoulder_singular(q_start):

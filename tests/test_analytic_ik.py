@@ -158,14 +158,20 @@ def test_exact_at_singular_poses(arm, family):
     assert mask.any(axis=1).all()
     reached = urkin.fk(arm, solutions[mask])
     assert np.abs(reached - np.repeat(T, mask.sum(axis=1), axis=0)).max() < 1e-9
+    # a double root (shoulder, elbow): rounding of 1e-16 in the pose moves the angles by its
+    # square root, ~1e-8 rad, and the wrist angles by that over |sin θ5|; the poses are exact.
+    # Both at once: the shoulder's 1e-8 rad moves the elbow's target by ~1e-9 m, and the folded
+    # or stretched elbow turns that into ~1e-4 rad (the poses are still met to 1e-9, above)
+    double_roots = len({"shoulder", "elbow"} & set(family))
+    tol = (1e-9, 1e-5, 1e-2)[double_roots]
     for q, s, m in zip(Q, solutions, mask):
         s = s[m]
         if "wrist" in family:
             # a one-parameter family reaches the pose: q's family (its θ1 and θ5) is among the
             # solutions, and every solution reaches the pose (checked above)
-            assert distance_mod_2pi(s[:, [0, 4]], q[[0, 4]]) < 1e-9
+            assert distance_mod_2pi(s[:, [0, 4]], q[[0, 4]]) < tol
         else:
-            assert distance_mod_2pi(s, q) < 1e-9
+            assert distance_mod_2pi(s, q) < tol
 
 
 def test_the_wrist_representatives_have_the_elbow_nearest_a_right_angle():
@@ -227,5 +233,5 @@ def test_closest_reports_unreachable_poses():
     far = np.eye(4)
     far[:3, 3] = [2.0, 0.0, 0.3]
     result = ik_closest(ur3, far, np.zeros(6))
-    assert not result.success and "out of reach" in result.reason
+    assert not result.success and "1.4031 m beyond the UR3" in result.reason
     assert np.isfinite(result.q).all()

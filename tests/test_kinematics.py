@@ -141,12 +141,16 @@ def test_dh_transform_and_chain_conventions(rng):
 @pytest.mark.parametrize(
     ("q", "error", "message"),
     [
-        (np.zeros(5), ValueError, r"shape \(6,\) or \(N, 6\); got \(5,\)"),
+        (np.zeros(5), ValueError, r"shape \(6,\) or \(\.\.\., 6\); got \(5,\)"),
         (np.zeros((3, 7)), ValueError, r"got \(3, 7\)"),
         ([0, 0, np.nan, 0, 0, 0], ValueError, "NaN"),
-        (np.array([[0.0] * 6, [np.inf] + [0.0] * 5]), ValueError, "row 1"),
+        (
+            np.array([[0.0] * 6, [np.inf] + [0.0] * 5]),
+            ValueError,
+            r"q contains NaN or infinity \(entry \(1, 0\)\)",
+        ),
         ([0, -90, 0, -90, 0, 0], ValueError, "degrees"),
-        ("home", TypeError, "6 joint angles in radians"),
+        ("home", TypeError, "q must be numbers; got str"),
         ([None] * 6, ValueError, "NaN"),
     ],
 )

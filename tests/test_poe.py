@@ -213,7 +213,7 @@ def test_bad_inputs_name_the_problem():
     S, M = poe.space_screws(urkin.robot("ur5"))
     with pytest.raises(ValueError, match=r"shape \(6, n\)"):
         poe.fk_space(M, S[:5], np.zeros(6))
-    with pytest.raises(ValueError, match=r"\(6,\) or \(N, 6\)"):
+    with pytest.raises(ValueError, match=r"\(6,\) or \(\.\.\., 6\)"):
         poe.fk_space(M, S, np.zeros(5))
     with pytest.raises(ValueError, match="rotation"):
         poe.fk_space(np.diag([1.0, 1.0, -1.0, 1.0]), S, np.zeros(6))

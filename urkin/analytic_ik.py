@@ -1,196 +1,330 @@
-"""Closed-form inverse kinematics of UR arms: every solution, exactly, for one pose or a batch.
+"""Closed-form inverse kinematics of UR arms: every solution, exactly, for one pose or a stack.
 
-For a flange pose ``T = T_0_6`` the UR's geometry gives up to eight solutions:
+For a flange pose ``T = T_0_6`` (axes ``x, y, z``, position ``p``) the UR's geometry gives up to
+eight solutions, two choices at each of three steps:
 
-1. **θ1** (two): the origin of DH frame 5, ``c = p − d6 z``, must lie on a vertical plane at
-   distance ``d4`` from the base axis: ``θ1 = atan2(c_y, c_x) ± acos(d4 / ‖c_xy‖) + π/2``.
-2. **θ5** (two per θ1): ``cos θ5 = z_x sin θ1 − z_y cos θ1`` (the flange's z axis against the
-   shoulder axis).
-3. **θ6**: ``cos θ6 · sin θ5 = x_x sin θ1 − x_y cos θ1`` and
-   ``sin θ6 · sin θ5 = −(y_x sin θ1 − y_y cos θ1)``.
-4. **θ2, θ3, θ4** (two): what remains is a planar arm in the plane of joints 2–4: the origin of
-   frame 3 at ``(a2 c2 + a3 c23, a2 s2 + a3 s23)`` (law of cosines for θ3), and
-   ``θ4 = θ234 − θ2 − θ3`` with ``θ234`` read off ``T_1_4``.
+1. **θ1** (shoulder left or right): the origin of DH frame 5, the wrist point
+   ``w = p − d6 z``, lies on a vertical plane at distance ``d4`` from the base axis, so with
+   ``r = ‖w_xy‖``: ``θ1 = atan2(w_y, w_x) ± atan2(√((r − d4)(r + d4)), d4) + π/2``.
+2. **θ5, θ6** (wrist flipped or not): with ``n = (sin θ1, −cos θ1, 0)`` (the axis of joints
+   2–4), ``cos θ5 = z·n``, ``sin θ5 cos θ6 = x·n`` and ``sin θ5 sin θ6 = −y·n``, so
+   ``θ5 = atan2(±‖(x·n, y·n)‖, z·n)`` and ``θ6 = atan2(∓y·n, ±x·n)``: both from sine *and*
+   cosine, exact right up to the wrist singularity (an ``acos`` of ``z·n`` is not: its
+   rounding near ±1 moves θ5 by the square root of the error).
+3. **θ2, θ3, θ4** (elbow up or down): frame 4's x axis is ``u = cos θ5 (cos θ6 x − sin θ6 y)
+   − sin θ5 z = (cos θ1 cos θ234, sin θ1 cos θ234, sin θ234)``, which gives
+   ``θ234 = θ2 + θ3 + θ4``; what remains is a planar 2R arm (lengths ``a2``, ``a3``) reaching
+   the origin of frame 3, ``d5`` back from the wrist point along frame 4's z axis, solved with
+   the law of cosines in the factored form ``sin² θ3 ∝ (L − ρ)(L + ρ)(ρ − l)(ρ + l)`` that keeps
+   full precision at full stretch ``L`` and full fold ``l``; then ``θ4 = θ234 − θ2 − θ3``.
 
-Singular poses are solved exactly, with rounding clamped rather than turned into NaN:
+Singular poses:
 
-* **shoulder** (``‖c_xy‖ = d4``): the two θ1 branches merge into one;
-* **wrist** (``sin θ5 = 0``): only ``θ234 ± θ6`` is determined (``θ234 = θ2 + θ3 + θ4``), and
-  a one-parameter family of configurations reaches the pose; for each θ1 urkin returns the two
-  members whose elbow is nearest a right angle (see :func:`_wrist_theta6`), in place of the
-  two θ5 branches, which coincide;
-* **elbow** (``θ3 = 0`` or ``π``): a double root.
+* **shoulder** (``r = d4``): both θ1 branches are kept until they are equal to rounding (a
+  wrist point ``1e-12`` m off the cylinder still gives two solutions ~1e-5 rad apart, both
+  exact; one a few ulps off gives one solution, which misses by those few ulps);
+* **wrist** (``sin θ5 = 0``, below :data:`WRIST_TOLERANCE`): only ``θ234 ± θ6`` is fixed and a
+  one-parameter family reaches the pose; for each θ1 the two members whose elbow is nearest a
+  right angle are returned in place of the two θ5 branches (see :func:`_representatives`);
+* **elbow** (``θ3 = 0`` or ``π``): a double root, by the same rule.
 
-Duplicates that singular poses produce are returned once.  Angles are wrapped to (−π, π].
+A pose within :data:`REACH_TOLERANCE` outside the reachable set (inside the ``d4`` cylinder, or
+beyond full stretch or fold of the elbow) is taken as on its border: its solutions miss by at
+most that much.  Solutions equal to within :data:`DUPLICATE_TOLERANCE` (modulo 2π) are returned
+once.  Angles are wrapped to (−π, π].
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin.kinematics import _joints, fk
-from urkin.numerical_ik import IKResult
-from urkin.robots import Robot
-from urkin.transforms import check_transform, rotation_angle
+from urkin._inputs import real, unstack
+from urkin.ik_result import IKResult, no_solution_reason, verified
+from urkin.robots import Robot, check_robot
+from urkin.transforms import check_transform, wrap_angles
 
-__all__ = ["ACOS_TOLERANCE", "SNAP", "ik_analytic", "ik_closest", "wrap_angles"]
+__all__ = [
+    "DUPLICATE_TOLERANCE",
+    "REACH_TOLERANCE",
+    "WRIST_TOLERANCE",
+    "ik_analytic",
+    "ik_closest",
+    "wrap_angles",
+]
 
-#: Arguments of acos within this of ±1 are clamped (rounding at a singular pose); further out,
-#: the pose is out of reach for that branch.
-ACOS_TOLERANCE = 1e-9
-#: Arguments of acos within this of ±1 are a double root: taken as exactly ±1.
-SNAP = 1e-12
+#: A pose this far (metres) outside the reachable set is taken as on its border.
+REACH_TOLERANCE = 1e-10
+#: Below this, ``|sin θ5|`` is a wrist singularity: θ6 is no longer fixed by the pose.
+WRIST_TOLERANCE = 1e-13
+#: Solutions closer than this (radians, every joint, modulo 2π) are one solution.
+DUPLICATE_TOLERANCE = 1e-12
+
+#: Two branches whose gap is within its own rounding error — the wrist point's distance from
+#: the ``d4`` cylinder, or the elbow's from full stretch or fold, within a few ulps of the
+#: lengths it is computed from — are one double root.
+_ROUNDOFF = 8.0 * np.finfo(float).eps
+
+_PI, _TWO_PI = math.pi, 2.0 * math.pi
 
 
-def wrap_angles(q: ArrayLike) -> np.ndarray:
-    """Angles wrapped to (−π, π].
+def _check_lengths(robot: Robot) -> None:
+    if robot.a2 == 0.0 or robot.a3 == 0.0:
+        raise ValueError(f"{robot.name}: the closed form needs a2 ≠ 0 and a3 ≠ 0")
 
-    Examples
-    --------
-    >>> wrap_angles([np.pi, -np.pi, 3 * np.pi / 2, 0.5])
-    array([ 3.14159265,  3.14159265, -1.57079633,  0.5       ])
+
+# ----------------------------------------------------------------------------- one pose
+
+
+def _wrap(angle: float) -> float:
+    """One angle in (−π, π] (the scalar twin of :func:`urkin.transforms.wrap_angles`)."""
+    if -_PI < angle <= _PI:
+        return angle
+    angle = math.fmod(angle, _TWO_PI)
+    if angle > _PI:
+        return angle - _TWO_PI
+    if angle <= -_PI:
+        return angle + _TWO_PI
+    return angle
+
+
+def _solve_one(
+    rows: list[list[float]], lengths: tuple[float, ...], misses: list[float] | None = None
+) -> list[list[float]]:
+    """Every solution for one flange pose given as ``T.tolist()``: plain floats, no numpy.
+
+    When given, ``misses`` collects how far the elbow falls short on each branch it drops."""
+    d1, a2, a3, d4, d5, d6 = lengths
+    (xx, yx, zx, px), (xy, yy, zy, py), (xz, yz, zz, pz) = rows[0], rows[1], rows[2]
+    wx, wy, wz = px - d6 * zx, py - d6 * zy, pz - d6 * zz
+    r2 = wx * wx + wy * wy
+    r = math.sqrt(r2)
+    if r - d4 < -REACH_TOLERANCE or r2 == 0.0:
+        return []
+    gap = r - d4 if abs(r - d4) > _ROUNDOFF * (abs(px) + abs(py) + d6 + d4) else 0.0
+    root = math.sqrt(max(gap * (r + d4), 0.0))
+    big, small = abs(a2) + abs(a3), abs(abs(a2) - abs(a3))
+    two_a2a3 = 2.0 * a2 * a3
+    found: list[list[float]] = []
+    for shoulder in (1.0, -1.0) if root > 0.0 else (1.0,):
+        s1 = wx * d4 - shoulder * wy * root
+        c1 = -(wy * d4 + shoulder * wx * root)
+        norm = math.hypot(s1, c1)
+        s1, c1 = s1 / norm, c1 / norm
+        q1 = math.atan2(s1, c1)
+        A = xx * s1 - xy * c1  # sin θ5 cos θ6
+        B = yy * c1 - yx * s1  # sin θ5 sin θ6
+        C = zx * s1 - zy * c1  # cos θ5
+        S = math.hypot(A, B)
+        X, Y = c1 * wx + s1 * wy, wz - d1  # the wrist point in the arm's plane
+        for flip in (1.0, -1.0):
+            if S > WRIST_TOLERANCE:
+                q5 = math.atan2(flip * S, C)
+                q6 = math.atan2(flip * B, flip * A)
+                s5, c5 = flip * S, C
+                c6, s6 = flip * A / S, flip * B / S
+                ux = c5 * (c6 * xx - s6 * yx) - s5 * zx
+                uy = c5 * (c6 * xy - s6 * yy) - s5 * zy
+                s234 = c5 * (c6 * xz - s6 * yz) - s5 * zz
+                c234 = c1 * ux + s1 * uy
+                q234 = math.atan2(s234, c234)
+            else:
+                q5 = math.atan2(S, C)
+                q234 = _representative_one(X, Y, flip, a2, a3, d5)
+                s234, c234 = math.sin(q234), math.cos(q234)
+                x4 = (c1 * c234, s1 * c234, s234)
+                sign = 1.0 if C >= 0.0 else -1.0
+                q6 = math.atan2(
+                    -sign * (x4[0] * yx + x4[1] * yy + x4[2] * yz),
+                    sign * (x4[0] * xx + x4[1] * xy + x4[2] * xz),
+                )
+            ex, ey = X - d5 * s234, Y + d5 * c234  # the origin of frame 3
+            rho = math.hypot(ex, ey)
+            if rho - big > REACH_TOLERANCE or small - rho > REACH_TOLERANCE:
+                if misses is not None:
+                    misses.append(max(rho - big, small - rho))
+                continue
+            c3 = min(1.0, max(-1.0, (ex * ex + ey * ey - a2 * a2 - a3 * a3) / two_a2a3))
+            stretch = big - rho if big - rho > _ROUNDOFF * big else 0.0
+            fold = rho - small if rho - small > _ROUNDOFF * big else 0.0
+            product = stretch * (big + rho) * fold * (rho + small)
+            s3 = math.sqrt(product) / abs(two_a2a3)
+            heading = math.atan2(ey, ex)
+            for elbow in (1.0, -1.0) if s3 > 0.0 else (1.0,):
+                q3 = math.atan2(elbow * s3, c3)
+                q2 = _wrap(heading - math.atan2(a3 * elbow * s3, a2 + a3 * c3))
+                q4 = _wrap(q234 - q2 - q3)
+                found.append([_wrap(q1), q2, _wrap(q3), q4, _wrap(q5), _wrap(q6)])
+    return _distinct_one(found)
+
+
+def _representative_one(X: float, Y: float, which: float, a2, a3, d5) -> float:
+    """:func:`_representatives` for one pose and one of its two members (``which`` = ±1)."""
+    A = math.hypot(X, Y)
+    sigma = (A * A + d5 * d5 - (a2 * a2 + a3 * a3)) / (2.0 * d5 * A) if A > 0.0 else 0.0
+    half = math.asin(min(1.0, max(-1.0, sigma)))
+    beta = math.atan2(Y, X)
+    return beta + half if which > 0 else beta + _PI - half
+
+
+def _distinct_one(found: list[list[float]]) -> list[list[float]]:
+    kept: list[list[float]] = []
+    for q in found:
+        if not any(
+            max(abs(_wrap(a - b)) for a, b in zip(q, other)) < DUPLICATE_TOLERANCE for other in kept
+        ):
+            kept.append(q)
+    return kept
+
+
+# ----------------------------------------------------------------------------- a stack
+
+
+def _representatives(X, Y, a2, a3, d5) -> np.ndarray:
+    """θ234 of the two representatives of a wrist-singular family (sin θ5 = 0).
+
+    With sin θ5 = 0 only ``θ234 ± θ6`` is fixed by the pose: choosing θ234 moves the origin of
+    frame 3 on a circle of radius d5 round the wrist point ``(X, Y)`` (in the arm's plane) and
+    changes the planar arm's reach ρ.  The representatives take the two θ234, one on each side
+    of the circle, whose ρ is nearest ``√(a2² + a3²)``: the elbow nearest a right angle.
+    Shape ``(..., 2)`` for ``X``, ``Y`` of shape ``(...)``.
     """
-    angles = np.asarray(q, dtype=float)
-    return angles - 2.0 * np.pi * np.ceil((angles - np.pi) / (2.0 * np.pi))
-
-
-def _wrap_near(angles: np.ndarray) -> np.ndarray:
-    """:func:`wrap_angles` for angles already within (−3π, 3π]: two comparisons, no division."""
-    return angles - 2.0 * np.pi * ((angles > np.pi).astype(float) - (angles <= -np.pi))
-
-
-def _acos(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """acos with rounding clamped; also whether the argument was within reach.
-
-    Arguments within :data:`SNAP` of ±1 are taken as exactly ±1: a double root (the shoulder,
-    wrist or elbow singularity), where rounding of order 1e-16 would otherwise move the angle
-    by its square root, ~1e-8 rad, for a pose change of ~1e-16 m.
-    """
-    ok = np.abs(x) <= 1.0 + ACOS_TOLERANCE
-    snapped = np.where(np.abs(x) >= 1.0 - SNAP, np.sign(x), np.clip(x, -1.0, 1.0))
-    return np.arccos(snapped), ok
-
-
-def _solve_flange(T: np.ndarray, robot: Robot) -> tuple[np.ndarray, np.ndarray]:
-    """All eight branches for flange poses T (N, 4, 4): solutions (N, 8, 6) and a mask of the
-    real, distinct ones (out-of-reach branches and repeats at singular poses are False)."""
-    d1, a2, a3, d4, d5, d6 = robot.lengths
-    n = len(T)
-    x, y, z, p = T[:, :3, 0], T[:, :3, 1], T[:, :3, 2], T[:, :3, 3]
-    c = p - d6 * z  # origin of DH frame 5 (the wrist point)
-    radius = np.hypot(c[:, 0], c[:, 1])
-    shoulder, ok1 = _acos(np.where(radius > 0, d4 / np.where(radius > 0, radius, 1.0), np.inf))
-    theta1 = (
-        np.arctan2(c[:, 1], c[:, 0])[:, None]
-        + np.array([1.0, -1.0]) * shoulder[:, None]
-        + np.pi / 2
-    )  # (n, 2)
-    # sin and cos of θ1 = heading ± φ + π/2 from the geometry, without trig calls
-    ch, sh = (
-        c[:, 0] / np.where(radius > 0, radius, 1.0),
-        c[:, 1] / np.where(radius > 0, radius, 1.0),
-    )
-    cphi, sphi = np.cos(shoulder), np.sin(shoulder)
-    side = np.array([1.0, -1.0])
-    s1 = ch[:, None] * cphi[:, None] - sh[:, None] * sphi[:, None] * side  # cos(heading ± φ)
-    c1 = -(sh[:, None] * cphi[:, None] + ch[:, None] * sphi[:, None] * side)  # −sin(heading ± φ)
-    theta5, _ = _acos(z[:, 0, None] * s1 - z[:, 1, None] * c1)  # θ5 of the "+" branch, (n, 2)
-    # θ6 and θ234 of the "+" branch (sin θ5 > 0); the "−" branch adds π to both
-    theta6 = np.arctan2(
-        -(y[:, 0, None] * s1 - y[:, 1, None] * c1), x[:, 0, None] * s1 - x[:, 1, None] * c1
-    )
-    # sin θ5 · (sin θ234, cos θ234) = −(z_z, z_x c1 + z_y s1): normalise rather than call trig
-    zz, zr = -z[:, 2, None] * np.ones_like(s1), -(z[:, 0, None] * c1 + z[:, 1, None] * s1)
-    theta234 = np.arctan2(zz, zr)
-    length = np.hypot(zz, zr)
-    s234 = zz / np.where(length > 0, length, 1.0)
-    c234 = zr / np.where(length > 0, length, 1.0)
-    branch = np.array([1.0, -1.0])
-    theta6 = theta6[:, :, None] + np.array([0.0, np.pi])  # (n, 2, 2)
-    theta234 = theta234[:, :, None] + np.array([0.0, np.pi])
-    s234, c234 = s234[:, :, None] * branch, c234[:, :, None] * branch
-    theta5 = theta5[:, :, None] * branch
-    # the wrist point in frame 1's plane (x along the arm, y up from the shoulder)
-    X5 = (c[:, 0, None] * c1 + c[:, 1, None] * s1)[:, :, None]
-    Y5 = (c[:, 2] - d1)[:, None, None]
-    wrist = (theta5[:, :, :1] == 0.0) | (theta5[:, :, :1] == np.pi)  # (n, 2, 1), after snapping
-    if np.any(wrist):
-        rule234, rule6 = _wrist_representatives(T, X5, Y5, theta5, robot)
-        theta234 = np.where(wrist, rule234, theta234)
-        theta6 = np.where(wrist, rule6, theta6)
-        s234 = np.where(wrist, np.sin(rule234), s234)
-        c234 = np.where(wrist, np.cos(rule234), c234)
-    # the planar 2R arm reaches the origin of frame 3: the wrist point minus d5 along z4
-    px, py = X5 - d5 * s234, Y5 + d5 * c234
-    elbow, ok3 = _acos((px * px + py * py - a2 * a2 - a3 * a3) / (2.0 * a2 * a3))  # (n, 2, 2)
-    # θ3 = ±elbow and θ2 = atan2(py, px) ∓ atan2(a3 sin(elbow), a2 + a3 cos(elbow))
-    gamma = np.arctan2(a3 * np.sin(elbow), a2 + a3 * np.cos(elbow))
-    sign = np.array([1.0, -1.0])
-    theta3 = elbow[..., None] * sign  # (n, 2, 2, 2)
-    theta2 = np.arctan2(py, px)[..., None] - gamma[..., None] * sign
-    q = np.empty((n, 2, 2, 2, 6))  # each angle wrapped to (−π, π] on its smallest array
-    q[..., 0] = _wrap_near(theta1)[:, :, None, None]
-    theta2 = _wrap_near(theta2)
-    q[..., 1] = theta2
-    q[..., 2] = theta3  # acos: already in [−π, π], and −π only at a removed double root
-    q[..., 3] = _wrap_near(_wrap_near(theta234)[..., None] - theta2 - theta3)
-    q[..., 4] = _wrap_near(theta5)[..., None]
-    q[..., 5] = _wrap_near(theta6)[..., None]
-    # real and distinct: double roots at singular poses give each solution once
-    keep = np.broadcast_to((ok1[:, None, None] & ok3)[..., None], (n, 2, 2, 2)).copy()
-    keep[:, 1] &= (shoulder != 0.0)[:, None, None]  # the θ1 branches merge
-    keep[..., 1] &= (elbow != 0.0) & (elbow != np.pi)  # θ3 = 0 or π: a double root
-    same_rep = np.abs(wrap_angles(theta234[:, :, 1] - theta234[:, :, 0])) < 1e-12
-    keep[:, :, 1] &= ~(wrist[:, :, 0] & same_rep)[:, :, None]
-    return q.reshape(n, 8, 6), keep.reshape(n, 8)
-
-
-def _wrist_representatives(T, X5, Y5, theta5, robot) -> tuple[np.ndarray, np.ndarray]:
-    """θ234 and θ6 of the two representatives of a wrist-singular family (sin θ5 = 0).
-
-    With sin θ5 = 0 only ``φ = θ234 ± θ6`` is fixed (``+`` when θ5 = 0, ``−`` when θ5 = π):
-    choosing θ234 moves joint 5's centre on a circle of radius d5 round the wrist point and
-    changes the planar arm's reach ρ.  The representatives take the two θ234 (one on each side
-    of the circle) whose ρ is nearest ``√(a2² + a3²)``: the elbow nearest a right angle.
-    """
-    _, a2, a3, _, d5, _ = robot.lengths
-    A = np.hypot(X5, Y5)
-    beta = np.arctan2(Y5, X5)
+    A = np.hypot(X, Y)
     sigma = (A * A + d5 * d5 - (a2 * a2 + a3 * a3)) / (2.0 * d5 * np.where(A > 0, A, 1.0))
     half = np.arcsin(np.clip(sigma, -1.0, 1.0))
-    theta234 = np.concatenate([beta + half, beta + np.pi - half], axis=-1)  # (n, 2, 2)
-    phi = np.arctan2(T[:, 2, 0], T[:, 2, 1])[:, None, None]  # θ234 + θ6, or θ6 − θ234
-    flipped = np.abs(theta5) == np.pi
-    return theta234, np.where(flipped, phi + theta234, phi - theta234)
+    beta = np.arctan2(Y, X)
+    return np.stack([beta + half, beta + np.pi - half], axis=-1)
 
 
-#: Large batches are solved in blocks of this many poses, which keeps temporaries in cache.
-_BLOCK = 2048
+def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """All eight branches for flange poses ``T`` (N, 4, 4): solutions (N, 2, 2, 2, 6), axes
+    (θ1 branch, θ5 sign, θ3 sign), and the mask of the real, distinct ones."""
+    d1, a2, a3, d4, d5, d6 = lengths
+    n = len(T)
+    x, y, z, p = T[:, :3, 0], T[:, :3, 1], T[:, :3, 2], T[:, :3, 3]
+    w = p - d6 * z
+    r2 = w[:, 0] ** 2 + w[:, 1] ** 2
+    r = np.sqrt(r2)
+    reach1 = (r - d4 >= -REACH_TOLERANCE) & (r2 > 0.0)
+    gap = r - d4
+    gap[np.abs(gap) <= _ROUNDOFF * (np.abs(p[:, 0]) + np.abs(p[:, 1]) + d6 + d4)] = 0.0
+    root = np.sqrt(np.maximum(gap * (r + d4), 0.0))
+    side = np.array([1.0, -1.0])
+    s1 = w[:, 0, None] * d4 - side * (w[:, 1] * root)[:, None]  # (n, 2)
+    c1 = -(w[:, 1, None] * d4 + side * (w[:, 0] * root)[:, None])
+    norm = np.hypot(s1, c1)
+    norm[norm == 0.0] = 1.0
+    s1, c1 = s1 / norm, c1 / norm
+    q1 = np.arctan2(s1, c1)
 
+    def along_n(v):  # v·n with n = (s1, −c1, 0), shape (n, 2)
+        return v[:, 0, None] * s1 - v[:, 1, None] * c1
 
-def _solve(poses: np.ndarray, robot: Robot) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_solve_flange` block by block, without floating-point warnings (out-of-reach
-    poses are expected)."""
-    n = len(poses)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        if n <= _BLOCK:
-            return _solve_flange(poses, robot)
-        q, keep = np.empty((n, 8, 6)), np.empty((n, 8), dtype=bool)
-        for start in range(0, n, _BLOCK):
-            q[start : start + _BLOCK], keep[start : start + _BLOCK] = _solve_flange(
-                poses[start : start + _BLOCK], robot
-            )
+    A, B, C = along_n(x), -along_n(y), along_n(z)
+    S = np.hypot(A, B)
+    X = c1 * w[:, 0, None] + s1 * w[:, 1, None]
+    Y = np.broadcast_to((w[:, 2] - d1)[:, None], X.shape)
+    s5 = S[:, :, None] * side  # (n, 2 θ1 branches, 2 θ5 signs)
+    c5 = np.broadcast_to(C[:, :, None], s5.shape)
+    q5 = np.arctan2(s5, c5)
+    safe = np.where(S > WRIST_TOLERANCE, S, 1.0)[:, :, None]
+    c6 = side * A[:, :, None] / safe
+    s6 = side * B[:, :, None] / safe
+
+    def column(i):  # entry i of c5 (c6 x − s6 y) − s5 z
+        return c5 * (c6 * x[:, i, None, None] - s6 * y[:, i, None, None]) - s5 * z[:, i, None, None]
+
+    s234 = column(2)
+    c234 = c1[:, :, None] * column(0) + s1[:, :, None] * column(1)
+    q234 = np.arctan2(s234, c234)
+    q6 = np.arctan2(s6, c6)
+    wrist = S <= WRIST_TOLERANCE  # (n, 2)
+    if np.any(wrist):
+        rep = _representatives(X, Y, a2, a3, d5)  # (n, 2, 2)
+        sign = np.where(C >= 0.0, 1.0, -1.0)[:, :, None]
+        cr, sr = np.cos(rep), np.sin(rep)
+        x4 = (c1[:, :, None] * cr, s1[:, :, None] * cr, sr)
+        dot_x = (
+            x4[0] * x[:, 0, None, None] + x4[1] * x[:, 1, None, None] + x4[2] * x[:, 2, None, None]
+        )
+        dot_y = (
+            x4[0] * y[:, 0, None, None] + x4[1] * y[:, 1, None, None] + x4[2] * y[:, 2, None, None]
+        )
+        at = wrist[:, :, None]
+        q234 = np.where(at, rep, q234)
+        s234, c234 = np.where(at, sr, s234), np.where(at, cr, c234)
+        q6 = np.where(at, np.arctan2(-sign * dot_y, sign * dot_x), q6)
+        q5 = np.where(at, np.arctan2(S, C)[:, :, None], q5)
+    ex = X[:, :, None] - d5 * s234  # the origin of frame 3, (n, 2, 2)
+    ey = Y[:, :, None] + d5 * c234
+    rho = np.hypot(ex, ey)
+    big, small = abs(a2) + abs(a3), abs(abs(a2) - abs(a3))
+    reach3 = (rho - big <= REACH_TOLERANCE) & (small - rho <= REACH_TOLERANCE)
+    two_a2a3 = 2.0 * a2 * a3
+    c3 = np.clip((ex * ex + ey * ey - a2 * a2 - a3 * a3) / two_a2a3, -1.0, 1.0)
+    stretch = np.where(big - rho > _ROUNDOFF * big, big - rho, 0.0)
+    fold = np.where(rho - small > _ROUNDOFF * big, rho - small, 0.0)
+    product = stretch * (big + rho) * fold * (rho + small)
+    s3 = np.sqrt(product) / abs(two_a2a3)
+    s3e = s3[..., None] * side  # (n, 2, 2, 2)
+    q3 = np.arctan2(s3e, c3[..., None])
+    q2 = wrap_angles(
+        np.arctan2(ey, ex)[..., None] - np.arctan2(a3 * s3e, (a2 + a3 * c3)[..., None])
+    )
+    q = np.empty((n, 2, 2, 2, 6))
+    q[..., 0] = wrap_angles(q1)[:, :, None, None]
+    q[..., 1] = q2
+    q[..., 2] = wrap_angles(q3)
+    q[..., 3] = wrap_angles(q234[..., None] - q2 - q3)
+    q[..., 4] = wrap_angles(q5)[..., None]
+    q[..., 5] = wrap_angles(q6)[..., None]
+    keep = np.broadcast_to((reach1[:, None, None] & reach3)[..., None], (n, 2, 2, 2)).copy()
+    keep[:, 1] &= (root > 0.0)[:, None, None]  # the θ1 branches merge
+    keep[..., 1] &= s3 > 0.0  # θ3 = 0 or π: a double root
+    q = q.reshape(n, 8, 6)
+    keep = keep.reshape(n, 8)
+    # solutions equal to within DUPLICATE_TOLERANCE (possible only at singular poses): the
+    # first of them stays
+    gap = np.abs(wrap_angles(q[:, :, None, :] - q[:, None, :, :])).max(axis=-1)  # (n, 8, 8)
+    same = (gap < DUPLICATE_TOLERANCE) & keep[:, None, :] & np.tri(8, 8, -1, dtype=bool)
+    keep &= ~same.any(axis=-1)
     return q, keep
 
 
-def _flange_targets(robot: Robot, T: ArrayLike) -> tuple[np.ndarray, bool]:
-    poses = check_transform(T, name="T")
-    single = poses.ndim == 2
+#: Stacks are solved in blocks of this many poses, which keeps temporaries in cache.
+_BLOCK = 1024
+
+
+def _solve(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_solve_stack` block by block, without floating-point warnings (out-of-reach
+    poses are expected)."""
+    n = len(T)
+    q, keep = np.empty((n, 8, 6)), np.empty((n, 8), dtype=bool)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        for start in range(0, n, _BLOCK):
+            block = slice(start, start + _BLOCK)
+            q[block], keep[block] = _solve_stack(T[block], lengths)
+    return q, keep
+
+
+def _flange_poses(robot: Robot, T: ArrayLike, name: str) -> tuple[np.ndarray, tuple[int, ...]]:
+    """Checked tool poses as flange poses in DH frame 0, (N, 4, 4), and their leading axes."""
+    poses = check_transform(T, name=name)
+    lead = poses.shape[:-2]
     poses = poses.reshape(-1, 4, 4)
     if not robot._plain:
-        poses = np.linalg.inv(robot.base) @ poses @ np.linalg.inv(robot.tool)
-    return poses, single
+        poses = robot.flange_pose(poses)
+    return poses, lead
+
+
+def _why_not(robot: Robot, goal: np.ndarray, poses: np.ndarray, valid: np.ndarray, i: int) -> str:
+    if valid[i].any():
+        return "unreachable within the joint limits: every closed-form solution is outside them"
+    misses: list[float] = []
+    _solve_one(poses[i].tolist(), robot.lengths, misses)
+    return no_solution_reason(robot, goal.reshape(-1, 4, 4)[i], min(misses, default=0.0))
 
 
 def ik_analytic(
@@ -201,21 +335,20 @@ def ik_analytic(
     Parameters
     ----------
     robot : Robot
-    T : array_like, shape (4, 4) or (N, 4, 4)
+    T : array_like, shape (4, 4) or (..., 4, 4)
         Tool poses in the robot's base frame (flange poses unless the robot has a tool).
     return_mask : bool
-        For a batch, also return the validity mask (always returned for a batch when True;
-        ignored for a single pose).
+        For a stack of poses, also return the (..., 8) boolean mask of the real rows.
 
     Returns
     -------
     ndarray
         For one pose: shape (k, 6), ``k ≤ 8`` distinct exact solutions (``k = 0`` when the
-        pose is out of reach), wrapped to (−π, π].  For a batch: shape (N, 8, 6) with NaN in
-        the rows that are not solutions (out of reach, or repeats of an earlier row at a
-        singular pose); with ``return_mask=True`` also the (N, 8) boolean mask of real rows.
-        Row ``i`` of every pose is the same branch: bit 2 of ``i`` chooses the θ1 branch, bit
-        1 the sign of θ5 and bit 0 the sign of θ3 (elbow up or down).
+        pose is out of reach), wrapped to (−π, π].  For a stack of shape (..., 4, 4): shape
+        (..., 8, 6) with NaN in the rows that are not solutions (out of reach, or repeats of
+        an earlier row at a singular pose), and with ``return_mask=True`` also the (..., 8)
+        mask of real rows.  Row ``i`` of every pose is the same branch: bit 2 of ``i`` chooses
+        the θ1 branch, bit 1 the sign of θ5 and bit 0 the sign of θ3 (elbow up or down).
 
     Examples
     --------
@@ -225,29 +358,24 @@ def ik_analytic(
     >>> solutions = ik_analytic(ur5, T)
     >>> solutions.shape
     (8, 6)
-    >>> bool(np.allclose(urkin.fk(ur5, solutions), T, atol=1e-12))
+    >>> bool(np.abs(urkin.fk(ur5, solutions) - T).max() < 1e-12)
     True
-    >>> ik_analytic(ur5, urkin.fk(ur5, np.zeros(6)) @ np.diag([1, 1, 1, 1.0])).shape[0] < 8
-    True
+    >>> ik_analytic(ur5, np.stack([[T, T, T], [T, T, T]])).shape  # a (2, 3) grid of poses
+    (2, 3, 8, 6)
     """
-    if not isinstance(robot, Robot):
-        raise TypeError(f"expected a urkin Robot such as urkin.robot('ur5'); got {robot!r:.40}")
-    poses, single = _flange_targets(robot, T)
-    q, keep = _solve(poses, robot)
-    if single:
-        return q[0][keep[0]]
+    robot = check_robot(robot)
+    _check_lengths(robot)
+    poses, lead = _flange_poses(robot, T, "T")
+    if lead == ():
+        found = _solve_one(poses[0].tolist(), robot.lengths)
+        return np.array(found) if found else np.empty((0, 6))
+    q, keep = _solve(poses, robot.lengths)
     q[~keep] = np.nan
+    q, keep = unstack(q, lead), unstack(keep, lead)
     return (q, keep) if return_mask else q
 
 
-def ik_closest(
-    robot: Robot,
-    T: ArrayLike,
-    q_current: ArrayLike,
-    *,
-    tol_position: float = 1e-9,
-    tol_orientation: float = 1e-9,
-) -> IKResult:
+def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float = 1e-9) -> IKResult:
     """The closed-form solution nearest the current configuration, within the joint limits.
 
     Each solution is shifted joint by joint by multiples of 2π to the equivalent closest to
@@ -258,17 +386,18 @@ def ik_closest(
     Parameters
     ----------
     robot : Robot
-    T : array_like, shape (4, 4) or (N, 4, 4)
+    T : array_like, shape (4, 4) or (..., 4, 4)
         Tool poses.
-    q_current : array_like, shape (6,) or (N, 6)
-        The configuration(s) to stay close to.
-    tol_position, tol_orientation : float
-        Tolerances of the verification of the returned solution (metres, radians).
+    q_current : array_like, shape (6,) or (..., 6)
+        The configuration(s) to stay close to: one for every pose, or one per pose.
+    tol : float
+        Tolerance of the verification of the returned solution (metres and radians).
 
     Returns
     -------
     IKResult
-        ``success`` is False (``q = q_current``) when the pose has no solution.
+        With the leading axes of ``T``.  ``success`` is False (``q = q_current``, and the
+        reason says why, with the distance) when the pose has no solution within the limits.
 
     Examples
     --------
@@ -279,12 +408,18 @@ def ik_closest(
     >>> bool(result.success), bool(np.allclose(result.q, q))
     (True, True)
     """
-    poses, single = _flange_targets(robot, T)
-    current, _ = _joints(q_current, "q_current")
-    current = np.broadcast_to(current, (len(poses), 6)) if current.ndim == 1 else current
-    if len(current) != len(poses):
-        raise ValueError(f"q_current holds {len(current)} configurations for {len(poses)} poses")
-    q, valid = _solve(poses, robot)
+    robot = check_robot(robot)
+    _check_lengths(robot)
+    goal = check_transform(T, name="T")
+    poses, lead = _flange_poses(robot, goal, "T")
+    current = real(q_current, "q_current")
+    if current.shape[-1:] != (6,) or current.shape[:-1] not in ((), lead):
+        raise ValueError(
+            f"q_current must have shape (6,) or {(*lead, 6)} for T of shape {goal.shape}; "
+            f"got {current.shape}"
+        )
+    current = np.broadcast_to(current, (*lead, 6)).reshape(-1, 6)
+    q, valid = _solve(poses, robot.lengths)
     lower = np.array([lo for lo, _ in robot.joint_limits])
     upper = np.array([hi for _, hi in robot.joint_limits])
     # the 2π-equivalent of each angle nearest the current one, pushed back inside the limits
@@ -294,29 +429,8 @@ def ik_closest(
     inside = np.all((shifted >= lower) & (shifted <= upper), axis=-1) & valid
     distance = np.where(inside, np.linalg.norm(shifted - current[:, None, :], axis=-1), np.inf)
     best = np.argmin(distance, axis=1)
-    found = np.isfinite(distance[np.arange(len(poses)), best])
-    chosen = np.where(found[:, None], shifted[np.arange(len(poses)), best], current)
-    reached = fk(robot, chosen)
-    goal = check_transform(T, name="T").reshape(-1, 4, 4)
-    position_error = np.linalg.norm(reached[:, :3, 3] - goal[:, :3, 3], axis=-1)
-    rotation_error = rotation_angle(reached[:, :3, :3], goal[:, :3, :3])
-    success = found & (position_error <= tol_position) & (rotation_error <= tol_orientation)
-    reasons = [
-        "converged"
-        if ok
-        else "no closed-form solution within the joint limits: the pose is out of reach"
-        if not f
-        else f"the closed-form solution misses by {pe:.2e} m and {re:.2e} rad"
-        for ok, f, pe, re in zip(success, found, position_error, rotation_error)
-    ]
-    result = IKResult(
-        chosen,
-        success,
-        np.maximum(position_error, rotation_error),
-        position_error,
-        rotation_error,
-        np.zeros(len(poses), dtype=int),
-        np.zeros(len(poses), dtype=int),
-        reasons,
-    )
-    return result[0] if single else result
+    rows = np.arange(len(poses))
+    found = np.isfinite(distance[rows, best])
+    chosen = np.where(found[:, None], shifted[rows, best], current)
+    reasons = ["" if ok else _why_not(robot, goal, poses, valid, i) for i, ok in enumerate(found)]
+    return verified(robot, chosen, goal.reshape(-1, 4, 4), found, reasons, tol, tol, lead)

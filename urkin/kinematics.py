@@ -18,7 +18,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._generated import ur_kinematics as _gen
-from urkin.robots import Robot
+from urkin._inputs import real, unstack
+from urkin.robots import Robot, check_robot
 from urkin.transforms import skew
 
 __all__ = [
@@ -59,51 +60,58 @@ def _many(function, array: np.ndarray, robot: Robot, shape: tuple[int, ...]) -> 
     return out
 
 
-def _bad_angles(message: str, name: str) -> ValueError:
-    return ValueError(f"{name} {message}")
+def _range_error(largest: float, name: str) -> ValueError:
+    return ValueError(
+        f"{name} has an angle of {largest:.4g} rad: joint angles are in radians "
+        "(did you pass degrees? numpy.radians converts them)"
+    )
 
 
-def _joints(q: ArrayLike, name: str = "q") -> tuple[np.ndarray, list[float] | None]:
-    """Validated joint array, and its values as floats when it is one configuration."""
-    try:
-        array = np.asarray(q, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(
-            f"{name} must be 6 joint angles in radians, shape (6,) or (N, 6); got {q!r:.60}"
-        ) from exc
-    if array.shape == (6,):
-        values = array.tolist()
+def _joints(
+    q: ArrayLike, name: str = "q", *, complex_ok: bool = False
+) -> tuple[np.ndarray, tuple[int, ...], list[float] | None]:
+    """Checked joint angles: ``(array, lead, values)``.
+
+    ``array`` has shape (N, 6) with the leading axes ``lead`` flattened (the batching rule);
+    for one real configuration ``lead`` is ``()`` and ``values`` its six floats (the scalar
+    fast path), else ``values`` is None.  Complex angles (complex-step derivatives) are taken
+    only with ``complex_ok``.
+    """
+    if type(q) is np.ndarray and q.shape == (6,) and q.dtype == np.float64:
+        values = q.tolist()  # the common case, checked without building another array
+        array = q
+    else:
+        array = real(q, name, complex_ok=complex_ok)
+        if array.shape == (6,) and array.dtype.kind == "f":
+            values = array.tolist()
+        else:
+            values = None
+    if values is not None:
         if not all(map(math.isfinite, values)):
-            raise _bad_angles(f"contains NaN or infinity: {values}", name)
-        if max(map(abs, values)) > MAX_JOINT_ANGLE:
-            raise _bad_angles(
-                f"has an angle of {max(map(abs, values)):.4g} rad: joint angles are in radians "
-                "(did you pass degrees? numpy.radians converts them)",
-                name,
-            )
-        return array, values
-    if array.ndim == 2 and array.shape[1] == 6:
-        if not np.isfinite(array).all():
-            row = int(np.argwhere(~np.isfinite(array))[0, 0])
-            raise _bad_angles(f"contains NaN or infinity (first in row {row})", name)
-        largest = np.abs(array).max(initial=0.0)
+            real(array, name)  # raises, naming the entry
+        largest = max(map(abs, values))
         if largest > MAX_JOINT_ANGLE:
-            raise _bad_angles(
-                f"has an angle of {largest:.4g} rad: joint angles are in radians "
-                "(did you pass degrees? numpy.radians converts them)",
-                name,
-            )
-        return array, None
-    raise ValueError(f"{name} must have shape (6,) or (N, 6); got {array.shape}")
+            raise _range_error(largest, name)
+        return array.reshape(1, 6), (), values
+    if array.ndim == 0 or array.shape[-1] != 6:
+        raise ValueError(
+            f"{name} must be 6 joint angles in radians, shape (6,) or (..., 6); got {array.shape}"
+        )
+    lead = array.shape[:-1]
+    array = array.reshape(-1, 6)
+    largest = float(np.abs(array.real).max(initial=0.0))
+    if largest > MAX_JOINT_ANGLE:
+        raise _range_error(largest, name)
+    return array, lead, None
 
 
 def check_joints(q: ArrayLike, name: str = "q") -> np.ndarray:
-    """Validate joint angles and return them as a float array of shape (6,) or (N, 6).
+    """Validate joint angles and return them as a float array of shape (6,) or (..., 6).
 
     Raises
     ------
     TypeError
-        If ``q`` is not numeric.
+        If ``q`` is not numeric, or complex.
     ValueError
         If the shape is wrong, a value is NaN or infinite, or an angle exceeds
         :data:`MAX_JOINT_ANGLE` (which almost always means degrees were passed).
@@ -117,15 +125,17 @@ def check_joints(q: ArrayLike, name: str = "q") -> np.ndarray:
     ...
     ValueError: q has an angle of 90 rad: joint angles are in radians (did you pass degrees? numpy.radians converts them)
     """  # noqa: E501
-    return _joints(q, name)[0]
+    array, lead, _ = _joints(q, name)
+    return array.reshape(*lead, 6)
 
 
-def _robot(robot: Robot) -> Robot:
-    if not isinstance(robot, Robot):
-        raise TypeError(
-            f"expected a urkin Robot such as urkin.robot('ur5'); got {type(robot).__name__}"
-        )
-    return robot
+def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> np.ndarray:
+    """A generated function at ``q``: the scalar code for one real configuration, the column
+    code for a stack (and for complex angles), with the leading axes kept."""
+    array, lead, values = _joints(q, complex_ok=True)
+    if values is not None:
+        return one(*values, *robot.lengths)
+    return unstack(_many(many, array, robot, shape), lead)
 
 
 def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
@@ -157,12 +167,8 @@ def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> fk(ur5, np.zeros((10, 6))).shape
     (10, 4, 4)
     """
-    robot = _robot(robot)
-    array, values = _joints(q)
-    if values is not None:
-        T = _gen.t06_one(*values, *robot.lengths)
-    else:
-        T = _many(_gen.t06_many, array, robot, (4, 4))
+    robot = check_robot(robot)
+    T = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))
     if robot._plain:
         return T
     return robot.base @ T @ robot.tool
@@ -190,23 +196,16 @@ def fk_frames(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> frames[1][:3, 3]  # the shoulder frame sits d1 above the base
     array([0.    , 0.    , 0.1519])
     """
-    robot = _robot(robot)
-    array, values = _joints(q)
-    if values is not None:
-        frames = _gen.frames_one(*values, *robot.lengths)
-    else:
-        frames = _many(_gen.frames_many, array, robot, (7, 4, 4))
+    robot = check_robot(robot)
+    frames = _evaluate(robot, q, _gen.frames_one, _gen.frames_many, (7, 4, 4))
     if robot._plain:
         return frames
     return robot.base @ frames
 
 
-def _with_tool_and_base(robot: Robot, J: np.ndarray, array, values) -> np.ndarray:
+def _with_tool_and_base(robot: Robot, J: np.ndarray, q: ArrayLike) -> np.ndarray:
     """Move a flange Jacobian to the tool origin and express it in the world frame."""
-    if values is not None:
-        R06 = _gen.t06_one(*values, *robot.lengths)[:3, :3]
-    else:
-        R06 = _many(_gen.t06_many, array, robot, (4, 4))[:, :3, :3]
+    R06 = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))[..., :3, :3]
     r = R06 @ robot.tool[:3, 3]  # flange → tool origin, in base coordinates
     J = J.copy()
     J[..., :3, :] -= skew(r) @ J[..., 3:, :]  # v_tool = v_flange + ω × r
@@ -240,15 +239,11 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> J[3:, 0]  # joint 1 turns about the base z axis
     array([0., 0., 1.])
     """
-    robot = _robot(robot)
-    array, values = _joints(q)
-    if values is not None:
-        J = _gen.jacobian_one(*values, *robot.lengths)
-    else:
-        J = _many(_gen.jacobian_many, array, robot, (6, 6))
+    robot = check_robot(robot)
+    J = _evaluate(robot, q, _gen.jacobian_one, _gen.jacobian_many, (6, 6))
     if robot._plain:
         return J
-    return _with_tool_and_base(robot, J, array, values)
+    return _with_tool_and_base(robot, J, q)
 
 
 def position_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
@@ -273,13 +268,10 @@ def position_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> position_jacobian(urkin.robot("ur5"), np.zeros((4, 6))).shape
     (4, 3, 6)
     """
-    robot = _robot(robot)
-    array, values = _joints(q)
+    robot = check_robot(robot)
     if not robot._plain:
-        return jacobian(robot, array)[..., :3, :]
-    if values is not None:
-        return _gen.position_jacobian_one(*values, *robot.lengths)
-    return _many(_gen.position_jacobian_many, array, robot, (3, 6))
+        return jacobian(robot, q)[..., :3, :]
+    return _evaluate(robot, q, _gen.position_jacobian_one, _gen.position_jacobian_many, (3, 6))
 
 
 def dh_transform(
@@ -312,21 +304,24 @@ def dh_transform(
            [ 0. ,  1. ,  0. ,  0.1],
            [ 0. ,  0. ,  0. ,  1. ]])
     """
-    th, dd, aa, al = np.broadcast_arrays(
-        *(np.asarray(x, dtype=float) for x in (theta, d, a, alpha))
-    )
+    if convention not in ("standard", "modified"):
+        raise ValueError(f"convention must be 'standard' or 'modified'; got {convention!r}")
+    values = [real(x, name) for x, name in ((theta, "theta"), (d, "d"), (a, "a"), (alpha, "alpha"))]
+    try:
+        th, dd, aa, al = np.broadcast_arrays(*values)
+    except ValueError:
+        shapes = ", ".join(str(v.shape) for v in values)
+        raise ValueError(f"theta, d, a and alpha must broadcast together; got {shapes}") from None
     ct, st, ca, sa = np.cos(th), np.sin(th), np.cos(al), np.sin(al)
     T = np.zeros((*th.shape, 4, 4))
     if convention == "standard":
         T[..., 0, :] = np.stack([ct, -st * ca, st * sa, aa * ct], axis=-1)
         T[..., 1, :] = np.stack([st, ct * ca, -ct * sa, aa * st], axis=-1)
         T[..., 2, 1], T[..., 2, 2], T[..., 2, 3] = sa, ca, dd
-    elif convention == "modified":
+    else:
         T[..., 0, 0], T[..., 0, 1], T[..., 0, 3] = ct, -st, aa
         T[..., 1, :] = np.stack([st * ca, ct * ca, -sa, -sa * dd], axis=-1)
         T[..., 2, :] = np.stack([st * sa, ct * sa, ca, ca * dd], axis=-1)
-    else:
-        raise ValueError(f"convention must be 'standard' or 'modified'; got {convention!r}")
     T[..., 3, 3] = 1.0
     return T
 
@@ -357,12 +352,14 @@ def dh_chain(table: ArrayLike, q: ArrayLike, convention: str = "standard") -> np
     >>> np.allclose(dh_chain(ur3.dh_table(), q), fk(ur3, q))
     True
     """
-    rows = np.asarray(table, dtype=float)
-    angles = np.asarray(q, dtype=float)
-    if rows.ndim != 2 or rows.shape[1] != 3 or angles.shape[-1] != rows.shape[0]:
+    rows = real(table, "table")
+    if rows.ndim != 2 or rows.shape[1] != 3 or len(rows) == 0:
+        raise ValueError(f"table must be (n, 3) rows (d, a, alpha); got shape {rows.shape}")
+    angles = real(q, "q")
+    if angles.ndim == 0 or angles.shape[-1] != rows.shape[0]:
         raise ValueError(
-            f"table must be (n, 3) rows (d, a, alpha) and q (n,) or (N, n); "
-            f"got {rows.shape} and {angles.shape}"
+            f"q must have shape ({len(rows)},) or (..., {len(rows)}) for a table of "
+            f"{len(rows)} rows; got {angles.shape}"
         )
     links = dh_transform(angles, rows[:, 0], rows[:, 1], rows[:, 2], convention)
     T = links[..., 0, :, :]
@@ -411,8 +408,8 @@ def singularity_factors(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> singularity_factors(ur5, [0, -np.pi / 2, 0, -np.pi / 2, 0, 0]).round(6) + 0.0
     array([0., 0., 0.])
     """
-    robot = _robot(robot)
-    array, _ = _joints(q)
+    robot = check_robot(robot)
+    array = check_joints(q)
     q2, q3, q4, q5 = (array[..., i] for i in (1, 2, 3, 4))
     shoulder = robot.a2 * np.cos(q2) + robot.a3 * np.cos(q2 + q3) + robot.d5 * np.sin(q2 + q3 + q4)
     return np.stack([shoulder, np.sin(q3), np.sin(q5)], axis=-1)

@@ -1,125 +1,80 @@
-"""Numerical inverse kinematics: one iterative core, four step rules, batched over targets.
+"""Numerical inverse kinematics: one iteration core, step rules plugged into it, any number of
+targets.
 
 ``urkin.ik(robot, target, q0=None, method="lm")`` finds joint angles ``q`` with
-``fk(robot, q) ≈ target``.  The core owns everything the step rules share:
+``fk(robot, q) ≈ target``.  The core (:func:`_iterate`) owns everything the step rules share, for
+one target or a stack of them alike (a single target is a stack of one, evaluated with the
+generated one-pose kinematics):
 
-* iterations with an error that is re-measured after every step;
+* an error that is re-measured after every step (a step rule may reject a trial step);
 * separate tolerances on the position (metres) and the orientation (radians);
 * step limiting (no joint moves more than ``max_step`` radians in one step);
-* angle wrapping into [−π, π) and the robot's joint limits;
-* restarts from seeded random configurations when an attempt stalls;
+* angle wrapping into (−π, π] and the robot's joint limits;
+* restarts from seeded random configurations when an attempt stalls (restarted targets stay
+  rows of the same stack);
 * verification: success is reported only when the pose error of the returned ``q``, measured
-  with :func:`urkin.fk`, is within both tolerances.
+  with :func:`urkin.fk` against the target as given, is within both tolerances.
 
-Step rules (``method``):
+Step rules (``method``, or a :class:`StepRule` object):
 
-``"nr"``
-    Newton–Raphson with the pseudo-inverse: ``Δq = J⁺ e``.
-``"dls"``
-    Damped least squares with a fixed damping: ``Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e``, ``λ = 0.01``.
-``"lm"`` (default)
-    Levenberg–Marquardt: ``Δq = (JᵀJ + μ I)⁻¹ Jᵀ e`` with ``μ`` adapted every iteration from
-    how well the step's predicted error reduction matched the actual one (Nielsen's rule):
-    smaller after a good step, larger — and the step rejected — after one that does not
-    lower the error.
-``"poe"``
-    Newton–Raphson on the matrix-log twist error of Modern Robotics' ``IKinSpace``:
-    ``V_s = log(T_target T⁻¹)``, ``Δq = J_s⁺ V_s`` with the space Jacobian.
+``"nr"`` (:class:`NewtonRaphson`)
+    ``Δq = J⁺ e``.
+``"dls"`` (:class:`DampedLeastSquares`)
+    ``Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e`` with a fixed damping ``λ`` (0.01): robust near singularities,
+    but only linearly convergent there, which the failure reason says.
+``"lm"`` (:class:`LevenbergMarquardt`, default)
+    ``Δq = (JᵀJ + μ I)⁻¹ Jᵀ e`` with ``μ`` adapted every iteration from how well the step's
+    predicted error reduction matched the actual one (Nielsen's rule): smaller after a good
+    step, larger — and the step rejected — after one that does not lower the error.
+``"poe"`` (:class:`MatrixLog`)
+    Modern Robotics' ``IKinSpace``: the matrix-log twist error ``V_s = log(T_target T⁻¹)`` and
+    ``Δq = J_s⁺ V_s`` with the space Jacobian.
 
 The orientation error of ``nr``, ``dls`` and ``lm`` is the rotation vector
-``log(R_target R_currentᵀ)`` (``orientation_error="log"``, default).  The course reports'
-``orientation_error="cross"``, ``½ Σ r_i × t_i`` over the columns of the current and target
+``log(R_target R_currentᵀ)`` (``orientation="log"``, default).  The course reports'
+``orientation="cross"``, ``½ Σ r_i × t_i`` over the columns of the current and target
 rotations, equals ``sin(φ)·k`` and vanishes at a 180° error: from an orientation exactly half
 a turn away it sees no error at all (its blind spot), so it is taught but not the default.
 
 A target is a 4×4 pose, or a position (3-vector, metres) when only the tool position matters.
 Targets that cannot be reached are rejected before iterating, with the distance beyond reach.
+A target rotation is accepted up to :data:`urkin.transforms.ROTATION_TOLERANCE` from orthonormal;
+the iteration aims at the nearest rotation, and when the given one is further from it than
+``tol_orientation`` the failure says so rather than blaming convergence.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._generated import ur_kinematics as _gen
+from urkin._inputs import real
+from urkin.ik_result import IKResult, unreachable, verified
 from urkin.kinematics import _joints, fk, jacobian
-from urkin.robots import Robot
-from urkin.transforms import check_transform, rotation_angle, rotation_parts, skew, twist_parts
+from urkin.robots import Robot, check_robot
+from urkin.transforms import (
+    check_transform,
+    orthonormalize,
+    rotation_angle,
+    rotation_parts,
+    skew,
+    twist_parts,
+)
 
-__all__ = ["IK_METHODS", "IKResult", "ik", "orientation_error"]
-
-IK_METHODS = ("nr", "dls", "lm", "poe")
-
-
-@dataclass
-class IKResult:
-    """What :func:`ik` found, for one target or (arrays) for a batch.
-
-    Attributes
-    ----------
-    q : ndarray, shape (6,) or (N, 6)
-        The solution when ``success``; otherwise the configuration with the smallest error
-        found (the initial guess when the target was rejected before iterating).  Never NaN.
-    success : bool or ndarray of bool
-        True only if the pose error of ``q``, re-measured with :func:`urkin.fk`, is within both
-        tolerances.
-    residual : float or ndarray
-        ``max(position_error, orientation_error)`` of ``q`` (metres and radians).
-    position_error : float or ndarray
-        Distance between the tool and the target position, metres.
-    orientation_error : float or ndarray
-        Angle of the rotation between the tool and the target orientation, radians (0 for a
-        position-only target).
-    iterations : int or ndarray
-        Iterations over all attempts.
-    restarts : int or ndarray
-        Restarts from random configurations.
-    reason : str or list of str
-        ``"converged"``, or why not.
-    """
-
-    q: np.ndarray
-    success: bool | np.ndarray
-    residual: float | np.ndarray
-    position_error: float | np.ndarray
-    orientation_error: float | np.ndarray
-    iterations: int | np.ndarray
-    restarts: int | np.ndarray
-    reason: str | list[str] = field(default="")
-
-    def __len__(self) -> int:
-        if np.ndim(self.success) == 0:
-            raise TypeError("a single IKResult has no length; batched results do")
-        return len(self.success)
-
-    def __getitem__(self, index: int) -> IKResult:
-        if np.ndim(self.success) == 0:
-            raise TypeError("a single IKResult cannot be indexed; batched results can")
-        return IKResult(
-            self.q[index].copy(),
-            bool(self.success[index]),
-            float(self.residual[index]),
-            float(self.position_error[index]),
-            float(self.orientation_error[index]),
-            int(self.iterations[index]),
-            int(self.restarts[index]),
-            self.reason[index],
-        )
-
-    def __repr__(self) -> str:
-        if np.ndim(self.success) == 0:
-            q = np.array2string(np.asarray(self.q), precision=4, separator=", ")
-            return (
-                f"IKResult(success={self.success}, q={q}, residual={self.residual:.2e}, "
-                f"iterations={self.iterations}, restarts={self.restarts}, reason={self.reason!r})"
-            )
-        return (
-            f"IKResult(batch of {len(self)}: {int(np.sum(self.success))} succeeded, "
-            f"median iterations {np.median(self.iterations):g})"
-        )
+__all__ = [
+    "IK_METHODS",
+    "DampedLeastSquares",
+    "IKResult",
+    "LevenbergMarquardt",
+    "MatrixLog",
+    "NewtonRaphson",
+    "StepRule",
+    "ik",
+    "orientation_error",
+]
 
 
 def orientation_error(R_current: ArrayLike, R_target: ArrayLike, form: str = "log") -> np.ndarray:
@@ -148,75 +103,17 @@ def orientation_error(R_current: ArrayLike, R_target: ArrayLike, form: str = "lo
     """
     if form not in ("log", "cross"):
         raise ValueError(f"orientation error form must be 'log' or 'cross'; got {form!r}")
-    Rc = np.asarray(R_current, dtype=float)
-    Rt = np.asarray(R_target, dtype=float)
+    Rc = real(R_current, "R_current")
+    Rt = real(R_target, "R_target")
     sin_axis, _, omega = rotation_parts(Rt @ np.swapaxes(Rc, -1, -2))
     return omega if form == "log" else sin_axis
 
 
-def _rotation_parts_one(R: list[list[float]]) -> tuple[list[float], float, list[float]]:
-    """:func:`urkin.transforms.rotation_parts` of one rotation, with Python floats (the hot path
-    of a single solve)."""
-    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = R
-    s = [0.5 * (r21 - r12), 0.5 * (r02 - r20), 0.5 * (r10 - r01)]
-    sin_theta = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
-    cos_theta = 0.5 * (r00 + r11 + r22 - 1.0)
-    theta = math.atan2(sin_theta, cos_theta)
-    if cos_theta < -0.9:  # near π: the rare case, handled by the batched code
-        _, _, omega = rotation_parts(np.array(R)[None])
-        return s, theta, omega[0].tolist()
-    scale = 1.0 + theta * theta / 6.0 if sin_theta < 1e-8 else theta / sin_theta
-    return s, theta, [scale * s[0], scale * s[1], scale * s[2]]
-
-
-# ----------------------------------------------------------------------------- reachability
-
-
-def _unreachable(robot: Robot, targets: np.ndarray, pose: bool) -> tuple[np.ndarray, list[str]]:
-    """Targets no configuration reaches (necessary conditions), and why, per target.
-
-    A pose fixes the point ``c = p − d6 z`` of the flange (the origin of DH frame 5); it lies
-    within ``|a2| + |a3| + √(d4² + d5²)`` of the shoulder point ``(0, 0, d1)`` and at least
-    ``d4`` from the base axis.  A position alone lies within that reach plus ``d6`` (plus the
-    tool's offset).
-    """
-    T_base_world = np.linalg.inv(robot.base)
-    arm = abs(robot.a2) + abs(robot.a3) + float(np.hypot(robot.d4, robot.d5))
-    if pose:
-        T_base_flange = T_base_world @ targets @ np.linalg.inv(robot.tool)
-        points = T_base_flange[:, :3, 3] - robot.d6 * T_base_flange[:, :3, 2]
-        reach, what = arm, "its wrist point"
-    else:
-        points = targets @ T_base_world[:3, :3].T + T_base_world[:3, 3]
-        reach = arm + robot.d6 + float(np.linalg.norm(robot.tool[:3, 3]))
-        what = "it"
-    distance = np.linalg.norm(points - [0.0, 0.0, robot.d1], axis=-1)
-    bad = distance > reach + 1e-9
-    reasons = [
-        f"unreachable: the target is {d - reach:.4f} m beyond the {robot.name}'s reach ({what} "
-        f"is {d:.4f} m from the shoulder; at most {reach:.4f} m is reachable)"
-        if flag
-        else ""
-        for flag, d in zip(bad, distance)
-    ]
-    if pose:
-        radial = np.hypot(points[:, 0], points[:, 1])
-        inner = (radial < robot.d4 - 1e-9) & ~bad
-        for i in np.flatnonzero(inner):
-            reasons[i] = (
-                f"unreachable: the wrist point is {radial[i]:.4f} m from the base axis, "
-                f"{robot.d4 - radial[i]:.4f} m closer than the {robot.name}'s shoulder offset "
-                f"d4 = {robot.d4:.4f} m allows"
-            )
-        bad = bad | inner
-    return bad, reasons
-
-
-# ----------------------------------------------------------------------------- the core
+# ----------------------------------------------------------------------------- the problem
 
 
 class _Problem:
-    """Targets, their error measure and the tolerances: what every step rule needs."""
+    """The targets (flange poses or tool positions), their error and the robot's kinematics."""
 
     def __init__(self, robot, positions, rotations, form, tol_position, tol_orientation):
         self.robot = robot
@@ -227,91 +124,165 @@ class _Problem:
         self.tol_orientation = tol_orientation
         self.lower = np.array([lo for lo, _ in robot.joint_limits])
         self.upper = np.array([hi for _, hi in robot.joint_limits])
-        self.fast = robot._plain  # the generated one-pose functions apply
         self.wide_limits = bool(np.all(self.lower <= -np.pi) and np.all(self.upper >= np.pi))
 
-    # --- forward kinematics, for a batch and for one configuration
-    def poses(self, Q: np.ndarray) -> np.ndarray:
-        return fk(self.robot, Q)
+    def evaluate(self, Q: np.ndarray, rows: np.ndarray):
+        """Poses of ``Q`` (k, 6) and their errors against the targets ``rows``: ``(T, e,
+        position error, orientation error)``."""
+        T = fk(self.robot, Q)
+        e_p = self.p[rows] - T[:, :3, 3]
+        position_error = np.sqrt(np.sum(e_p * e_p, axis=-1))
+        if self.R is None:
+            return T, e_p, position_error, np.zeros(len(rows))
+        sin_axis, theta, omega = rotation_parts(self.R[rows] @ np.swapaxes(T[:, :3, :3], -1, -2))
+        e_o = omega if self.form == "log" else sin_axis
+        return T, np.concatenate([e_p, e_o], axis=-1), position_error, theta
+
+    def evaluate_one(self, q: np.ndarray):
+        """:meth:`evaluate` for one configuration (6,) against the only target: ``T`` (4, 4),
+        ``e`` (m,) and the two errors as floats."""
+        T = (
+            _gen.t06_one(*q.tolist(), *self.robot.lengths)
+            if self.robot._plain
+            else fk(self.robot, q)
+        )
+        x, y, z = (self.p[0] - T[:3, 3]).tolist()
+        position_error = math.sqrt(x * x + y * y + z * z)
+        if self.R is None:
+            return T, np.array((x, y, z)), position_error, 0.0
+        sin_axis, theta, omega = _rotation_parts_one((self.R[0] @ T[:3, :3].T).tolist())
+        e_o = omega if self.form == "log" else sin_axis
+        return T, np.array((x, y, z, *e_o)), position_error, theta
 
     def jacobians(self, Q: np.ndarray) -> np.ndarray:
         J = jacobian(self.robot, Q)
         return J if self.R is not None else J[..., :3, :]
 
-    def pose_one(self, q: np.ndarray) -> np.ndarray:
-        if self.fast:
-            return _gen.t06_one(*q.tolist(), *self.robot.lengths)
-        return fk(self.robot, q)
-
     def jacobian_one(self, q: np.ndarray) -> np.ndarray:
         J = (
             _gen.jacobian_one(*q.tolist(), *self.robot.lengths)
-            if self.fast
+            if self.robot._plain
             else jacobian(self.robot, q)
         )
         return J if self.R is not None else J[:3]
 
-    # --- errors: the vector the steps reduce, and the true position and orientation errors
-    def errors(self, T: np.ndarray, rows: np.ndarray):
-        e_p = self.p[rows] - T[:, :3, 3]
-        position_error = np.sqrt(np.sum(e_p * e_p, axis=-1))
-        if self.R is None:
-            return e_p, position_error, np.zeros(len(rows))
-        sin_axis, theta, omega = rotation_parts(self.R[rows] @ np.swapaxes(T[:, :3, :3], -1, -2))
-        e_o = omega if self.form == "log" else sin_axis
-        return np.concatenate([e_p, e_o], axis=-1), position_error, theta
-
-    def error_one(self, T: np.ndarray, row: int):
-        x, y, z = (self.p[row] - T[:3, 3]).tolist()
-        position_error = math.sqrt(x * x + y * y + z * z)
-        if self.R is None:
-            return np.array((x, y, z)), position_error, 0.0
-        sin_axis, theta, omega = _rotation_parts_one((self.R[row] @ T[:3, :3].T).tolist())
-        return (
-            np.array((x, y, z, *(omega if self.form == "log" else sin_axis))),
-            position_error,
-            theta,
-        )
-
-    def space_twist(self, T: np.ndarray, rows) -> np.ndarray:
-        """Modern Robotics' error twist ``V_s = log(T_target T⁻¹)``, as ``(ω, v)``."""
-        p, R = T[..., :3, 3], T[..., :3, :3]
-        dR = self.R[rows] @ np.swapaxes(R, -1, -2)
-        dp = self.p[rows] - (dR @ p[..., None])[..., 0]
-        return twist_parts(dR, dp)
-
     def wrap(self, q: np.ndarray) -> np.ndarray:
-        wrapped = (q + np.pi) % (2.0 * np.pi) - np.pi
+        wrapped = q - 2.0 * np.pi * np.ceil((q - np.pi) / (2.0 * np.pi))
         return wrapped if self.wide_limits else np.clip(wrapped, self.lower, self.upper)
 
-    def random_configuration(self, rng: np.random.Generator, count: int | None = None):
-        """Uniform joint angles within the limits (and [−π, π)): shape (6,) or (count, 6)."""
-        size = None if count is None else (count, len(self.lower))
-        return rng.uniform(np.maximum(self.lower, -np.pi), np.minimum(self.upper, np.pi), size)
+    def random_configuration(self, rng: np.random.Generator, count: int) -> np.ndarray:
+        """Uniform joint angles within the limits (and (−π, π]), shape (count, 6)."""
+        low, high = np.maximum(self.lower, -np.pi), np.minimum(self.upper, np.pi)
+        return rng.uniform(low, high, (count, len(self.lower)))
+
+
+def _rotation_parts_one(R: list[list[float]]) -> tuple[list[float], float, list[float]]:
+    """:func:`urkin.transforms.rotation_parts` of one rotation, with Python floats (the hot path
+    of a single solve)."""
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = R
+    s = [0.5 * (r21 - r12), 0.5 * (r02 - r20), 0.5 * (r10 - r01)]
+    sin_theta = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
+    cos_theta = 0.5 * (r00 + r11 + r22 - 1.0)
+    theta = math.atan2(sin_theta, cos_theta)
+    if cos_theta < -0.9:  # near π: the rare case, handled by the stacked code
+        _, _, omega = rotation_parts(np.array(R))
+        return s, theta, omega.tolist()
+    scale = 1.0 + theta * theta / 6.0 if sin_theta < 1e-8 else theta / sin_theta
+    return s, theta, [scale * s[0], scale * s[1], scale * s[2]]
+
+
+# ----------------------------------------------------------------------------- step rules
+
+
+class StepRule:
+    """How one iteration moves the joints; the core (:func:`_iterate`) does the rest.
+
+    A rule sees the rows of the stack it is asked to step (``rows``, indices of targets), their
+    current poses ``T`` (k, 4, 4), Jacobians ``J`` (k, m, 6) and errors ``e`` (k, m), and
+    returns the joint steps (k, 6).  Rules that keep state per target (a damping) allocate it in
+    :meth:`start` and reset it in :meth:`restart`; rules that may reject a trial step say so in
+    :meth:`accept`; :meth:`given_up` lets a rule end an attempt early.
+
+    Attributes
+    ----------
+    name : str
+        The ``method`` name.
+    max_step : float
+        Default largest change of any joint in one step (radians; ``inf``: no limit).
+    patience : int
+        An attempt restarts when its error has not fallen below 90 % of its best for this many
+        iterations.
+    """
+
+    name = ""
+    max_step = 1.0
+    patience = 6
+
+    def start(self, n: int) -> None:
+        """Per-target state for a stack of ``n`` targets (none by default)."""
+
+    def restart(self, rows: np.ndarray) -> None:
+        """A new attempt begins for these targets (nothing to reset by default)."""
+
+    def step(self, problem: _Problem, rows, T, J, e) -> np.ndarray:
+        raise NotImplementedError
+
+    def accept(self, rows, e, e_trial, J, dq) -> np.ndarray:
+        """Which trial steps to keep (all, by default)."""
+        return np.ones(np.shape(rows), dtype=bool)
+
+    def given_up(self, rows: np.ndarray) -> np.ndarray | bool:
+        return False
+
+    def stall_reason(self) -> str:
+        """What to add to the failure reason when attempts stall (nothing by default)."""
+        return ""
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}()"
 
 
 def _pinv_step(J: np.ndarray, e: np.ndarray) -> np.ndarray:
     return (np.linalg.pinv(J, rcond=1e-12) @ e[..., None])[..., 0]
 
 
-def _damped_step(J: np.ndarray, e: np.ndarray, damping: float) -> np.ndarray:
-    """``Jᵀ (J Jᵀ + λ² I)⁻¹ e``."""
-    Jt = np.swapaxes(J, -1, -2)
-    A = J @ Jt + damping**2 * np.eye(J.shape[-2])
-    return (Jt @ np.linalg.solve(A, e[..., None]))[..., 0]
+class NewtonRaphson(StepRule):
+    """``Δq = J⁺ e`` (pseudo-inverse: least squares, minimum norm)."""
+
+    name = "nr"
+
+    def step(self, problem, rows, T, J, e):
+        return _pinv_step(J, e)
 
 
-def _twist_step(problem: _Problem, T: np.ndarray, J: np.ndarray, rows) -> np.ndarray:
-    """IKinSpace: ``J_s⁺ V_s``, with the space Jacobian from the geometric one."""
-    p = T[..., :3, 3]
-    Jw = J[..., 3:, :]
-    J_space = np.concatenate([Jw, J[..., :3, :] + skew(p) @ Jw], axis=-2)
-    return _pinv_step(J_space, problem.space_twist(T, rows))
+class DampedLeastSquares(StepRule):
+    """``Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e`` with a fixed damping ``λ``.
 
+    A fixed damping bounds the step near singularities but slows convergence there: each
+    iteration shrinks the error along a singular direction with singular value σ only by
+    ``λ² / (σ² + λ²)``; a failure says so.
+    """
 
-def _limited(step: np.ndarray, max_step: float) -> np.ndarray:
-    largest = np.max(np.abs(step), axis=-1, keepdims=True)
-    return step * np.minimum(1.0, max_step / np.maximum(largest, 1e-300))
+    name = "dls"
+
+    def __init__(self, damping: float = 0.01) -> None:
+        if not (isinstance(damping, (int, float)) and math.isfinite(damping) and damping >= 0):
+            raise ValueError(f"damping must be a finite number ≥ 0; got {damping!r}")
+        self.damping = float(damping)
+
+    def step(self, problem, rows, T, J, e):
+        Jt = np.swapaxes(J, -1, -2)
+        A = J @ Jt + self.damping**2 * np.eye(J.shape[-2])
+        return (Jt @ np.linalg.solve(A, e[..., None]))[..., 0]
+
+    def stall_reason(self):
+        return (
+            f" (damped least squares with a fixed λ = {self.damping:g} converges only linearly "
+            "near a singularity: method='lm' adapts the damping)"
+        )
+
+    def __repr__(self):
+        return f"DampedLeastSquares(damping={self.damping:g})"
 
 
 #: Levenberg–Marquardt damping: starts at _TAU × max diag(JᵀJ), follows Nielsen's update
@@ -319,171 +290,232 @@ def _limited(step: np.ndarray, max_step: float) -> np.ndarray:
 #: the linear model predicted, μ × ν with ν doubling after one that does not), and an attempt
 #: gives up when μ exceeds _MU_GIVE_UP.
 _TAU, _MU_GIVE_UP = 1e-2, 1e8
-#: An attempt restarts when its error has not fallen below _PROGRESS × its best for _PATIENCE
-#: iterations (a local minimum), or after max_iterations in all.
-_PROGRESS, _PATIENCE = 0.9, 6
+_DIAGONAL = np.arange(6)
 
 
-@dataclass
-class _Settings:
-    method: str
-    damping: float
-    max_iterations: int
-    max_restarts: int
-    max_step: float
+class LevenbergMarquardt(StepRule):
+    """``Δq = (JᵀJ + μ I)⁻¹ Jᵀ e`` with μ adapted by Nielsen's rule (see the module notes)."""
+
+    name = "lm"
+
+    def start(self, n):
+        self.mu = np.full(n, np.nan)  # NaN: not yet set for this attempt
+        self.nu = np.full(n, 2.0)
+
+    def restart(self, rows):
+        self.mu[rows], self.nu[rows] = np.nan, 2.0
+
+    def step(self, problem, rows, T, J, e):
+        Jt = np.swapaxes(J, -1, -2)
+        A = Jt @ J
+        g = (Jt @ e[..., None])[..., 0]
+        mu = self.mu[rows]
+        fresh = np.isnan(mu)
+        if np.any(fresh):
+            mu = np.where(fresh, _TAU * np.diagonal(A, axis1=-2, axis2=-1).max(axis=-1), mu)
+            self.mu[rows] = mu
+        A[..., _DIAGONAL, _DIAGONAL] += np.asarray(mu)[..., None]
+        return np.linalg.solve(A, g[..., None])[..., 0]
+
+    def accept(self, rows, e, e_trial, J, dq):
+        # gain ratio: actual reduction of |e|² over the reduction the linear model predicts
+        Jdq = (J @ dq[..., None])[..., 0]
+        predicted = np.sum(Jdq * (2.0 * e - Jdq), axis=-1)
+        actual = np.sum(e * e, axis=-1) - np.sum(e_trial * e_trial, axis=-1)
+        rho = np.where(predicted > 0, actual / np.where(predicted > 0, predicted, 1.0), -1.0)
+        better = rho > 0
+        shrink = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
+        mu, nu = self.mu[rows], self.nu[rows]
+        self.mu[rows] = np.where(better, mu * shrink, mu * nu)
+        self.nu[rows] = np.where(better, 2.0, 2.0 * nu)
+        return better
+
+    def given_up(self, rows):
+        return self.mu[rows] >= _MU_GIVE_UP
 
 
-def _iterate_batch(
-    problem: _Problem,
-    Q0: np.ndarray,
-    candidates: np.ndarray,
-    settings: _Settings,
-    rng: np.random.Generator,
-):
-    """The iteration loop over all active targets at once (vectorised over targets)."""
+class MatrixLog(StepRule):
+    """Modern Robotics' ``IKinSpace``: ``Δq = J_s⁺ V_s``, ``V_s = log(T_target T⁻¹)``.
+
+    Modern Robotics takes full steps; pass ``max_step=math.inf`` to :func:`urkin.ik` for its
+    exact iteration (the default limit of 1 rad makes the race of many targets from one start
+    robust, and its outcome independent of the CPU's rounding)."""
+
+    name = "poe"
+
+    def step(self, problem, rows, T, J, e):
+        p, R = T[..., :3, 3], T[..., :3, :3]
+        Jw = J[..., 3:, :]
+        J_space = np.concatenate([Jw, J[..., :3, :] + skew(p) @ Jw], axis=-2)
+        dR = problem.R[rows] @ np.swapaxes(R, -1, -2)
+        dp = problem.p[rows] - (dR @ p[..., None])[..., 0]
+        return _pinv_step(J_space, twist_parts(dR, dp))
+
+
+#: The step rules by ``method`` name.
+IK_METHODS = ("lm", "nr", "dls", "poe")
+
+
+def _rule(method: str | StepRule, damping: float) -> StepRule:
+    if isinstance(method, StepRule):
+        return method
+    if method == "lm":
+        return LevenbergMarquardt()
+    if method == "nr":
+        return NewtonRaphson()
+    if method == "dls":
+        return DampedLeastSquares(damping)
+    if method == "poe":
+        return MatrixLog()
+    raise ValueError(f"method must be one of {', '.join(IK_METHODS)} or a StepRule; got {method!r}")
+
+
+# ----------------------------------------------------------------------------- the core
+
+#: An attempt restarts when its error has not fallen below _PROGRESS × its best for the rule's
+#: patience (a local minimum), or after max_iterations in all.
+_PROGRESS = 0.9
+
+
+def _limited(step: np.ndarray, max_step: float) -> np.ndarray:
+    if max_step == math.inf:
+        return step
+    largest = np.max(np.abs(step), axis=-1, keepdims=True)
+    return step * np.minimum(1.0, max_step / np.maximum(largest, 1e-300))
+
+
+def _stalled(attempt, since_progress, given_up, patience: int, max_iterations: int):
+    """When an attempt ends without success (for one target or, elementwise, many)."""
+    return (attempt >= max_iterations) | (since_progress >= patience) | given_up
+
+
+def _iterate_one(problem, rule, q0, *, max_iterations, max_restarts, max_step, rng):
+    """:func:`_iterate` for one target, with the bookkeeping in Python floats: the same rules
+    (called on unstacked arrays) and the same stall and restart policy."""
+    rule.start(1)
+    q, best_q, best = q0.copy(), q0.copy(), math.inf
+    iterations = attempt = restarts = since_progress = 0
+    attempt_best = math.inf
+    T, e, pos, rot = problem.evaluate_one(q)
+    while True:
+        residual = max(pos, rot)
+        if residual < best:
+            best, best_q = residual, q
+        since_progress = 0 if residual < _PROGRESS * attempt_best else since_progress + 1
+        attempt_best = min(attempt_best, residual)
+        if pos <= problem.tol_position and rot <= problem.tol_orientation:
+            return best_q, True, iterations, restarts
+        if _stalled(attempt, since_progress, rule.given_up(0), rule.patience, max_iterations):
+            if restarts >= max_restarts:
+                return best_q, False, iterations, restarts
+            restarts += 1
+            attempt, since_progress, attempt_best = 0, 0, math.inf
+            rule.restart(0)
+            q = problem.random_configuration(rng, 1)[0]
+            T, e, pos, rot = problem.evaluate_one(q)
+            continue
+        J = problem.jacobian_one(q)
+        dq = rule.step(problem, 0, T, J, e)
+        if max_step != math.inf:
+            largest = max(map(abs, dq.tolist()))
+            if largest > max_step:
+                dq = dq * (max_step / largest)
+        trial = problem.wrap(q + dq)
+        T_trial, e_trial, pos_trial, rot_trial = problem.evaluate_one(trial)
+        if rule.accept(0, e, e_trial, J, dq):
+            q, T, e, pos, rot = trial, T_trial, e_trial, pos_trial, rot_trial
+        iterations += 1
+        attempt += 1
+
+
+def _iterate(problem, rule, Q0, candidates, *, max_iterations, max_restarts, max_step, rng):
+    """The iteration loop over every unsolved target at once: returns the best configuration
+    of each target, whether it met the tolerances, and the iterations and restarts used."""
     n = len(Q0)
+    rule.start(n)
     q, best_q = Q0.copy(), Q0.copy()
     best = np.full(n, np.inf)
     success = np.zeros(n, dtype=bool)
     iterations = np.zeros(n, dtype=int)
     attempt = np.zeros(n, dtype=int)
     restarts = np.zeros(n, dtype=int)
-    mu = np.full(n, np.nan)  # NaN: not yet set for this attempt
-    nu = np.full(n, 2.0)
     attempt_best = np.full(n, np.inf)
     since_progress = np.zeros(n, dtype=int)
-    active = candidates.copy()
-    while np.any(active):
-        rows = np.flatnonzero(active)
-        T = problem.poses(q[rows])
-        e, position_error, rotation_error = problem.errors(T, rows)
-        residual = np.maximum(position_error, rotation_error)
+    rows = np.flatnonzero(candidates)
+    T, e, pos, rot = problem.evaluate(q[rows], rows)
+    while len(rows):
+        residual = np.maximum(pos, rot)
         improved = residual < best[rows]
         best[rows[improved]] = residual[improved]
         best_q[rows[improved]] = q[rows[improved]]
         progress = residual < _PROGRESS * attempt_best[rows]
         since_progress[rows] = np.where(progress, 0, since_progress[rows] + 1)
         attempt_best[rows] = np.minimum(attempt_best[rows], residual)
-        done = (position_error <= problem.tol_position) & (
-            rotation_error <= problem.tol_orientation
-        )
+        done = (pos <= problem.tol_position) & (rot <= problem.tol_orientation)
         success[rows[done]] = True
-        stalled = ~done & (
-            (attempt[rows] >= settings.max_iterations)
-            | (since_progress[rows] >= _PATIENCE)
-            | (mu[rows] >= _MU_GIVE_UP)
+        stalled = ~done & _stalled(
+            attempt[rows], since_progress[rows], rule.given_up(rows), rule.patience, max_iterations
         )
-        # stalled attempts restart from a random configuration, or give up
-        stuck = rows[stalled]
-        active[stuck[restarts[stuck] >= settings.max_restarts]] = False
-        again = stuck[restarts[stuck] < settings.max_restarts]
-        if len(again):
-            restarts[again] += 1
-            attempt[again], since_progress[again] = 0, 0
-            mu[again], nu[again], attempt_best[again] = np.nan, 2.0, np.inf
-            q[again] = problem.random_configuration(rng, len(again))
-        active[rows[done]] = False
-        go = ~done & ~stalled
-        if not np.any(go):
-            continue
-        rows, T, e = rows[go], T[go], e[go]
-        J = problem.jacobians(q[rows])
-        if settings.method == "lm":  # take the step only if it lowers the error
-            Jt = np.swapaxes(J, -1, -2)
-            A = Jt @ J
-            g = (Jt @ e[..., None])[..., 0]
-            m = mu[rows]
-            m = np.where(np.isnan(m), _TAU * np.diagonal(A, axis1=-2, axis2=-1).max(axis=-1), m)
-            h = np.linalg.solve(A + m[:, None, None] * np.eye(A.shape[-1]), g[..., None])[..., 0]
-            h = _limited(h, settings.max_step)
-            trial = problem.wrap(q[rows] + h)
-            e_trial, _, _ = problem.errors(problem.poses(trial), rows)
-            model = e - (J @ h[..., None])[..., 0]
-            predicted = np.sum(e * e, axis=-1) - np.sum(model * model, axis=-1)
-            actual = np.sum(e * e, axis=-1) - np.sum(e_trial * e_trial, axis=-1)
-            rho = np.where(predicted > 0, actual / np.where(predicted > 0, predicted, 1.0), -1.0)
-            better = rho > 0
-            q[rows[better]] = trial[better]
-            shrink = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
-            mu[rows] = np.where(better, m * shrink, m * nu[rows])
-            nu[rows] = np.where(better, 2.0, 2.0 * nu[rows])
+        if stalled.any():  # restart from a random configuration, or give up
+            again = stalled & (restarts[rows] < max_restarts)
+            if again.any():
+                fresh = rows[again]
+                restarts[fresh] += 1
+                attempt[fresh], since_progress[fresh], attempt_best[fresh] = 0, 0, np.inf
+                rule.restart(fresh)
+                q[fresh] = problem.random_configuration(rng, len(fresh))
+                T[again], e[again], pos[again], rot[again] = problem.evaluate(q[fresh], fresh)
+            go = ~done & ~(stalled & ~again)
         else:
-            if settings.method == "nr":
-                step = _pinv_step(J, e)
-            elif settings.method == "dls":
-                step = _damped_step(J, e, settings.damping)
-            else:
-                step = _twist_step(problem, T, J, rows)
-            q[rows] = problem.wrap(q[rows] + _limited(step, settings.max_step))
+            go = ~done
+        if not go.all():
+            rows, T, e, pos, rot = rows[go], T[go], e[go], pos[go], rot[go]
+            if not len(rows):
+                break
+        J = problem.jacobians(q[rows])
+        dq = _limited(rule.step(problem, rows, T, J, e), max_step)
+        trial = problem.wrap(q[rows] + dq)
+        T_trial, e_trial, pos_trial, rot_trial = problem.evaluate(trial, rows)
+        keep = rule.accept(rows, e, e_trial, J, dq)
+        if keep.all():
+            q[rows], T, e, pos, rot = trial, T_trial, e_trial, pos_trial, rot_trial
+        else:
+            q[rows[keep]] = trial[keep]
+            T[keep], e[keep], pos[keep], rot[keep] = (
+                T_trial[keep],
+                e_trial[keep],
+                pos_trial[keep],
+                rot_trial[keep],
+            )
         iterations[rows] += 1
         attempt[rows] += 1
     return best_q, success, iterations, restarts
 
 
-def _iterate_one(problem: _Problem, q0: np.ndarray, settings: _Settings, rng: np.random.Generator):
-    """The same loop for a single target, with scalar bookkeeping (one solve's fast path)."""
-    q, best_q, best = q0.copy(), q0.copy(), math.inf
-    iterations = attempt = restarts = since_progress = 0
-    attempt_best = math.inf
-    mu, nu = math.nan, 2.0
-    rows = np.zeros(1, dtype=int)
-    T = problem.pose_one(q)
-    e, position_error, rotation_error = problem.error_one(T, 0)
-    while True:
-        residual = max(position_error, rotation_error)
-        if residual < best:
-            best, best_q = residual, q.copy()
-        since_progress = 0 if residual < _PROGRESS * attempt_best else since_progress + 1
-        attempt_best = min(attempt_best, residual)
-        if position_error <= problem.tol_position and rotation_error <= problem.tol_orientation:
-            return best_q, True, iterations, restarts
-        if attempt >= settings.max_iterations or since_progress >= _PATIENCE or mu >= _MU_GIVE_UP:
-            if restarts >= settings.max_restarts:
-                return best_q, False, iterations, restarts
-            restarts += 1
-            attempt, mu, nu, since_progress, attempt_best = 0, math.nan, 2.0, 0, math.inf
-            q = problem.random_configuration(rng)
-            T = problem.pose_one(q)
-            e, position_error, rotation_error = problem.error_one(T, 0)
-            continue
-        J = problem.jacobian_one(q)
-        if settings.method == "lm":
-            Jt = J.T
-            A = Jt @ J
-            g = Jt @ e
-            if math.isnan(mu):
-                mu = _TAU * float(A.diagonal().max())
-            A.flat[:: A.shape[0] + 1] += mu
-            step = np.linalg.solve(A, g)
-            largest = max(map(abs, step.tolist()))
-            if largest > settings.max_step:
-                step *= settings.max_step / largest
-            trial = problem.wrap(q + step)
-            T_trial = problem.pose_one(trial)
-            e_trial, p_trial, r_trial = problem.error_one(T_trial, 0)
-            # gain ratio: actual reduction of |e|² over the reduction the linear model predicts
-            Js = J @ step
-            predicted = float(2.0 * (e @ Js) - Js @ Js)
-            rho = float(e @ e - e_trial @ e_trial) / predicted if predicted > 0 else -1.0
-            if rho > 0:
-                q, T, e, position_error, rotation_error = trial, T_trial, e_trial, p_trial, r_trial
-                mu *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
-                nu = 2.0
-            else:
-                mu *= nu
-                nu *= 2.0
-        else:
-            if settings.method == "nr":
-                step = _pinv_step(J, e)
-            elif settings.method == "dls":
-                step = _damped_step(J, e, settings.damping)
-            else:
-                step = _twist_step(problem, T[None], J[None], rows)[0]
-            q = problem.wrap(q + _limited(step, settings.max_step))
-            T = problem.pose_one(q)
-            e, position_error, rotation_error = problem.error_one(T, 0)
-        iterations += 1
-        attempt += 1
+# ----------------------------------------------------------------------------- the solver
+
+
+def _targets(target: ArrayLike) -> tuple[np.ndarray, bool, tuple[int, ...]]:
+    """Checked targets as (N, 4, 4) poses or (N, 3) positions, whether they are poses, and
+    their leading axes."""
+    goal = real(target, "target")
+    if goal.shape[-2:] == (4, 4):
+        goal = check_transform(goal, name="target")
+        return goal.reshape(-1, 4, 4), True, goal.shape[:-2]
+    if goal.ndim >= 1 and goal.shape[-1] == 3:
+        return goal.reshape(-1, 3), False, goal.shape[:-1]
+    raise ValueError(
+        "target must be a pose (4, 4) or (..., 4, 4), or a position (3,) or (..., 3); "
+        f"got shape {goal.shape}"
+    )
+
+
+def _positive(value: float, name: str, *, integer: bool = False, zero_ok: bool = False) -> None:
+    kinds = (int,) if integer else (int, float)
+    ok = isinstance(value, kinds) and not isinstance(value, bool) and math.isfinite(value)
+    if not ok or value < 0 or (value == 0 and not zero_ok):
+        what = "an integer" if integer else "a number"
+        raise ValueError(f"{name} must be {what} {'≥' if zero_ok else '>'} 0; got {value!r}")
 
 
 def ik(
@@ -491,13 +523,13 @@ def ik(
     target: ArrayLike,
     q0: ArrayLike | None = None,
     *,
-    method: str = "lm",
+    method: str | StepRule = "lm",
     orientation: str = "log",
     tol_position: float = 1e-10,
     tol_orientation: float = 1e-10,
     max_iterations: int = 100,
     max_restarts: int = 20,
-    max_step: float = 1.0,
+    max_step: float | None = None,
     damping: float = 0.01,
     seed: int = 0,
 ) -> IKResult:
@@ -506,12 +538,12 @@ def ik(
     Parameters
     ----------
     robot : Robot
-    target : array_like, shape (4, 4), (N, 4, 4), (3,) or (N, 3)
+    target : array_like, shape (4, 4), (..., 4, 4), (3,) or (..., 3)
         Target poses of the tool (in the robot's base frame), or target positions (metres)
         when only the position matters.
-    q0 : array_like, shape (6,) or (N, 6), optional
-        Initial guesses (zeros by default); one guess serves every target of a batch.
-    method : {"lm", "nr", "dls", "poe"}
+    q0 : array_like, shape (6,) or (..., 6), optional
+        Initial guesses (zeros by default); one guess serves every target of a stack.
+    method : {"lm", "nr", "dls", "poe"} or StepRule
         The step rule (see the module documentation).
     orientation : {"log", "cross"}
         The orientation error used in the steps of ``lm``, ``nr`` and ``dls``: the rotation
@@ -521,11 +553,11 @@ def ik(
         Tolerances on the final position error (m) and orientation error (rad).
     max_iterations : int
         Iterations per attempt before a restart.  An attempt also restarts earlier when its
-        error stops falling (no 10 % improvement in 6 iterations: a local minimum).
+        error stops falling (a local minimum; see :class:`StepRule`).
     max_restarts : int
         Restarts from random configurations (drawn from ``seed``) before giving up.
-    max_step : float
-        Largest change of any joint in one step, radians.
+    max_step : float, optional
+        Largest change of any joint in one step, radians (default: the rule's, 1 rad).
     damping : float
         λ of ``dls``.
     seed : int
@@ -534,7 +566,7 @@ def ik(
     Returns
     -------
     IKResult
-        For a batch, every field is an array over the targets (index it for one target).
+        With the leading axes of the targets (index a 1-D batch for one target).
 
     Raises
     ------
@@ -555,88 +587,87 @@ def ik(
     >>> urkin.ik(ur5, [2.0, 0.0, 0.5]).reason
     "unreachable: the target is 0.9977 m beyond the UR5's reach (it is 2.0418 m from the shoulder; at most 1.0440 m is reachable)"
     """  # noqa: E501
-    if not isinstance(robot, Robot):
-        raise TypeError(f"expected a urkin Robot such as urkin.robot('ur5'); got {robot!r:.40}")
-    if method not in IK_METHODS:
-        raise ValueError(f"method must be one of {', '.join(IK_METHODS)}; got {method!r}")
+    robot = check_robot(robot)
+    rule = _rule(method, damping)
     if orientation not in ("log", "cross"):
         raise ValueError(f"orientation must be 'log' or 'cross'; got {orientation!r}")
-    goal = np.asarray(target, dtype=float)
-    single = goal.shape in ((4, 4), (3,))
-    pose = goal.shape[-2:] == (4, 4)
-    if not (pose or goal.shape[-1:] == (3,)) or goal.ndim > (3 if pose else 2):
-        raise ValueError(
-            "target must be a pose (4, 4) or (N, 4, 4), or a position (3,) or (N, 3); "
-            f"got shape {goal.shape}"
-        )
-    if pose:
-        goal = check_transform(goal, name="target").reshape(-1, 4, 4)
-    else:
-        if not np.all(np.isfinite(goal)):
-            raise ValueError("target contains NaN or infinity")
-        goal = goal.reshape(-1, 3)
+    _positive(tol_position, "tol_position")
+    _positive(tol_orientation, "tol_orientation")
+    _positive(max_iterations, "max_iterations", integer=True, zero_ok=True)
+    _positive(max_restarts, "max_restarts", integer=True, zero_ok=True)
+    if max_step is not None and max_step != math.inf:
+        _positive(max_step, "max_step")
+    goal, pose, lead = _targets(target)
     n = len(goal)
-    guess = np.zeros(6) if q0 is None else _joints(q0, "q0")[0]
-    Q0 = np.broadcast_to(guess, (n, 6)).astype(float) if guess.ndim == 1 else guess.copy()
-    if len(Q0) != n:
-        raise ValueError(f"q0 holds {len(Q0)} configurations for {n} targets")
-    if method == "poe" and not pose:
+    if isinstance(rule, MatrixLog) and not pose:
         raise ValueError("method 'poe' needs full poses (4×4), not positions")
+    if q0 is None:
+        Q0 = np.zeros((n, 6))
+    else:
+        guess, guess_lead, _ = _joints(q0, "q0")
+        if guess_lead not in ((), lead):
+            raise ValueError(
+                f"q0 holds {math.prod(guess_lead)} configurations for {n} targets: give one "
+                f"guess, or one per target (shape {(*lead, 6)}); got shape {(*guess_lead, 6)}"
+            )
+        Q0 = np.broadcast_to(guess, (n, 6)).copy() if guess_lead == () else guess.copy()
 
-    settings = _Settings(method, damping, max_iterations, max_restarts, max_step)
-    if pose:  # iterate on the flange's target with the plain (fast) flange kinematics
+    bad, reasons = unreachable(robot, goal, pose)
+    if pose:  # iterate on the flange's target, the nearest rotation, with the plain kinematics
         plain = (
             robot
             if robot._plain
             else Robot(robot.name, *robot.lengths, joint_limits=robot.joint_limits)
         )
-        flange_goal = (
-            goal if robot._plain else np.linalg.inv(robot.base) @ goal @ np.linalg.inv(robot.tool)
-        )
+        rigid = goal.copy()
+        rigid[:, :3, :3] = orthonormalize(goal[:, :3, :3])
+        skew_angle = rotation_angle(goal[:, :3, :3], rigid[:, :3, :3])
+        flange = robot.flange_pose(rigid)
         problem = _Problem(
-            plain,
-            flange_goal[:, :3, 3],
-            flange_goal[:, :3, :3],
-            orientation,
-            tol_position,
-            tol_orientation,
+            plain, flange[:, :3, 3], flange[:, :3, :3], orientation, tol_position, tol_orientation
         )
     else:  # a position of the tool point, in the world frame: the robot's own kinematics
         problem = _Problem(robot, goal, None, orientation, tol_position, tol_orientation)
-    bad, reasons = _unreachable(robot, goal, pose)
-    rng = np.random.default_rng(seed)
+        skew_angle = np.zeros(n)
+    settings = {
+        "max_iterations": max_iterations,
+        "max_restarts": max_restarts,
+        "max_step": rule.max_step if max_step is None else max_step,
+        "rng": np.random.default_rng(seed),
+    }
     if n == 1:
-        q, ok, count, again = (
-            (Q0[0], False, 0, 0) if bad[0] else _iterate_one(problem, Q0[0], settings, rng)
+        single = (
+            _iterate_one(problem, rule, Q0[0], **settings) if not bad[0] else (Q0[0], False, 0, 0)
         )
-        q, success = q[None], np.array([ok])
-        iterations, restarts = np.array([count]), np.array([again])
+        q, found = single[0][None], np.array([single[1]])
+        iterations, restarts = np.array([single[2]]), np.array([single[3]])
     else:
-        q, success, iterations, restarts = _iterate_batch(problem, Q0, ~bad, settings, rng)
-    # verify with the robot's own forward kinematics, tool and base included
-    T = fk(robot, q[0])[None] if n == 1 else fk(robot, q)
-    if pose:
-        position_error = np.linalg.norm(T[:, :3, 3] - goal[:, :3, 3], axis=-1)
-        rotation_error = rotation_angle(T[:, :3, :3], goal[:, :3, :3])
-    else:
-        position_error = np.linalg.norm(T[:, :3, 3] - goal, axis=-1)
-        rotation_error = np.zeros(n)
-    success = success & (position_error <= tol_position) & (rotation_error <= tol_orientation)
-    for i in range(n):
-        if success[i]:
-            reasons[i] = "converged"
-        elif not reasons[i]:
-            reasons[i] = (
-                f"did not converge: after {restarts[i]} restarts the closest configuration found "
-                f"is {position_error[i]:.2e} m and {rotation_error[i]:.2e} rad from the target"
-                + (
-                    " (the cross-product error is blind to orientations half a turn away)"
-                    if orientation == "cross" and rotation_error[i] > 3.0
-                    else ""
-                )
-            )
-    residual = np.maximum(position_error, rotation_error)
-    result = IKResult(
-        q, success, residual, position_error, rotation_error, iterations, restarts, reasons
+        q, found, iterations, restarts = _iterate(problem, rule, Q0, ~bad, **settings)
+    for i in np.flatnonzero(~bad & (skew_angle > tol_orientation)):
+        reasons[i] = (
+            f"the target's rotation is {skew_angle[i]:.2e} rad from the nearest rotation matrix, "
+            f"more than tol_orientation = {tol_orientation:g}: no configuration can match it "
+            "(urkin.transforms.orthonormalize gives the nearest rotation)"
+        )
+
+    def failure(i: int, position: float, rotation: float) -> str:
+        blind = orientation == "cross" and rotation > 3.0
+        return (
+            f"did not converge: after {restarts[i]} restarts the closest configuration found is "
+            f"{position:.2e} m and {rotation:.2e} rad from the target{rule.stall_reason()}"
+            + (" (the cross-product error is blind to orientations half a turn away)" * blind)
+        )
+
+    return verified(
+        robot,
+        q,
+        goal,
+        found,
+        reasons,
+        tol_position,
+        tol_orientation,
+        lead,
+        iterations,
+        restarts,
+        failure,
     )
-    return result[0] if single else result

@@ -23,9 +23,10 @@ import functools
 import numpy as np
 from numpy.typing import ArrayLike
 
+from urkin._inputs import real
 from urkin.kinematics import dh_transform, fk, fk_frames
 from urkin.robots import Robot
-from urkin.transforms import adjoint, check_transform, inv_transform, se3_exp, skew
+from urkin.transforms import _core, adjoint, check_transform, inv_transform, se3_exp, skew
 
 __all__ = [
     "body_screws",
@@ -59,8 +60,14 @@ def screw_axis(omega: ArrayLike, point: ArrayLike) -> np.ndarray:
     >>> screw_axis([0, 0, 1], [0.5, 0, 0])  # a vertical axis through x = 0.5 m
     array([ 0. ,  0. ,  1. ,  0. , -0.5,  0. ])
     """
-    w = np.asarray(omega, dtype=float)
-    q = np.asarray(point, dtype=float)
+    w = _core(omega, (3,), "omega")
+    q = _core(point, (3,), "point")
+    try:
+        w, q = np.broadcast_arrays(w, q)
+    except ValueError:
+        raise ValueError(
+            f"omega and point must be stacks of matching shape; got {w.shape} and {q.shape}"
+        ) from None
     return np.concatenate([w, -np.cross(w, q)], axis=-1) + 0.0
 
 
@@ -166,24 +173,20 @@ def _revolute_pieces(data: bytes, n: int) -> tuple[np.ndarray, np.ndarray, np.nd
 
 
 def _check(M: ArrayLike | None, screws: ArrayLike, q: ArrayLike, name: str):
-    axes = np.ascontiguousarray(screws, dtype=float)
+    axes = np.ascontiguousarray(real(screws, name))
     if axes.ndim != 2 or axes.shape[0] != 6:
         raise ValueError(
             f"{name} must have shape (6, n), one screw axis per column; got {axes.shape}"
         )
-    if not np.all(np.isfinite(axes)):
-        raise ValueError(f"{name} contains NaN or infinity")
-    angles = np.asarray(q, dtype=float)
+    angles = real(q, "q")
     n = axes.shape[1]
-    if angles.shape[-1:] != (n,) or angles.ndim > 2:
+    if angles.shape[-1:] != (n,):
         raise ValueError(
-            f"q must have shape ({n},) or (N, {n}) for {n} screw axes; got {angles.shape}"
+            f"q must have shape ({n},) or (..., {n}) for {n} screw axes; got {angles.shape}"
         )
-    if not np.all(np.isfinite(angles)):
-        raise ValueError("q contains NaN or infinity")
     if M is None:
         return None, axes, angles
-    home = np.ascontiguousarray(M, dtype=float)
+    home = np.ascontiguousarray(real(M, "M"))
     if home.shape != (4, 4):
         raise ValueError(f"M must have shape (4, 4); got {home.shape}")
     return _checked_home(home.tobytes()), axes, angles
@@ -340,6 +343,19 @@ def jacobian_body(B: ArrayLike, q: ArrayLike) -> np.ndarray:
     return J
 
 
+def _jacobian_and_origin(J: ArrayLike, name: str, T_base_tool: ArrayLike):
+    """A checked Jacobian (..., 6, n) and the tool origins (..., 3) of checked rigid poses."""
+    matrix = real(J, name)
+    if matrix.ndim < 2 or matrix.shape[-2] != 6:
+        raise ValueError(f"{name} must have shape (6, n) or (..., 6, n); got {matrix.shape}")
+    T = check_transform(T_base_tool, name="T_base_tool")
+    if T.shape[:-2] not in ((), matrix.shape[:-2]):
+        raise ValueError(
+            f"T_base_tool must be one pose or one per Jacobian {matrix.shape[:-2]}; got {T.shape}"
+        )
+    return matrix, T[..., :3, 3]
+
+
 def space_from_geometric(J: ArrayLike, T_base_tool: ArrayLike) -> np.ndarray:
     """Space Jacobian ``(ω; v_s)`` from a geometric Jacobian ``[v; ω]`` of the tool origin.
 
@@ -366,8 +382,7 @@ def space_from_geometric(J: ArrayLike, T_base_tool: ArrayLike) -> np.ndarray:
     >>> np.allclose(J_s, jacobian_space(S, q))
     True
     """
-    geometric = np.asarray(J, dtype=float)
-    p = np.asarray(T_base_tool, dtype=float)[..., :3, 3]
+    geometric, p = _jacobian_and_origin(J, "J", T_base_tool)
     Jv, Jw = geometric[..., :3, :], geometric[..., 3:, :]
     return np.concatenate([Jw, Jv + skew(p) @ Jw], axis=-2)
 
@@ -385,7 +400,6 @@ def geometric_from_space(J_space: ArrayLike, T_base_tool: ArrayLike) -> np.ndarr
     >>> np.allclose(geometric_from_space(jacobian_space(S, q), M), urkin.jacobian(ur3, q))
     True
     """
-    space = np.asarray(J_space, dtype=float)
-    p = np.asarray(T_base_tool, dtype=float)[..., :3, 3]
+    space, p = _jacobian_and_origin(J_space, "J_space", T_base_tool)
     Jw, Jvs = space[..., :3, :], space[..., 3:, :]
     return np.concatenate([Jvs - skew(p) @ Jw, Jw], axis=-2)

@@ -33,6 +33,7 @@ __all__ = [
     "ROBOTS",
     "T_BASE_LINK_BASE",
     "Robot",
+    "check_robot",
     "robot",
 ]
 
@@ -61,6 +62,14 @@ def _frozen(matrix: np.ndarray | None) -> np.ndarray:
     check_transform(array, name="transform")
     array.setflags(write=False)
     return array
+
+
+def _inverse(T: np.ndarray) -> np.ndarray:
+    """The inverse of a rigid transform: ``[Rᵀ, −Rᵀp]``."""
+    inverse = np.eye(4)
+    inverse[:3, :3] = T[:3, :3].T
+    inverse[:3, 3] = -T[:3, :3].T @ T[:3, 3]
+    return inverse
 
 
 @dataclass(frozen=True, eq=False)
@@ -160,6 +169,20 @@ class Robot:
         """The standard-DH table as rows ``(d_i, a_i, α_i)``, shape (6, 3)."""
         return np.column_stack([self.d, self.a, self.alpha])
 
+    def flange_pose(self, T_world_tool: np.ndarray) -> np.ndarray:
+        """The flange pose in DH frame 0 that puts the tool at ``T_world_tool`` (..., 4, 4):
+        ``base⁻¹ · T_world_tool · tool⁻¹``."""
+        if self._plain:
+            return np.asarray(T_world_tool, dtype=float)
+        return _inverse(self.base) @ T_world_tool @ _inverse(self.tool)
+
+    def tool_pose(self, T_base_flange: np.ndarray) -> np.ndarray:
+        """The tool pose in the world for a flange pose in DH frame 0 (..., 4, 4):
+        ``base · T_base_flange · tool``."""
+        if self._plain:
+            return np.asarray(T_base_flange, dtype=float)
+        return self.base @ T_base_flange @ self.tool
+
     def with_base(self, T_world_base: np.ndarray) -> Robot:
         """A copy of this arm mounted at ``T_world_base`` (pose of DH frame 0 in the world)."""
         return replace(self, base=T_world_base)
@@ -193,6 +216,22 @@ _TABLE: dict[str, Robot] = {
 
 #: Names of the arms :func:`robot` knows, in UR's order.
 ROBOTS: tuple[str, ...] = tuple(r.name for r in _TABLE.values())
+
+
+def check_robot(value: object, name: str = "robot") -> Robot:
+    """``value`` if it is a :class:`Robot`; otherwise a TypeError that says what to pass.
+
+    Examples
+    --------
+    >>> check_robot("ur5")
+    Traceback (most recent call last):
+    ...
+    TypeError: robot must be a urkin Robot such as urkin.robot('ur5'); got the str 'ur5'
+    """
+    if isinstance(value, Robot):
+        return value
+    shown = f"the {type(value).__name__} {value!r:.40}"
+    raise TypeError(f"{name} must be a urkin Robot such as urkin.robot('ur5'); got {shown}")
 
 
 def robot(name: str) -> Robot:

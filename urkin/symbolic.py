@@ -271,7 +271,9 @@ def _emit(name: str, doc: str, entries: dict[tuple[int, ...], sp.Expr], shape: t
         many.append(f"    {sym} = np.{'cos' if sym[0] == 'c' else 'sin'}(q{digits})")
     many += body
     many.append("    if out is None:")
-    many.append(f"        out = np.empty((q.shape[0], {', '.join(map(str, shape))}))")
+    many.append(
+        f"        out = np.empty((q.shape[0], {', '.join(map(str, shape))}), dtype=q.dtype)"
+    )
     for k in keys:
         index = ", ".join(map(str, k))
         many.append(f"    out[:, {index}] = {pycode(final[keys.index(k)])}")

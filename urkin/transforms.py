@@ -17,12 +17,18 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from urkin._inputs import real, shape_text
+
 __all__ = [
     "adjoint",
     "check_rotation",
     "check_transform",
     "inv_transform",
     "make_transform",
+    "orthonormalize",
+    "pose_error",
+    "random_rotations",
+    "random_transforms",
     "rot_x",
     "rot_y",
     "rot_z",
@@ -39,27 +45,23 @@ __all__ = [
     "twist_parts",
     "twist_vector",
     "unskew",
+    "wrap_angles",
 ]
 
 #: Default tolerance of :func:`check_rotation` on ``‖RᵀR − I‖`` and ``|det R − 1|``.
 ROTATION_TOLERANCE = 1e-6
 
 
-def _float_array(x: ArrayLike, name: str) -> np.ndarray:
-    try:
-        array = np.asarray(x, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be an array of numbers; got {type(x).__name__}") from exc
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} contains NaN or infinity")
+def _core(x: ArrayLike, core: tuple[int, ...], name: str) -> np.ndarray:
+    """``x`` as a float array of shape ``(..., *core)``, or an error naming it."""
+    array = real(x, name)
+    if array.ndim < len(core) or array.shape[array.ndim - len(core) :] != core:
+        raise ValueError(f"{name} must have shape {shape_text(core)}; got {array.shape}")
     return array
 
 
 def _vector3(x: ArrayLike, name: str) -> np.ndarray:
-    array = _float_array(x, name)
-    if array.ndim == 0 or array.shape[-1] != 3:
-        raise ValueError(f"{name} must have shape (3,) or (N, 3); got {array.shape}")
-    return array
+    return _core(x, (3,), name)
 
 
 def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R") -> np.ndarray:
@@ -94,9 +96,7 @@ def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R
     ...
     ValueError: R is a reflection, not a rotation: det(R) = -1
     """
-    array = _float_array(R, name)
-    if array.ndim < 2 or array.shape[-2:] != (3, 3):
-        raise ValueError(f"{name} must have shape (3, 3) or (N, 3, 3); got {array.shape}")
+    array = _core(R, (3, 3), name)
     # column by column (cheaper than a batched matmul and LU for stacks of small matrices)
     x, y, z = array[..., :, 0], array[..., :, 1], array[..., :, 2]
 
@@ -163,9 +163,7 @@ def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "
     ...
     ValueError: T must end in the row [0, 0, 0, 1]; got [0. 0. 0. 0.]
     """
-    array = _float_array(T, name)
-    if array.ndim < 2 or array.shape[-2:] != (4, 4):
-        raise ValueError(f"{name} must have shape (4, 4) or (N, 4, 4); got {array.shape}")
+    array = _core(T, (4, 4), name)
     bottom = array[..., 3, :]
     bad = np.abs(bottom - (0.0, 0.0, 0.0, 1.0)).max(axis=-1) > tol
     if np.any(bad):
@@ -175,8 +173,38 @@ def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "
     return array
 
 
+def orthonormalize(R: ArrayLike) -> np.ndarray:
+    """The rotation nearest to ``R`` (Frobenius norm): ``U Vᵀ`` of the SVD ``R = U Σ Vᵀ``.
+
+    For a matrix copied with a few decimals, or accumulated through many products, that is a
+    rotation again to round-off.
+
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3)
+        Matrices close to rotations (a reflection is refused).
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> R = np.round(rot_z(0.3), 4)  # four decimals: 1e-5 from orthonormal
+    >>> bool(np.abs(orthonormalize(R) - rot_z(0.3)).max() < 1e-4)
+    True
+    >>> check_rotation(orthonormalize(R), tol=1e-14).shape
+    (3, 3)
+    """
+    M = _core(R, (3, 3), "R")
+    U, _, Vt = np.linalg.svd(M)
+    if np.any(np.linalg.det(U) * np.linalg.det(Vt) < 0):
+        raise ValueError("R is closer to a reflection than to a rotation (det R < 0)")
+    return U @ Vt
+
+
 def _axis_rotation(angle: ArrayLike, axis: int) -> np.ndarray:
-    theta = _float_array(angle, "angle")
+    theta = real(angle, "angle")
     c, s = np.cos(theta), np.sin(theta)
     R = np.zeros((*theta.shape, 3, 3))
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
@@ -242,11 +270,15 @@ def make_transform(R: ArrayLike | None = None, p: ArrayLike | None = None) -> np
     >>> make_transform(p=[0.1, 0.2, 0.3])[:3, 3]
     array([0.1, 0.2, 0.3])
     """
-    R_array = np.eye(3) if R is None else _float_array(R, "R")
+    R_array = np.eye(3) if R is None else _core(R, (3, 3), "R")
     p_array = np.zeros(3) if p is None else _vector3(p, "p")
-    if R_array.shape[-2:] != (3, 3):
-        raise ValueError(f"R must have shape (3, 3) or (N, 3, 3); got {R_array.shape}")
-    batch = np.broadcast_shapes(R_array.shape[:-2], p_array.shape[:-1])
+    try:
+        batch = np.broadcast_shapes(R_array.shape[:-2], p_array.shape[:-1])
+    except ValueError:
+        raise ValueError(
+            f"R and p must be stacks of the same length; got shapes {R_array.shape} and "
+            f"{p_array.shape}"
+        ) from None
     T = np.zeros((*batch, 4, 4))
     T[..., :3, :3] = R_array
     T[..., :3, 3] = p_array
@@ -262,6 +294,8 @@ def inv_transform(T: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     T : array_like, shape (..., 4, 4)
+        Rigid-body transforms (validated with :func:`check_transform`: a matrix that is not a
+        rotation and translation has no inverse of this form).
 
     Returns
     -------
@@ -273,9 +307,7 @@ def inv_transform(T: ArrayLike) -> np.ndarray:
     >>> np.allclose(inv_transform(T) @ T, np.eye(4))
     True
     """
-    array = _float_array(T, "T")
-    if array.shape[-2:] != (4, 4):
-        raise ValueError(f"T must have shape (4, 4) or (N, 4, 4); got {array.shape}")
+    array = check_transform(T)
     R_t = np.swapaxes(array[..., :3, :3], -1, -2)
     out = np.zeros_like(array)
     out[..., :3, :3] = R_t
@@ -310,9 +342,7 @@ def unskew(W: ArrayLike) -> np.ndarray:
     >>> unskew(skew([1.0, 2.0, 3.0]))
     array([1., 2., 3.])
     """
-    M = _float_array(W, "W")
-    if M.shape[-2:] != (3, 3):
-        raise ValueError(f"W must have shape (3, 3) or (N, 3, 3); got {M.shape}")
+    M = _core(W, (3, 3), "W")
     return 0.5 * np.stack(
         [M[..., 2, 1] - M[..., 1, 2], M[..., 0, 2] - M[..., 2, 0], M[..., 1, 0] - M[..., 0, 1]],
         axis=-1,
@@ -422,10 +452,116 @@ def rotation_angle(R1: ArrayLike, R2: ArrayLike | None = None) -> np.ndarray | f
     >>> float(rotation_angle(rot_z(1e-12), np.eye(3)))
     1e-12
     """
-    A = _float_array(R1, "R1")
-    B = np.eye(3) if R2 is None else _float_array(R2, "R2")
-    frob = np.linalg.norm(A - B, axis=(-2, -1))
+    A = check_rotation(R1, name="R1")
+    B = np.eye(3) if R2 is None else check_rotation(R2, name="R2")
+    try:
+        frob = np.linalg.norm(A - B, axis=(-2, -1))
+    except ValueError:
+        raise ValueError(
+            f"R1 and R2 must be rotations of matching stacks; got shapes {A.shape} and {B.shape}"
+        ) from None
     return 2.0 * np.arcsin(np.minimum(frob / (2.0 * np.sqrt(2.0)), 1.0))
+
+
+def pose_error(T1: ArrayLike, T2: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Position error (metres) and rotation angle (radians) between poses ``T1`` and ``T2``.
+
+    The angle is :func:`rotation_angle`'s ``2·asin(‖R1 − R2‖_F / (2√2))``, accurate at every
+    size.  Stacks broadcast.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        Shapes ``(...)``: ``‖p1 − p2‖`` and the angle of ``R1ᵀ R2``.
+
+    Examples
+    --------
+    >>> T = make_transform(rot_z(1e-12), [0.3, 0.0, 0.0])
+    >>> position, angle = pose_error(T, np.eye(4))
+    >>> float(position), float(angle)
+    (0.3, 1e-12)
+    """
+    A = check_transform(T1, name="T1")
+    B = check_transform(T2, name="T2")
+    try:
+        dp = A[..., :3, 3] - B[..., :3, 3]
+        frob = np.sqrt(np.sum((A[..., :3, :3] - B[..., :3, :3]) ** 2, axis=(-2, -1)))
+    except ValueError:
+        raise ValueError(
+            f"T1 and T2 must be poses of matching stacks; got shapes {A.shape} and {B.shape}"
+        ) from None
+    angle = 2.0 * np.arcsin(np.minimum(frob / (2.0 * np.sqrt(2.0)), 1.0))
+    return np.sqrt(np.sum(dp * dp, axis=-1)), angle
+
+
+def wrap_angles(q: ArrayLike) -> np.ndarray:
+    """Angles wrapped into (−π, π], the one interval urkin uses everywhere.
+
+    NaN stays NaN (the rows of a stack of closed-form solutions that are not solutions).
+
+    Examples
+    --------
+    >>> wrap_angles([np.pi, -np.pi, 3 * np.pi / 2, 0.5])
+    array([ 3.14159265,  3.14159265, -1.57079633,  0.5       ])
+    """
+    angles = real(q, "q", finite=False)
+    return angles - 2.0 * np.pi * np.ceil((angles - np.pi) / (2.0 * np.pi))
+
+
+def random_rotations(
+    shape: int | tuple[int, ...] = (), seed: int | np.random.Generator = 0
+) -> np.ndarray:
+    """Rotations drawn uniformly (Haar measure) from seeded random unit quaternions.
+
+    Parameters
+    ----------
+    shape : int or tuple of int
+        Leading shape; ``()`` (default) for one rotation.
+    seed : int or numpy.random.Generator
+
+    Returns
+    -------
+    ndarray, shape (*shape, 3, 3)
+
+    Examples
+    --------
+    >>> R = random_rotations(1000, seed=1)
+    >>> R.shape, float(np.abs(np.linalg.det(R) - 1).max()) < 1e-12
+    ((1000, 3, 3), True)
+    """
+    rng = np.random.default_rng(seed)
+    size = (shape,) if isinstance(shape, int) else tuple(shape)
+    quaternion = rng.normal(size=(*size, 4))
+    quaternion /= np.linalg.norm(quaternion, axis=-1, keepdims=True)
+    w, x, y, z = np.moveaxis(quaternion, -1, 0)
+    R = np.empty((*w.shape, 3, 3))
+    R[..., 0, :] = np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1)
+    R[..., 1, :] = np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1)
+    R[..., 2, :] = np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)
+    return R
+
+
+def random_transforms(
+    shape: int | tuple[int, ...] = (),
+    seed: int | np.random.Generator = 0,
+    radius: float = 1.0,
+) -> np.ndarray:
+    """Seeded random poses: uniform rotations and positions uniform in a cube of half-side
+    ``radius`` (metres).
+
+    Examples
+    --------
+    >>> T = random_transforms((2, 3), seed=4)
+    >>> T.shape, check_transform(T, tol=1e-12).shape
+    ((2, 3, 4, 4), (2, 3, 4, 4))
+    """
+    rng = np.random.default_rng(seed)
+    R = random_rotations(shape, rng)
+    T = np.zeros((*R.shape[:-2], 4, 4))
+    T[..., :3, :3] = R
+    T[..., :3, 3] = rng.uniform(-radius, radius, (*R.shape[:-2], 3))
+    T[..., 3, 3] = 1.0
+    return T
 
 
 def rpy_to_rotation(rpy: ArrayLike) -> np.ndarray:
@@ -472,21 +608,20 @@ def rotation_to_rpy(R: ArrayLike) -> np.ndarray:
     M = check_rotation(R)
     cos_pitch = np.hypot(M[..., 0, 0], M[..., 1, 0])
     pitch = np.arctan2(-M[..., 2, 0], cos_pitch)
-    locked = cos_pitch < 1e-9
-    roll = np.where(
-        locked,
-        np.arctan2(-M[..., 1, 2], M[..., 1, 1]),
-        np.arctan2(M[..., 2, 1], M[..., 2, 2]),
-    )
-    yaw = np.where(locked, 0.0, np.arctan2(M[..., 1, 0], M[..., 0, 0]))
+    # yaw from the first column; exactly at the lock it is free, and reported as 0
+    yaw = np.where(cos_pitch < 1e-14, 0.0, np.arctan2(M[..., 1, 0], M[..., 0, 0]))
+    # roll from what is left once yaw and pitch are taken out: Ry(pitch)ᵀ Rz(yaw)ᵀ R = Rx(roll).
+    # It is read from entries of size one, so near the lock, where yaw is barely determined,
+    # roll still matches it and the angles rebuild R to round-off.
+    cy, sy, cp, sp = np.cos(yaw), np.sin(yaw), np.cos(pitch), np.sin(pitch)
+    cos_roll = -sy * M[..., 0, 1] + cy * M[..., 1, 1]
+    sin_roll = sp * (cy * M[..., 0, 1] + sy * M[..., 1, 1]) + cp * M[..., 2, 1]
+    roll = np.arctan2(sin_roll, cos_roll)
     return np.stack([roll, pitch, yaw], axis=-1)
 
 
 def _twist(V: ArrayLike, name: str) -> np.ndarray:
-    array = _float_array(V, name)
-    if array.ndim == 0 or array.shape[-1] != 6:
-        raise ValueError(f"{name} must have shape (6,) or (N, 6); got {array.shape}")
-    return array
+    return _core(V, (6,), name)
 
 
 def twist_matrix(V: ArrayLike) -> np.ndarray:
@@ -515,9 +650,7 @@ def twist_vector(M: ArrayLike) -> np.ndarray:
     >>> twist_vector(twist_matrix([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]))
     array([1., 2., 3., 4., 5., 6.])
     """
-    array = _float_array(M, "M")
-    if array.shape[-2:] != (4, 4):
-        raise ValueError(f"M must have shape (4, 4) or (N, 4, 4); got {array.shape}")
+    array = _core(M, (4, 4), "M")
     return np.concatenate([unskew(array[..., :3, :3]), array[..., :3, 3]], axis=-1)
 
 
@@ -629,10 +762,7 @@ def adjoint(T: ArrayLike) -> np.ndarray:
     >>> np.allclose(twist_matrix(adjoint(T) @ V), T @ twist_matrix(V) @ inv_transform(T))
     True
     """
-    array = _float_array(T, "T")
-    if array.shape[-2:] != (4, 4):
-        raise ValueError(f"T must have shape (4, 4) or (N, 4, 4); got {array.shape}")
-    return _adjoint(array)
+    return _adjoint(check_transform(T))
 
 
 def _adjoint(T: np.ndarray) -> np.ndarray:

@@ -79,7 +79,7 @@ def t06_many(q, d1, a2, a3, d4, d5, d6, out=None):
     x12 = c5*s234
     x13 = s234*s5
     if out is None:
-        out = np.empty((q.shape[0], 4, 4))
+        out = np.empty((q.shape[0], 4, 4), dtype=q.dtype)
     out[:, 0, 0] = c6*x0 - s6*x1 + x2*x3
     out[:, 0, 1] = -c6*x1 - s6*x0 - x2*x4
     out[:, 0, 2] = c5*s1 - x6
@@ -200,7 +200,7 @@ def frames_many(q, d1, a2, a3, d4, d5, d6, out=None):
     x28 = -x27
     x29 = -c234*d5 + x9
     if out is None:
-        out = np.empty((q.shape[0], 7, 4, 4))
+        out = np.empty((q.shape[0], 7, 4, 4), dtype=q.dtype)
     out[:, 0, 0, 0] = 1
     out[:, 0, 0, 1] = 0
     out[:, 0, 0, 2] = 0
@@ -388,7 +388,7 @@ def jacobian_many(q, d1, a2, a3, d4, d5, d6, out=None):
     x16 = x1 - x15 + x2
     x17 = -c1
     if out is None:
-        out = np.empty((q.shape[0], 6, 6))
+        out = np.empty((q.shape[0], 6, 6), dtype=q.dtype)
     out[:, 0, 0] = c1*c5*d6 + c1*d4 + c234*d6*s1*s5 - s1*x0 - s1*x1 - s1*x2
     out[:, 0, 1] = -c1*x7
     out[:, 0, 2] = c1*x9
@@ -492,7 +492,7 @@ def position_jacobian_many(q, d1, a2, a3, d4, d5, d6, out=None):
     x12 = c234*x5
     x13 = x1 - x12 + x2
     if out is None:
-        out = np.empty((q.shape[0], 3, 6))
+        out = np.empty((q.shape[0], 3, 6), dtype=q.dtype)
     out[:, 0, 0] = c1*c5*d6 + c1*d4 + c234*d6*s1*s5 - s1*x0 - s1*x1 - s1*x2
     out[:, 0, 1] = -c1*x7
     out[:, 0, 2] = c1*x9

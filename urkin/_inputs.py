@@ -1,0 +1,111 @@
+"""Argument checks and the batching rule, shared by every public function of the library.
+
+Checks
+    Numbers arrive as anything array-like.  :func:`real` turns them into a float array or says
+    clearly what is wrong, naming the argument: not numbers, complex (refused unless a function
+    documents complex-step support), NaN or infinite.
+
+Batching rule (DESIGN §2)
+    A function takes one item or a stack of them in the leading axes and returns the same
+    leading axes.  :func:`stack` checks an argument's trailing *core* shape and flattens its
+    leading axes into one, so that the function computes on ``(N, *core)`` arrays;
+    :func:`unstack` gives the result those leading axes back (none for a single item).  Single
+    items take each function's scalar fast path before reaching these.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["real", "shape_text", "stack", "unstack"]
+
+
+def shape_text(core: tuple[int, ...]) -> str:
+    """``(4, 4) or (..., 4, 4)``: the shapes a stack of ``core`` items may have."""
+    inner = ", ".join(map(str, core))
+    return f"({inner}{',' if len(core) == 1 else ''}) or (..., {inner})"
+
+
+def real(x: Any, name: str, *, complex_ok: bool = False, finite: bool = True) -> np.ndarray:
+    """``x`` as a float array (complex too when ``complex_ok``), finite (unless ``finite`` is
+    False), or an error naming it.
+
+    Raises
+    ------
+    TypeError
+        If ``x`` is not numbers, or is complex where complex input is not supported.
+    ValueError
+        If an entry is NaN or infinite.
+
+    Examples
+    --------
+    >>> real([1, 2], "q")
+    array([1., 2.])
+    >>> real([1.0, float("nan")], "q")
+    Traceback (most recent call last):
+    ...
+    ValueError: q contains NaN or infinity (entry 1)
+    """
+    try:
+        array = np.asarray(x)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be numbers; got {type(x).__name__}") from exc
+    kind = array.dtype.kind
+    if kind == "O":
+        try:
+            array = array.astype(complex if complex_ok else float)
+        except (TypeError, ValueError):
+            raise TypeError(
+                f"{name} must be numbers; got {type(x).__name__} holding "
+                f"{type(array.flat[0]).__name__ if array.size else 'nothing'}"
+            ) from None
+        kind = array.dtype.kind
+        if kind == "c" and not np.any(array.imag):
+            array, kind = array.real, "f"
+    if kind == "c":
+        if not complex_ok:
+            raise TypeError(
+                f"{name} is complex: this function works with real numbers (fk and jacobian "
+                "accept complex joint angles, for complex-step derivatives)"
+            )
+        array = array.astype(complex, copy=False)
+    elif kind in "biuf":
+        array = array.astype(float, copy=False)
+    else:
+        what = type(x).__name__ if array.ndim == 0 else f"an array of {array.dtype}"
+        raise TypeError(f"{name} must be numbers; got {what}")
+    if finite and not np.isfinite(array).all():
+        if array.ndim == 0:
+            raise ValueError(f"{name} contains NaN or infinity ({array.item()})")
+        where = np.argwhere(~np.isfinite(array))[0]
+        place = f"entry {tuple(int(i) for i in where)}" if array.ndim > 1 else f"entry {where[0]}"
+        raise ValueError(f"{name} contains NaN or infinity ({place})")
+    return array
+
+
+def stack(
+    x: Any, core: tuple[int, ...], name: str, *, complex_ok: bool = False
+) -> tuple[np.ndarray, tuple[int, ...]]:
+    """Check that ``x`` has shape ``(*lead, *core)`` and return it as ``(N, *core)`` with
+    ``lead``.
+
+    Examples
+    --------
+    >>> array, lead = stack(np.zeros((2, 3, 6)), (6,), "q")
+    >>> array.shape, lead
+    ((6, 6), (2, 3))
+    """
+    array = real(x, name, complex_ok=complex_ok)
+    k = len(core)
+    if array.ndim < k or array.shape[array.ndim - k :] != core:
+        raise ValueError(f"{name} must have shape {shape_text(core)}; got {array.shape}")
+    lead = array.shape[: array.ndim - k]
+    return array.reshape(math.prod(lead), *core), lead
+
+
+def unstack(result: np.ndarray, lead: tuple[int, ...]) -> np.ndarray:
+    """The inverse of :func:`stack` for a result ``(N, *out)``: ``(*lead, *out)``."""
+    return result.reshape(*lead, *result.shape[1:])

@@ -1,0 +1,220 @@
+"""What an inverse-kinematics solver returns, and how it fails: one result type for all of them.
+
+Every solver that picks one configuration per target — the numerical :func:`urkin.ik` and the
+closed-form :func:`urkin.ik_closest` — returns an :class:`IKResult` whose ``success`` was
+re-measured with :func:`urkin.fk` against the target as given (:func:`verified`), and whose
+``reason`` says why not when it failed: out of reach (with the distance, :func:`unreachable`),
+outside the joint limits, a target rotation that is not orthonormal to the tolerance, or no
+convergence (with the error that remained).  Malformed input is never a failed result: it
+raises, naming the argument.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from urkin.kinematics import fk
+from urkin.robots import Robot
+from urkin.transforms import pose_error
+
+__all__ = ["IKResult", "no_solution_reason", "unreachable", "verified"]
+
+
+@dataclass
+class IKResult:
+    """What an IK solver found, for one target or (arrays) for a stack of targets.
+
+    Attributes
+    ----------
+    q : ndarray, shape (6,) or (..., 6)
+        The solution when ``success``; otherwise the configuration with the smallest error
+        found (the initial guess when the target was rejected before iterating).  Never NaN.
+    success : bool or ndarray of bool
+        True only if the pose error of ``q``, re-measured with :func:`urkin.fk`, is within both
+        tolerances.
+    residual : float or ndarray
+        ``max(position_error, orientation_error)`` of ``q`` (metres and radians).
+    position_error : float or ndarray
+        Distance between the tool and the target position, metres.
+    orientation_error : float or ndarray
+        Angle of the rotation between the tool and the target orientation, radians (0 for a
+        position-only target).
+    iterations : int or ndarray
+        Iterations over all attempts (0 for the closed form).
+    restarts : int or ndarray
+        Restarts from random configurations (0 for the closed form).
+    reason : str or list of str
+        ``"converged"``, or why not.
+    """
+
+    q: np.ndarray
+    success: bool | np.ndarray
+    residual: float | np.ndarray
+    position_error: float | np.ndarray
+    orientation_error: float | np.ndarray
+    iterations: int | np.ndarray
+    restarts: int | np.ndarray
+    reason: str | list = field(default="")
+
+    def __len__(self) -> int:
+        if np.ndim(self.success) == 0:
+            raise TypeError("a single IKResult has no length; batched results do")
+        return len(self.success)
+
+    def __getitem__(self, index: int) -> IKResult:
+        if np.ndim(self.success) != 1:
+            raise TypeError(
+                "a single IKResult cannot be indexed; index a batch of targets (one leading axis)"
+            )
+        return IKResult(
+            self.q[index].copy(),
+            bool(self.success[index]),
+            float(self.residual[index]),
+            float(self.position_error[index]),
+            float(self.orientation_error[index]),
+            int(self.iterations[index]),
+            int(self.restarts[index]),
+            self.reason[index],
+        )
+
+    def __repr__(self) -> str:
+        if np.ndim(self.success) == 0:
+            q = np.array2string(np.asarray(self.q), precision=4, separator=", ")
+            return (
+                f"IKResult(success={self.success}, q={q}, residual={self.residual:.2e}, "
+                f"iterations={self.iterations}, restarts={self.restarts}, reason={self.reason!r})"
+            )
+        return (
+            f"IKResult(batch of {np.size(self.success)}: {int(np.sum(self.success))} succeeded, "
+            f"median iterations {np.median(self.iterations):g})"
+        )
+
+
+def _wrist_points(robot: Robot, T_world_tool: np.ndarray) -> np.ndarray:
+    T_base_flange = robot.flange_pose(T_world_tool)
+    return T_base_flange[..., :3, 3] - robot.d6 * T_base_flange[..., :3, 2]
+
+
+def unreachable(robot: Robot, targets: np.ndarray, pose: bool) -> tuple[np.ndarray, list[str]]:
+    """Targets (N, 4, 4) or positions (N, 3) that no configuration reaches, and why.
+
+    Necessary conditions: a pose fixes its wrist point ``w = p − d6 z`` (the origin of DH frame
+    5), which lies within ``|a2| + |a3| + √(d4² + d5²)`` of the shoulder point ``(0, 0, d1)`` and
+    at least ``d4`` from the base axis; a position lies within that reach plus ``d6`` (plus the
+    tool's offset).  A target within ``1e-9`` m of the border passes.
+
+    Examples
+    --------
+    >>> import urkin
+    >>> bad, why = unreachable(urkin.robot("ur3"), np.array([[1.0, 0.0, 0.2]]), pose=False)
+    >>> bool(bad[0]), why[0]
+    (True, "unreachable: the target is 0.3213 m beyond the UR3's reach (it is 1.0012 m from the shoulder; at most 0.6799 m is reachable)")
+    """  # noqa: E501
+    arm = abs(robot.a2) + abs(robot.a3) + float(np.hypot(robot.d4, robot.d5))
+    if pose:
+        points = _wrist_points(robot, targets)
+        reach, what = arm, "its wrist point"
+    else:
+        T_base_world = np.linalg.inv(robot.base)
+        points = targets @ T_base_world[:3, :3].T + T_base_world[:3, 3]
+        reach = arm + robot.d6 + float(np.linalg.norm(robot.tool[:3, 3]))
+        what = "it"
+    distance = np.linalg.norm(points - [0.0, 0.0, robot.d1], axis=-1)
+    bad = distance > reach + 1e-9
+    reasons = [
+        f"unreachable: the target is {d - reach:.4f} m beyond the {robot.name}'s reach ({what} "
+        f"is {d:.4f} m from the shoulder; at most {reach:.4f} m is reachable)"
+        if flag
+        else ""
+        for flag, d in zip(bad, distance)
+    ]
+    if pose:
+        radial = np.hypot(points[:, 0], points[:, 1])
+        inner = (radial < robot.d4 - 1e-9) & ~bad
+        for i in np.flatnonzero(inner):
+            reasons[i] = (
+                f"unreachable: the wrist point is {radial[i]:.4f} m from the base axis, "
+                f"{robot.d4 - radial[i]:.4g} m closer than the {robot.name}'s shoulder offset "
+                f"d4 = {robot.d4:.4f} m allows"
+            )
+        bad = bad | inner
+    return bad, reasons
+
+
+def no_solution_reason(robot: Robot, T_world_tool: np.ndarray, elbow_miss: float) -> str:
+    """Why the closed form found no solution for one pose, with the distance.
+
+    ``elbow_miss`` is how far (metres) the planar arm of joints 2–3 falls short on its nearest
+    branch, for poses that pass the necessary conditions of :func:`unreachable`.
+    """
+    bad, reasons = unreachable(robot, T_world_tool[None], pose=True)
+    if bad[0]:
+        return reasons[0]
+    return (
+        f"unreachable: on every branch the elbow misses the wrist by at least {elbow_miss:.4g} m "
+        "(the upper arm and forearm cannot stretch or fold that far)"
+    )
+
+
+def verified(
+    robot: Robot,
+    q: np.ndarray,
+    goal: np.ndarray,
+    found: np.ndarray,
+    reasons: list[str],
+    tol_position: float,
+    tol_orientation: float,
+    lead: tuple[int, ...],
+    iterations: np.ndarray | None = None,
+    restarts: np.ndarray | None = None,
+    failure: Callable[[int, float, float], str] | None = None,
+) -> IKResult:
+    """The :class:`IKResult` of configurations ``q`` (N, 6) for targets ``goal`` — poses
+    (N, 4, 4) or positions (N, 3) — re-measured with :func:`urkin.fk`.
+
+    ``found`` says which rows the solver believes solved; ``reasons`` holds the reason of each
+    row it rejected before solving (else ""); any other row that fails gets
+    ``failure(row, position error, rotation error)``, or a plain statement of the miss.
+    ``lead`` gives the result its leading axes (``()`` for one target).
+    """
+    n = len(q)
+    T = fk(robot, q)
+    if goal.shape[-2:] == (4, 4):
+        position_error, rotation_error = pose_error(T, goal)
+    else:
+        position_error = np.linalg.norm(T[:, :3, 3] - goal, axis=-1)
+        rotation_error = np.zeros(n)
+    success = found & (position_error <= tol_position) & (rotation_error <= tol_orientation)
+    why = list(reasons)
+    for i in np.flatnonzero(~success):
+        if not why[i]:
+            position, rotation = float(position_error[i]), float(rotation_error[i])
+            why[i] = (
+                failure(int(i), position, rotation)
+                if failure
+                else f"the solution misses the target by {position:.2e} m and {rotation:.2e} rad"
+            )
+    for i in np.flatnonzero(success):
+        why[i] = "converged"
+    iterations = np.zeros(n, dtype=int) if iterations is None else iterations
+    restarts = np.zeros(n, dtype=int) if restarts is None else restarts
+    residual = np.maximum(position_error, rotation_error)
+    result = IKResult(
+        q, success, residual, position_error, rotation_error, iterations, restarts, why
+    )
+    if lead == ():
+        return result[0]
+    if len(lead) > 1:
+        shaped = np.empty(n, dtype=object)
+        shaped[:] = why
+        result = IKResult(
+            q.reshape(*lead, 6),
+            *(a.reshape(lead) for a in (success, residual, position_error, rotation_error)),
+            iterations.reshape(lead),
+            restarts.reshape(lead),
+            shaped.reshape(lead).tolist(),
+        )
+    return result
