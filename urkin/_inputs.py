@@ -7,20 +7,19 @@ Checks
 
 Batching rule (DESIGN §2)
     A function takes one item or a stack of them in the leading axes and returns the same
-    leading axes.  :func:`stack` checks an argument's trailing *core* shape and flattens its
-    leading axes into one, so that the function computes on ``(N, *core)`` arrays;
-    :func:`unstack` gives the result those leading axes back (none for a single item).  Single
-    items take each function's scalar fast path before reaching these.
+    leading axes.  A function checks an argument's trailing *core* shape, flattens its leading
+    axes into one and computes on ``(N, *core)`` arrays; :func:`unstack` gives the result those
+    leading axes back (none for a single item).  Single items take each function's scalar fast
+    path instead.
 """
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
-__all__ = ["real", "shape_text", "stack", "unstack"]
+__all__ = ["real", "shape_text", "unstack"]
 
 
 def shape_text(core: tuple[int, ...]) -> str:
@@ -86,26 +85,7 @@ def real(x: Any, name: str, *, complex_ok: bool = False, finite: bool = True) ->
     return array
 
 
-def stack(
-    x: Any, core: tuple[int, ...], name: str, *, complex_ok: bool = False
-) -> tuple[np.ndarray, tuple[int, ...]]:
-    """Check that ``x`` has shape ``(*lead, *core)`` and return it as ``(N, *core)`` with
-    ``lead``.
-
-    Examples
-    --------
-    >>> array, lead = stack(np.zeros((2, 3, 6)), (6,), "q")
-    >>> array.shape, lead
-    ((6, 6), (2, 3))
-    """
-    array = real(x, name, complex_ok=complex_ok)
-    k = len(core)
-    if array.ndim < k or array.shape[array.ndim - k :] != core:
-        raise ValueError(f"{name} must have shape {shape_text(core)}; got {array.shape}")
-    lead = array.shape[: array.ndim - k]
-    return array.reshape(math.prod(lead), *core), lead
-
-
 def unstack(result: np.ndarray, lead: tuple[int, ...]) -> np.ndarray:
-    """The inverse of :func:`stack` for a result ``(N, *out)``: ``(*lead, *out)``."""
+    """A result computed on ``(N, *core)`` items, ``(N, *out)``, given back the leading axes
+    ``lead`` of its argument: ``(*lead, *out)``."""
     return result.reshape(*lead, *result.shape[1:])

@@ -43,8 +43,9 @@ from numpy.typing import ArrayLike
 
 from urkin._inputs import real, unstack
 from urkin.ik_result import IKResult, no_solution_reason, verified
+from urkin.kinematics import flange_pose
 from urkin.robots import Robot, check_robot
-from urkin.transforms import check_transform, wrap_angles
+from urkin.transforms import _wrap, check_transform, wrap_angles
 
 __all__ = [
     "DUPLICATE_TOLERANCE",
@@ -78,7 +79,7 @@ def _check_lengths(robot: Robot) -> None:
 # ----------------------------------------------------------------------------- one pose
 
 
-def _wrap(angle: float) -> float:
+def _wrap_one(angle: float) -> float:
     """One angle in (−π, π] (the scalar twin of :func:`urkin.transforms.wrap_angles`)."""
     if -_PI < angle <= _PI:
         return angle
@@ -154,9 +155,9 @@ def _solve_one(
             heading = math.atan2(ey, ex)
             for elbow in (1.0, -1.0) if s3 > 0.0 else (1.0,):
                 q3 = math.atan2(elbow * s3, c3)
-                q2 = _wrap(heading - math.atan2(a3 * elbow * s3, a2 + a3 * c3))
-                q4 = _wrap(q234 - q2 - q3)
-                found.append([_wrap(q1), q2, _wrap(q3), q4, _wrap(q5), _wrap(q6)])
+                q2 = _wrap_one(heading - math.atan2(a3 * elbow * s3, a2 + a3 * c3))
+                q4 = _wrap_one(q234 - q2 - q3)
+                found.append([_wrap_one(q1), q2, _wrap_one(q3), q4, _wrap_one(q5), _wrap_one(q6)])
     return _distinct_one(found)
 
 
@@ -173,7 +174,8 @@ def _distinct_one(found: list[list[float]]) -> list[list[float]]:
     kept: list[list[float]] = []
     for q in found:
         if not any(
-            max(abs(_wrap(a - b)) for a, b in zip(q, other)) < DUPLICATE_TOLERANCE for other in kept
+            max(abs(_wrap_one(a - b)) for a, b in zip(q, other)) < DUPLICATE_TOLERANCE
+            for other in kept
         ):
             kept.append(q)
     return kept
@@ -270,16 +272,14 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
     s3 = np.sqrt(product) / abs(two_a2a3)
     s3e = s3[..., None] * side  # (n, 2, 2, 2)
     q3 = np.arctan2(s3e, c3[..., None])
-    q2 = wrap_angles(
-        np.arctan2(ey, ex)[..., None] - np.arctan2(a3 * s3e, (a2 + a3 * c3)[..., None])
-    )
+    q2 = _wrap(np.arctan2(ey, ex)[..., None] - np.arctan2(a3 * s3e, (a2 + a3 * c3)[..., None]))
     q = np.empty((n, 2, 2, 2, 6))
-    q[..., 0] = wrap_angles(q1)[:, :, None, None]
+    q[..., 0] = _wrap(q1)[:, :, None, None]
     q[..., 1] = q2
-    q[..., 2] = wrap_angles(q3)
-    q[..., 3] = wrap_angles(q234[..., None] - q2 - q3)
-    q[..., 4] = wrap_angles(q5)[..., None]
-    q[..., 5] = wrap_angles(q6)[..., None]
+    q[..., 2] = _wrap(q3)
+    q[..., 3] = _wrap(q234[..., None] - q2 - q3)
+    q[..., 4] = _wrap(q5)[..., None]
+    q[..., 5] = _wrap(q6)[..., None]
     keep = np.broadcast_to((reach1[:, None, None] & reach3)[..., None], (n, 2, 2, 2)).copy()
     keep[:, 1] &= (root > 0.0)[:, None, None]  # the θ1 branches merge
     keep[..., 1] &= s3 > 0.0  # θ3 = 0 or π: a double root
@@ -287,7 +287,7 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
     keep = keep.reshape(n, 8)
     # solutions equal to within DUPLICATE_TOLERANCE (possible only at singular poses): the
     # first of them stays
-    gap = np.abs(wrap_angles(q[:, :, None, :] - q[:, None, :, :])).max(axis=-1)  # (n, 8, 8)
+    gap = np.abs(_wrap(q[:, :, None, :] - q[:, None, :, :])).max(axis=-1)  # (n, 8, 8)
     same = (gap < DUPLICATE_TOLERANCE) & keep[:, None, :] & np.tri(8, 8, -1, dtype=bool)
     keep &= ~same.any(axis=-1)
     return q, keep
@@ -309,13 +309,13 @@ def _solve(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.nd
     return q, keep
 
 
-def _flange_poses(robot: Robot, T: ArrayLike, name: str) -> tuple[np.ndarray, tuple[int, ...]]:
-    """Checked tool poses as flange poses in DH frame 0, (N, 4, 4), and their leading axes."""
-    poses = check_transform(T, name=name)
+def _flange_poses(robot: Robot, poses: np.ndarray) -> tuple[np.ndarray, tuple[int, ...]]:
+    """Checked tool poses (..., 4, 4) as flange poses in DH frame 0, (N, 4, 4), and their
+    leading axes."""
     lead = poses.shape[:-2]
     poses = poses.reshape(-1, 4, 4)
     if not robot._plain:
-        poses = robot.flange_pose(poses)
+        poses = flange_pose(robot, poses)
     return poses, lead
 
 
@@ -365,7 +365,7 @@ def ik_analytic(
     """
     robot = check_robot(robot)
     _check_lengths(robot)
-    poses, lead = _flange_poses(robot, T, "T")
+    poses, lead = _flange_poses(robot, check_transform(T, name="T"))
     if lead == ():
         found = _solve_one(poses[0].tolist(), robot.lengths)
         return np.array(found) if found else np.empty((0, 6))
@@ -411,7 +411,7 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
     robot = check_robot(robot)
     _check_lengths(robot)
     goal = check_transform(T, name="T")
-    poses, lead = _flange_poses(robot, goal, "T")
+    poses, lead = _flange_poses(robot, goal)
     current = real(q_current, "q_current")
     if current.shape[-1:] != (6,) or current.shape[:-1] not in ((), lead):
         raise ValueError(
@@ -423,7 +423,7 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
     lower = np.array([lo for lo, _ in robot.joint_limits])
     upper = np.array([hi for _, hi in robot.joint_limits])
     # the 2π-equivalent of each angle nearest the current one, pushed back inside the limits
-    shifted = current[:, None, :] + wrap_angles(q - current[:, None, :])
+    shifted = current[:, None, :] + _wrap(q - current[:, None, :])
     shifted = np.where(shifted > upper, shifted - 2 * np.pi, shifted)
     shifted = np.where(shifted < lower, shifted + 2 * np.pi, shifted)
     inside = np.all((shifted >= lower) & (shifted <= upper), axis=-1) & valid

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from urkin.kinematics import fk
+from urkin.kinematics import fk, flange_pose
 from urkin.robots import Robot
 from urkin.transforms import pose_error
 
@@ -94,7 +94,7 @@ class IKResult:
 
 
 def _wrist_points(robot: Robot, T_world_tool: np.ndarray) -> np.ndarray:
-    T_base_flange = robot.flange_pose(T_world_tool)
+    T_base_flange = flange_pose(robot, T_world_tool)
     return T_base_flange[..., :3, 3] - robot.d6 * T_base_flange[..., :3, 2]
 
 

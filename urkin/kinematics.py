@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 from urkin._generated import ur_kinematics as _gen
 from urkin._inputs import real, unstack
 from urkin.robots import Robot, check_robot
-from urkin.transforms import skew
+from urkin.transforms import inv_transform, skew
 
 __all__ = [
     "MAX_JOINT_ANGLE",
@@ -32,6 +32,7 @@ __all__ = [
     "dh_transform",
     "fk",
     "fk_frames",
+    "flange_pose",
     "jacobian",
     "manipulability",
     "position_jacobian",
@@ -201,6 +202,25 @@ def fk_frames(robot: Robot, q: ArrayLike) -> np.ndarray:
     if robot._plain:
         return frames
     return robot.base @ frames
+
+
+def flange_pose(robot: Robot, T_world_tool: np.ndarray) -> np.ndarray:
+    """The flange pose in DH frame 0 that puts the robot's tool at ``T_world_tool``:
+    ``base⁻¹ · T_world_tool · tool⁻¹``, for checked poses (..., 4, 4); the inverse of what
+    :func:`fk` applies.
+
+    Examples
+    --------
+    >>> import urkin
+    >>> from urkin.transforms import make_transform
+    >>> arm = urkin.robot("ur5").with_tool(make_transform(p=[0.0, 0.0, 0.1]))
+    >>> q = [0.3, -1.2, 1.4, -0.6, 1.1, 0.2]
+    >>> bool(np.allclose(flange_pose(arm, fk(arm, q)), fk(urkin.robot("ur5"), q)))
+    True
+    """
+    if robot._plain:
+        return T_world_tool
+    return inv_transform(robot.base) @ T_world_tool @ inv_transform(robot.tool)
 
 
 def _with_tool_and_base(robot: Robot, J: np.ndarray, q: ArrayLike) -> np.ndarray:

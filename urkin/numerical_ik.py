@@ -53,9 +53,10 @@ from numpy.typing import ArrayLike
 from urkin._generated import ur_kinematics as _gen
 from urkin._inputs import real
 from urkin.ik_result import IKResult, unreachable, verified
-from urkin.kinematics import _joints, fk, jacobian
+from urkin.kinematics import _joints, fk, flange_pose, jacobian
 from urkin.robots import Robot, check_robot
 from urkin.transforms import (
+    _wrap,
     check_transform,
     orthonormalize,
     rotation_angle,
@@ -167,7 +168,7 @@ class _Problem:
         return J if self.R is not None else J[:3]
 
     def wrap(self, q: np.ndarray) -> np.ndarray:
-        wrapped = q - 2.0 * np.pi * np.ceil((q - np.pi) / (2.0 * np.pi))
+        wrapped = _wrap(q)
         return wrapped if self.wide_limits else np.clip(wrapped, self.lower, self.upper)
 
     def random_configuration(self, rng: np.random.Generator, count: int) -> np.ndarray:
@@ -338,8 +339,7 @@ class MatrixLog(StepRule):
     """Modern Robotics' ``IKinSpace``: ``Δq = J_s⁺ V_s``, ``V_s = log(T_target T⁻¹)``.
 
     Modern Robotics takes full steps; pass ``max_step=math.inf`` to :func:`urkin.ik` for its
-    exact iteration (the default limit of 1 rad makes the race of many targets from one start
-    robust, and its outcome independent of the CPU's rounding)."""
+    exact iteration (the default keeps the 1 rad limit of the other rules)."""
 
     name = "poe"
 
@@ -622,7 +622,7 @@ def ik(
         rigid = goal.copy()
         rigid[:, :3, :3] = orthonormalize(goal[:, :3, :3])
         skew_angle = rotation_angle(goal[:, :3, :3], rigid[:, :3, :3])
-        flange = robot.flange_pose(rigid)
+        flange = flange_pose(robot, rigid)
         problem = _Problem(
             plain, flange[:, :3, 3], flange[:, :3, :3], orientation, tol_position, tol_orientation
         )

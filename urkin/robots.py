@@ -64,14 +64,6 @@ def _frozen(matrix: np.ndarray | None) -> np.ndarray:
     return array
 
 
-def _inverse(T: np.ndarray) -> np.ndarray:
-    """The inverse of a rigid transform: ``[Rᵀ, −Rᵀp]``."""
-    inverse = np.eye(4)
-    inverse[:3, :3] = T[:3, :3].T
-    inverse[:3, 3] = -T[:3, :3].T @ T[:3, 3]
-    return inverse
-
-
 @dataclass(frozen=True, eq=False)
 class Robot:
     """One UR arm: its standard-DH table, joint limits and the frames around it.
@@ -168,20 +160,6 @@ class Robot:
     def dh_table(self) -> np.ndarray:
         """The standard-DH table as rows ``(d_i, a_i, α_i)``, shape (6, 3)."""
         return np.column_stack([self.d, self.a, self.alpha])
-
-    def flange_pose(self, T_world_tool: np.ndarray) -> np.ndarray:
-        """The flange pose in DH frame 0 that puts the tool at ``T_world_tool`` (..., 4, 4):
-        ``base⁻¹ · T_world_tool · tool⁻¹``."""
-        if self._plain:
-            return np.asarray(T_world_tool, dtype=float)
-        return _inverse(self.base) @ T_world_tool @ _inverse(self.tool)
-
-    def tool_pose(self, T_base_flange: np.ndarray) -> np.ndarray:
-        """The tool pose in the world for a flange pose in DH frame 0 (..., 4, 4):
-        ``base · T_base_flange · tool``."""
-        if self._plain:
-            return np.asarray(T_base_flange, dtype=float)
-        return self.base @ T_base_flange @ self.tool
 
     def with_base(self, T_world_base: np.ndarray) -> Robot:
         """A copy of this arm mounted at ``T_world_base`` (pose of DH frame 0 in the world)."""

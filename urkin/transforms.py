@@ -455,11 +455,16 @@ def rotation_angle(R1: ArrayLike, R2: ArrayLike | None = None) -> np.ndarray | f
     A = check_rotation(R1, name="R1")
     B = np.eye(3) if R2 is None else check_rotation(R2, name="R2")
     try:
-        frob = np.linalg.norm(A - B, axis=(-2, -1))
+        return _angle_between(A, B)
     except ValueError:
         raise ValueError(
             f"R1 and R2 must be rotations of matching stacks; got shapes {A.shape} and {B.shape}"
         ) from None
+
+
+def _angle_between(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """``2·asin(‖A − B‖_F / (2√2))`` for checked rotations (stacks broadcast)."""
+    frob = np.sqrt(np.sum((A - B) ** 2, axis=(-2, -1)))
     return 2.0 * np.arcsin(np.minimum(frob / (2.0 * np.sqrt(2.0)), 1.0))
 
 
@@ -485,12 +490,11 @@ def pose_error(T1: ArrayLike, T2: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     B = check_transform(T2, name="T2")
     try:
         dp = A[..., :3, 3] - B[..., :3, 3]
-        frob = np.sqrt(np.sum((A[..., :3, :3] - B[..., :3, :3]) ** 2, axis=(-2, -1)))
+        angle = _angle_between(A[..., :3, :3], B[..., :3, :3])
     except ValueError:
         raise ValueError(
             f"T1 and T2 must be poses of matching stacks; got shapes {A.shape} and {B.shape}"
         ) from None
-    angle = 2.0 * np.arcsin(np.minimum(frob / (2.0 * np.sqrt(2.0)), 1.0))
     return np.sqrt(np.sum(dp * dp, axis=-1)), angle
 
 
@@ -504,7 +508,11 @@ def wrap_angles(q: ArrayLike) -> np.ndarray:
     >>> wrap_angles([np.pi, -np.pi, 3 * np.pi / 2, 0.5])
     array([ 3.14159265,  3.14159265, -1.57079633,  0.5       ])
     """
-    angles = real(q, "q", finite=False)
+    return _wrap(real(q, "q", finite=False))
+
+
+def _wrap(angles: np.ndarray) -> np.ndarray:
+    """:func:`wrap_angles` of a float array, without input checks (inner loops)."""
     return angles - 2.0 * np.pi * np.ceil((angles - np.pi) / (2.0 * np.pi))
 
 
