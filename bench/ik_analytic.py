@@ -62,19 +62,23 @@ def main() -> None:
         f"# closed-form IK, all solutions, UR5 ({platform.machine()}, "
         f"Python {platform.python_version()}, numpy {np.__version__})\n"
     )
-    print("| solver | poses | µs per pose |\n|---|---|---|")
-    single = min(_time(lambda: [urkin.ik_analytic(ROBOT, t) for t in T[:2000]]) for _ in range(3))
-    print(f"| urkin.ik_analytic, one pose per call | 2,000 | {single / 2000 * 1e6:.2f} |")
-    for size in (100, n):
+    rows = []
+    single = min(_time(lambda: [urkin.ik_analytic(ROBOT, t) for t in T[:2000]]) for _ in range(5))
+    rows.append(("urkin.ik_analytic, one pose per call", 2000, single / 2000))
+    for size in (10, 100, n):
         batch = T[:size]
-        best = min(_time(lambda batch=batch: urkin.ik_analytic(ROBOT, batch)) for _ in range(5))
-        print(f"| urkin.ik_analytic, batch of {size:,} | {size:,} | {best / size * 1e6:.2f} |")
+        best = min(_time(lambda batch=batch: urkin.ik_analytic(ROBOT, batch)) for _ in range(7))
+        rows.append((f"urkin.ik_analytic, batch of {size:,}", size, best / size))
     other = peer()
+    if other is not None:
+        best = min(_time(lambda: [other(t) for t in T[:2000]]) for _ in range(5))
+        rows.append(("ur-analytic-ik, one call per pose (C++)", 2000, best / 2000))
+    print("| solver | poses | µs per pose | × ur-analytic-ik per call |\n|---|---|---|---|")
+    for name, count, seconds in rows:
+        ratio = "–" if other is None else f"{seconds / rows[-1][2]:.3f}"
+        print(f"| {name} | {count:,} | {seconds * 1e6:.2f} | {ratio} |")
     if other is None:
         print("\n(ur-analytic-ik is not installed: its rows are skipped)")
-    else:
-        best = min(_time(lambda: [other(t) for t in T[:2000]]) for _ in range(3))
-        print(f"| ur-analytic-ik, one call per pose (C++) | 2,000 | {best / 2000 * 1e6:.2f} |")
 
     print("\n| exactly singular poses | poses | solved by urkin | solved by ur-analytic-ik |")
     print("|---|---|---|---|")

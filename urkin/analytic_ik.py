@@ -109,12 +109,18 @@ def _solve_one(
     big, small = abs(a2) + abs(a3), abs(abs(a2) - abs(a3))
     two_a2a3 = 2.0 * a2 * a3
     found: list[list[float]] = []
+    # Rows can repeat only where two branches meet: at a wrist representative, or where the
+    # θ1 or θ3 branches are closer than DUPLICATE_TOLERANCE; elsewhere θ1, θ6 (by π) or θ3
+    # tells them apart, and the pairwise comparison is skipped.
+    suspect = False
+    shoulders: list[float] = []
     for shoulder in (1.0, -1.0) if root > 0.0 else (1.0,):
         s1 = wx * d4 - shoulder * wy * root
         c1 = -(wy * d4 + shoulder * wx * root)
         norm = math.hypot(s1, c1)
         s1, c1 = s1 / norm, c1 / norm
-        q1 = math.atan2(s1, c1)
+        q1 = _wrap_one(math.atan2(s1, c1))
+        shoulders.append(q1)
         A = xx * s1 - xy * c1  # sin θ5 cos θ6
         B = yy * c1 - yx * s1  # sin θ5 sin θ6
         C = zx * s1 - zy * c1  # cos θ5
@@ -132,6 +138,7 @@ def _solve_one(
                 c234 = c1 * ux + s1 * uy
                 q234 = math.atan2(s234, c234)
             else:
+                suspect = True
                 q5 = math.atan2(S, C)
                 q234 = _representative_one(X, Y, flip, a2, a3, d5)
                 s234, c234 = math.sin(q234), math.cos(q234)
@@ -153,12 +160,17 @@ def _solve_one(
             product = stretch * (big + rho) * fold * (rho + small)
             s3 = math.sqrt(product) / abs(two_a2a3)
             heading = math.atan2(ey, ex)
+            q5, q6 = _wrap_one(q5), _wrap_one(q6)
             for elbow in (1.0, -1.0) if s3 > 0.0 else (1.0,):
                 q3 = math.atan2(elbow * s3, c3)
                 q2 = _wrap_one(heading - math.atan2(a3 * elbow * s3, a2 + a3 * c3))
                 q4 = _wrap_one(q234 - q2 - q3)
-                found.append([_wrap_one(q1), q2, _wrap_one(q3), q4, _wrap_one(q5), _wrap_one(q6)])
-    return _distinct_one(found)
+                found.append([q1, q2, _wrap_one(q3), q4, q5, q6])
+            if s3 > 0.0 and abs(_wrap_one(found[-1][2] - found[-2][2])) < DUPLICATE_TOLERANCE:
+                suspect = True
+    if len(shoulders) == 2 and abs(_wrap_one(shoulders[0] - shoulders[1])) < DUPLICATE_TOLERANCE:
+        suspect = True
+    return _distinct_one(found) if suspect else found
 
 
 def _representative_one(X: float, Y: float, which: float, a2, a3, d5) -> float:
@@ -201,95 +213,103 @@ def _representatives(X, Y, a2, a3, d5) -> np.ndarray:
 
 
 def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
-    """All eight branches for flange poses ``T`` (N, 4, 4): solutions (N, 2, 2, 2, 6), axes
-    (θ1 branch, θ5 sign, θ3 sign), and the mask of the real, distinct ones."""
+    """All eight branches for flange poses ``T`` (N, 4, 4): solutions (N, 8, 6), row ``i``
+    the branch of bits (θ1 branch, θ5 sign, θ3 sign), and the (N, 8) mask of the real,
+    distinct ones.
+
+    The same steps as :func:`_solve_one`, on whole columns: every intermediate has the
+    branches in front and the poses last, ``(2, …, N)``, so each numpy operation runs over
+    contiguous memory.  The second wrist branch is not solved again: flipping the sign of
+    sin θ5 turns θ5 into −θ5, θ6 into θ6 + π and θ234 into θ234 + π, exactly.
+    """
     d1, a2, a3, d4, d5, d6 = lengths
     n = len(T)
-    x, y, z, p = T[:, :3, 0], T[:, :3, 1], T[:, :3, 2], T[:, :3, 3]
-    w = p - d6 * z
-    r2 = w[:, 0] ** 2 + w[:, 1] ** 2
+    xx, yx, zx, px, xy, yy, zy, py, xz, yz, zz, pz = np.ascontiguousarray(
+        T.reshape(n, 16)[:, :12].T
+    )
+    wx, wy, wz = px - d6 * zx, py - d6 * zy, pz - d6 * zz
+    r2 = wx * wx + wy * wy
     r = np.sqrt(r2)
-    reach1 = (r - d4 >= -REACH_TOLERANCE) & (r2 > 0.0)
     gap = r - d4
-    gap[np.abs(gap) <= _ROUNDOFF * (np.abs(p[:, 0]) + np.abs(p[:, 1]) + d6 + d4)] = 0.0
+    reach1 = (gap >= -REACH_TOLERANCE) & (r2 > 0.0)
+    gap[np.abs(gap) <= _ROUNDOFF * (np.abs(px) + np.abs(py) + (d6 + d4))] = 0.0
     root = np.sqrt(np.maximum(gap * (r + d4), 0.0))
-    side = np.array([1.0, -1.0])
-    s1 = w[:, 0, None] * d4 - side * (w[:, 1] * root)[:, None]  # (n, 2)
-    c1 = -(w[:, 1, None] * d4 + side * (w[:, 0] * root)[:, None])
+    side = np.array([[1.0], [-1.0]])
+    s1 = wx * d4 - side * (wy * root)  # (2, N): the two θ1 branches
+    c1 = -(wy * d4 + side * (wx * root))
     norm = np.hypot(s1, c1)
     norm[norm == 0.0] = 1.0
-    s1, c1 = s1 / norm, c1 / norm
+    s1 /= norm
+    c1 /= norm
     q1 = np.arctan2(s1, c1)
-
-    def along_n(v):  # v·n with n = (s1, −c1, 0), shape (n, 2)
-        return v[:, 0, None] * s1 - v[:, 1, None] * c1
-
-    A, B, C = along_n(x), -along_n(y), along_n(z)
+    A = xx * s1 - xy * c1  # sin θ5 cos θ6
+    B = yy * c1 - yx * s1  # sin θ5 sin θ6
+    C = zx * s1 - zy * c1  # cos θ5
     S = np.hypot(A, B)
-    X = c1 * w[:, 0, None] + s1 * w[:, 1, None]
-    Y = np.broadcast_to((w[:, 2] - d1)[:, None], X.shape)
-    s5 = S[:, :, None] * side  # (n, 2 θ1 branches, 2 θ5 signs)
-    c5 = np.broadcast_to(C[:, :, None], s5.shape)
-    q5 = np.arctan2(s5, c5)
-    safe = np.where(S > WRIST_TOLERANCE, S, 1.0)[:, :, None]
-    c6 = side * A[:, :, None] / safe
-    s6 = side * B[:, :, None] / safe
-
-    def column(i):  # entry i of c5 (c6 x − s6 y) − s5 z
-        return c5 * (c6 * x[:, i, None, None] - s6 * y[:, i, None, None]) - s5 * z[:, i, None, None]
-
-    s234 = column(2)
-    c234 = c1[:, :, None] * column(0) + s1[:, :, None] * column(1)
+    X, Y = c1 * wx + s1 * wy, wz - d1  # the wrist point in the arm's plane
+    wrist = S <= WRIST_TOLERANCE
+    safe = np.where(wrist, 1.0, S)
+    c6, s6 = A / safe, B / safe
+    s234 = C * (c6 * xz - s6 * yz) - S * zz
+    c234 = c1 * (C * (c6 * xx - s6 * yx) - S * zx) + s1 * (C * (c6 * xy - s6 * yy) - S * zy)
     q234 = np.arctan2(s234, c234)
-    q6 = np.arctan2(s6, c6)
-    wrist = S <= WRIST_TOLERANCE  # (n, 2)
-    if np.any(wrist):
-        rep = _representatives(X, Y, a2, a3, d5)  # (n, 2, 2)
-        sign = np.where(C >= 0.0, 1.0, -1.0)[:, :, None]
+    q5 = np.arctan2(S, C)
+    q6 = np.arctan2(B, A)
+    # (2 θ1 branches, 2 θ5 signs, N)
+    q234 = np.stack([q234, q234 + np.pi], axis=1)
+    s234 = np.stack([s234, -s234], axis=1)
+    c234 = np.stack([c234, -c234], axis=1)
+    q5 = np.stack([q5, -q5], axis=1)
+    q6 = np.stack([q6, q6 + np.pi], axis=1)
+    X = X[:, None, :]
+    if wrist.any():
+        branch, pose = np.nonzero(wrist)
+        rep = _representatives(X[branch, 0, pose], Y[pose], a2, a3, d5)  # (k, 2)
         cr, sr = np.cos(rep), np.sin(rep)
-        x4 = (c1[:, :, None] * cr, s1[:, :, None] * cr, sr)
-        dot_x = (
-            x4[0] * x[:, 0, None, None] + x4[1] * x[:, 1, None, None] + x4[2] * x[:, 2, None, None]
-        )
-        dot_y = (
-            x4[0] * y[:, 0, None, None] + x4[1] * y[:, 1, None, None] + x4[2] * y[:, 2, None, None]
-        )
-        at = wrist[:, :, None]
-        q234 = np.where(at, rep, q234)
-        s234, c234 = np.where(at, sr, s234), np.where(at, cr, c234)
-        q6 = np.where(at, np.arctan2(-sign * dot_y, sign * dot_x), q6)
-        q5 = np.where(at, np.arctan2(S, C)[:, :, None], q5)
-    ex = X[:, :, None] - d5 * s234  # the origin of frame 3, (n, 2, 2)
-    ey = Y[:, :, None] + d5 * c234
+        cos1, sin1 = c1[branch, pose][:, None], s1[branch, pose][:, None]
+        dot_x = (cos1 * xx[pose, None] + sin1 * xy[pose, None]) * cr + xz[pose, None] * sr
+        dot_y = (cos1 * yx[pose, None] + sin1 * yy[pose, None]) * cr + yz[pose, None] * sr
+        sign = np.where(C[branch, pose] >= 0.0, 1.0, -1.0)[:, None]
+        q234[branch, :, pose], s234[branch, :, pose], c234[branch, :, pose] = rep, sr, cr
+        q6[branch, :, pose] = np.arctan2(-sign * dot_y, sign * dot_x)
+        q5[branch, :, pose] = np.arctan2(S[branch, pose], C[branch, pose])[:, None]
+    ex = X - d5 * s234  # the origin of frame 3 in the arm's plane
+    ey = Y + d5 * c234
     rho = np.hypot(ex, ey)
     big, small = abs(a2) + abs(a3), abs(abs(a2) - abs(a3))
     reach3 = (rho - big <= REACH_TOLERANCE) & (small - rho <= REACH_TOLERANCE)
     two_a2a3 = 2.0 * a2 * a3
-    c3 = np.clip((ex * ex + ey * ey - a2 * a2 - a3 * a3) / two_a2a3, -1.0, 1.0)
+    c3 = np.clip((ex * ex + ey * ey - (a2 * a2 + a3 * a3)) / two_a2a3, -1.0, 1.0)
     stretch = np.where(big - rho > _ROUNDOFF * big, big - rho, 0.0)
     fold = np.where(rho - small > _ROUNDOFF * big, rho - small, 0.0)
-    product = stretch * (big + rho) * fold * (rho + small)
-    s3 = np.sqrt(product) / abs(two_a2a3)
-    s3e = s3[..., None] * side  # (n, 2, 2, 2)
-    q3 = np.arctan2(s3e, c3[..., None])
-    q2 = _wrap(np.arctan2(ey, ex)[..., None] - np.arctan2(a3 * s3e, (a2 + a3 * c3)[..., None]))
-    q = np.empty((n, 2, 2, 2, 6))
-    q[..., 0] = _wrap(q1)[:, :, None, None]
-    q[..., 1] = q2
-    q[..., 2] = _wrap(q3)
-    q[..., 3] = _wrap(q234[..., None] - q2 - q3)
-    q[..., 4] = _wrap(q5)[..., None]
-    q[..., 5] = _wrap(q6)[..., None]
-    keep = np.broadcast_to((reach1[:, None, None] & reach3)[..., None], (n, 2, 2, 2)).copy()
-    keep[:, 1] &= (root > 0.0)[:, None, None]  # the θ1 branches merge
-    keep[..., 1] &= s3 > 0.0  # θ3 = 0 or π: a double root
-    q = q.reshape(n, 8, 6)
-    keep = keep.reshape(n, 8)
-    # solutions equal to within DUPLICATE_TOLERANCE (possible only at singular poses): the
-    # first of them stays
-    gap = np.abs(_wrap(q[:, :, None, :] - q[:, None, :, :])).max(axis=-1)  # (n, 8, 8)
-    same = (gap < DUPLICATE_TOLERANCE) & keep[:, None, :] & np.tri(8, 8, -1, dtype=bool)
-    keep &= ~same.any(axis=-1)
+    s3 = np.sqrt(stretch * (big + rho) * fold * (rho + small)) / abs(two_a2a3)
+    heading = np.arctan2(ey, ex)
+    q3 = np.arctan2(s3, c3)  # elbow +; elbow − is −q3
+    lean = np.arctan2(a3 * s3, a2 + a3 * c3)
+    q = np.empty((6, 2, 2, 2, n))  # joint, θ1 branch, θ5 sign, θ3 sign, pose
+    q[0] = q1[:, None, None, :]
+    q[1, :, :, 0], q[1, :, :, 1] = heading - lean, heading + lean
+    q[2, :, :, 0], q[2, :, :, 1] = q3, -q3
+    q[3] = q234[:, :, None, :] - q[1] - q[2]
+    q[4] = q5[:, :, None, :]
+    q[5] = q6[:, :, None, :]
+    _wrap(q, out=q)
+    keep = np.empty((2, 2, 2, n), dtype=bool)
+    keep[...] = (reach1 & reach3)[:, :, None, :]
+    keep[1] &= root > 0.0  # the θ1 branches merge
+    keep[:, :, 1] &= s3 > 0.0  # θ3 = 0 or π: a double root
+    q = np.ascontiguousarray(q.reshape(6, 8, n).transpose(2, 1, 0))
+    keep = np.ascontiguousarray(keep.reshape(8, n).T)
+    # Rows can repeat only where two branches meet (see _solve_one): compare all pairs there.
+    suspect = wrist.any(axis=0)
+    suspect |= (root > 0.0) & (np.abs(_wrap(q[:, 0, 0] - q[:, 4, 0])) < DUPLICATE_TOLERANCE)
+    suspect |= ((s3 > 0.0) & (np.abs(_wrap(2.0 * q3)) < DUPLICATE_TOLERANCE)).any(axis=(0, 1))
+    if suspect.any():
+        rows = q[suspect]
+        kept = keep[suspect]
+        gap = np.abs(_wrap(rows[:, :, None, :] - rows[:, None, :, :])).max(axis=-1)
+        same = (gap < DUPLICATE_TOLERANCE) & kept[:, None, :] & np.tri(8, 8, -1, dtype=bool)
+        keep[suspect] = kept & ~same.any(axis=-1)
     return q, keep
 
 

@@ -11,6 +11,7 @@ raises, naming the argument.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -113,7 +114,14 @@ def unreachable(robot: Robot, targets: np.ndarray, pose: bool) -> tuple[np.ndarr
     >>> bool(bad[0]), why[0]
     (True, "unreachable: the target is 0.3213 m beyond the UR3's reach (it is 1.0012 m from the shoulder; at most 0.6799 m is reachable)")
     """  # noqa: E501
-    arm = abs(robot.a2) + abs(robot.a3) + float(np.hypot(robot.d4, robot.d5))
+    arm = abs(robot.a2) + abs(robot.a3) + math.hypot(robot.d4, robot.d5)
+    if pose and len(targets) == 1 and robot._plain:  # the scalar fast path
+        (_, _, zx, px), (_, _, zy, py), (_, _, zz, pz), _ = targets[0].tolist()
+        wx, wy, wz = px - robot.d6 * zx, py - robot.d6 * zy, pz - robot.d6 * zz - robot.d1
+        if math.sqrt(wx * wx + wy * wy + wz * wz) <= arm + 1e-9 and (
+            math.hypot(wx, wy) >= robot.d4 - 1e-9
+        ):
+            return np.zeros(1, dtype=bool), [""]
     if pose:
         points = _wrist_points(robot, targets)
         reach, what = arm, "its wrist point"
@@ -181,6 +189,27 @@ def verified(
     ``lead`` gives the result its leading axes (``()`` for one target).
     """
     n = len(q)
+    if lead == () and goal.shape == (1, 4, 4):  # the scalar fast path
+        position, rotation = pose_error(fk(robot, q[0]), goal[0])
+        success = bool(found[0]) and position <= tol_position and rotation <= tol_orientation
+        if success:
+            why = "converged"
+        elif reasons[0]:
+            why = reasons[0]
+        elif failure:
+            why = failure(0, float(position), float(rotation))
+        else:
+            why = f"the solution misses the target by {position:.2e} m and {rotation:.2e} rad"
+        return IKResult(
+            q[0].copy(),
+            success,
+            float(max(position, rotation)),
+            float(position),
+            float(rotation),
+            0 if iterations is None else int(iterations[0]),
+            0 if restarts is None else int(restarts[0]),
+            why,
+        )
     T = fk(robot, q)
     if goal.shape[-2:] == (4, 4):
         position_error, rotation_error = pose_error(T, goal)

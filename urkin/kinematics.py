@@ -130,9 +130,35 @@ def check_joints(q: ArrayLike, name: str = "q") -> np.ndarray:
     return array.reshape(*lead, 6)
 
 
+_FLOAT = np.dtype(float)
+
+
+def _six(q: ArrayLike) -> list[float] | None:
+    """The scalar fast path's test: the six floats of ``q`` when it is one configuration, as
+    a float array, finite and within ±:data:`MAX_JOINT_ANGLE`; else None (and the general
+    path checks ``q`` and explains what is wrong)."""
+    if type(q) is np.ndarray and q.shape == (6,) and q.dtype is _FLOAT:
+        values = q.tolist()
+        a, b, c, d, e, f = values
+        top = MAX_JOINT_ANGLE  # NaN fails every comparison
+        if (
+            -top <= a <= top
+            and -top <= b <= top
+            and -top <= c <= top
+            and -top <= d <= top
+            and -top <= e <= top
+            and -top <= f <= top
+        ):
+            return values
+    return None
+
+
 def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> np.ndarray:
     """A generated function at ``q``: the scalar code for one real configuration, the column
     code for a stack (and for complex angles), with the leading axes kept."""
+    values = _six(q)
+    if values is not None:
+        return one(*values, *robot.lengths)
     array, lead, values = _joints(q, complex_ok=True)
     if values is not None:
         return one(*values, *robot.lengths)

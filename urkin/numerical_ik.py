@@ -45,6 +45,7 @@ the iteration aims at the nearest rotation, and when the given one is further fr
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -56,6 +57,7 @@ from urkin.ik_result import IKResult, unreachable, verified
 from urkin.kinematics import _joints, fk, flange_pose, jacobian
 from urkin.robots import Robot, check_robot
 from urkin.transforms import (
+    _is_rotation_one,
     _wrap,
     check_transform,
     orthonormalize,
@@ -113,6 +115,15 @@ def orientation_error(R_current: ArrayLike, R_target: ArrayLike, form: str = "lo
 # ----------------------------------------------------------------------------- the problem
 
 
+@functools.lru_cache(maxsize=64)
+def _limits(joint_limits: tuple[tuple[float, float], ...]) -> tuple[np.ndarray, np.ndarray, bool]:
+    """Lower and upper joint limits as arrays, and whether they allow every angle of (−π, π]."""
+    lower = np.array([lo for lo, _ in joint_limits])
+    upper = np.array([hi for _, hi in joint_limits])
+    lower.flags.writeable = upper.flags.writeable = False
+    return lower, upper, bool(np.all(lower <= -np.pi) and np.all(upper >= np.pi))
+
+
 class _Problem:
     """The targets (flange poses or tool positions), their error and the robot's kinematics."""
 
@@ -123,9 +134,12 @@ class _Problem:
         self.form = form
         self.tol_position = tol_position
         self.tol_orientation = tol_orientation
-        self.lower = np.array([lo for lo, _ in robot.joint_limits])
-        self.upper = np.array([hi for _, hi in robot.joint_limits])
-        self.wide_limits = bool(np.all(self.lower <= -np.pi) and np.all(self.upper >= np.pi))
+        self.lower, self.upper, self.wide_limits = _limits(robot.joint_limits)
+        # the first target as floats, for the single-target path
+        self.target_one = (
+            positions[0].tolist(),
+            None if rotations is None else rotations[0].tolist(),
+        )
 
     def evaluate(self, Q: np.ndarray, rows: np.ndarray):
         """Poses of ``Q`` (k, 6) and their errors against the targets ``rows``: ``(T, e,
@@ -147,11 +161,19 @@ class _Problem:
             if self.robot._plain
             else fk(self.robot, q)
         )
-        x, y, z = (self.p[0] - T[:3, 3]).tolist()
+        (a, b, c, x), (d, e, f, y), (g, h, i, z), _ = T.tolist()
+        tx, ty, tz = self.target_one[0]
+        x, y, z = tx - x, ty - y, tz - z
         position_error = math.sqrt(x * x + y * y + z * z)
         if self.R is None:
             return T, np.array((x, y, z)), position_error, 0.0
-        sin_axis, theta, omega = _rotation_parts_one((self.R[0] @ T[:3, :3].T).tolist())
+        (t0, t1, t2), (t3, t4, t5), (t6, t7, t8) = self.target_one[1]
+        R_error = (  # R_target R_currentᵀ
+            (t0 * a + t1 * b + t2 * c, t0 * d + t1 * e + t2 * f, t0 * g + t1 * h + t2 * i),
+            (t3 * a + t4 * b + t5 * c, t3 * d + t4 * e + t5 * f, t3 * g + t4 * h + t5 * i),
+            (t6 * a + t7 * b + t8 * c, t6 * d + t7 * e + t8 * f, t6 * g + t7 * h + t8 * i),
+        )
+        sin_axis, theta, omega = _rotation_parts_one(R_error)
         e_o = omega if self.form == "log" else sin_axis
         return T, np.array((x, y, z, *e_o)), position_error, theta
 
@@ -168,6 +190,8 @@ class _Problem:
         return J if self.R is not None else J[:3]
 
     def wrap(self, q: np.ndarray) -> np.ndarray:
+        if q.ndim == 1 and self.wide_limits and all(-math.pi < x <= math.pi for x in q.tolist()):
+            return q  # one configuration, already wrapped: the common case
         wrapped = _wrap(q)
         return wrapped if self.wide_limits else np.clip(wrapped, self.lower, self.upper)
 
@@ -185,9 +209,17 @@ def _rotation_parts_one(R: list[list[float]]) -> tuple[list[float], float, list[
     sin_theta = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
     cos_theta = 0.5 * (r00 + r11 + r22 - 1.0)
     theta = math.atan2(sin_theta, cos_theta)
-    if cos_theta < -0.9:  # near π: the rare case, handled by the stacked code
-        _, _, omega = rotation_parts(np.array(R))
-        return s, theta, omega.tolist()
+    if cos_theta < -0.9:  # near π: the axis from the symmetric part, as rotation_parts does
+        b0, b1, b2 = r00 - cos_theta, r11 - cos_theta, r22 - cos_theta
+        if b0 >= b1 and b0 >= b2:
+            k = (b0, 0.5 * (r10 + r01), 0.5 * (r20 + r02))
+        elif b1 >= b2:
+            k = (0.5 * (r01 + r10), b1, 0.5 * (r21 + r12))
+        else:
+            k = (0.5 * (r02 + r20), 0.5 * (r12 + r21), b2)
+        norm = math.sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2])
+        scale = theta / norm if k[0] * s[0] + k[1] * s[1] + k[2] * s[2] >= 0.0 else -theta / norm
+        return s, theta, [scale * k[0], scale * k[1], scale * k[2]]
     scale = 1.0 + theta * theta / 6.0 if sin_theta < 1e-8 else theta / sin_theta
     return s, theta, [scale * s[0], scale * s[1], scale * s[2]]
 
@@ -307,6 +339,13 @@ class LevenbergMarquardt(StepRule):
         self.mu[rows], self.nu[rows] = np.nan, 2.0
 
     def step(self, problem, rows, T, J, e):
+        if J.ndim == 2:  # one target (rows is its index): the same step, fewer numpy calls
+            A = J.T @ J
+            mu = self.mu[rows]
+            if mu != mu:  # NaN: a new attempt
+                mu = self.mu[rows] = _TAU * A.diagonal().max()
+            A.flat[:: A.shape[0] + 1] += mu
+            return np.linalg.solve(A, e @ J)
         Jt = np.swapaxes(J, -1, -2)
         A = Jt @ J
         g = (Jt @ e[..., None])[..., 0]
@@ -320,6 +359,19 @@ class LevenbergMarquardt(StepRule):
 
     def accept(self, rows, e, e_trial, J, dq):
         # gain ratio: actual reduction of |e|² over the reduction the linear model predicts
+        if J.ndim == 2:  # one target, in floats
+            Jdq = J @ dq
+            predicted = float(Jdq @ (2.0 * e - Jdq))
+            rho = float(e @ e - e_trial @ e_trial) / predicted if predicted > 0 else -1.0
+            mu, nu = float(self.mu[rows]), float(self.nu[rows])
+            if rho > 0:
+                self.mu[rows], self.nu[rows] = (
+                    mu * max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3),
+                    2.0,
+                )
+            else:
+                self.mu[rows], self.nu[rows] = mu * nu, 2.0 * nu
+            return rho > 0
         Jdq = (J @ dq[..., None])[..., 0]
         predicted = np.sum(Jdq * (2.0 * e - Jdq), axis=-1)
         actual = np.sum(e * e, axis=-1) - np.sum(e_trial * e_trial, axis=-1)
@@ -389,10 +441,11 @@ def _stalled(attempt, since_progress, given_up, patience: int, max_iterations: i
     return (attempt >= max_iterations) | (since_progress >= patience) | given_up
 
 
-def _iterate_one(problem, rule, q0, *, max_iterations, max_restarts, max_step, rng):
+def _iterate_one(problem, rule, q0, *, max_iterations, max_restarts, max_step, seed):
     """:func:`_iterate` for one target, with the bookkeeping in Python floats: the same rules
     (called on unstacked arrays) and the same stall and restart policy."""
     rule.start(1)
+    rng = None  # made at the first restart: most solves need none
     q, best_q, best = q0.copy(), q0.copy(), math.inf
     iterations = attempt = restarts = since_progress = 0
     attempt_best = math.inf
@@ -411,6 +464,7 @@ def _iterate_one(problem, rule, q0, *, max_iterations, max_restarts, max_step, r
             restarts += 1
             attempt, since_progress, attempt_best = 0, 0, math.inf
             rule.restart(0)
+            rng = np.random.default_rng(seed) if rng is None else rng
             q = problem.random_configuration(rng, 1)[0]
             T, e, pos, rot = problem.evaluate_one(q)
             continue
@@ -428,11 +482,12 @@ def _iterate_one(problem, rule, q0, *, max_iterations, max_restarts, max_step, r
         attempt += 1
 
 
-def _iterate(problem, rule, Q0, candidates, *, max_iterations, max_restarts, max_step, rng):
+def _iterate(problem, rule, Q0, candidates, *, max_iterations, max_restarts, max_step, seed):
     """The iteration loop over every unsolved target at once: returns the best configuration
     of each target, whether it met the tolerances, and the iterations and restarts used."""
     n = len(Q0)
     rule.start(n)
+    rng = np.random.default_rng(seed)
     q, best_q = Q0.copy(), Q0.copy()
     best = np.full(n, np.inf)
     success = np.zeros(n, dtype=bool)
@@ -619,9 +674,12 @@ def ik(
             if robot._plain
             else Robot(robot.name, *robot.lengths, joint_limits=robot.joint_limits)
         )
-        rigid = goal.copy()
-        rigid[:, :3, :3] = orthonormalize(goal[:, :3, :3])
-        skew_angle = rotation_angle(goal[:, :3, :3], rigid[:, :3, :3])
+        if n == 1 and _is_rotation_one(goal[0].tolist(), min(1e-14, 0.1 * tol_orientation)):
+            rigid, skew_angle = goal, np.zeros(1)  # orthonormal already: no SVD
+        else:
+            rigid = goal.copy()
+            rigid[:, :3, :3] = orthonormalize(goal[:, :3, :3])
+            skew_angle = rotation_angle(goal[:, :3, :3], rigid[:, :3, :3])
         flange = flange_pose(robot, rigid)
         problem = _Problem(
             plain, flange[:, :3, 3], flange[:, :3, :3], orientation, tol_position, tol_orientation
@@ -633,7 +691,7 @@ def ik(
         "max_iterations": max_iterations,
         "max_restarts": max_restarts,
         "max_step": rule.max_step if max_step is None else max_step,
-        "rng": np.random.default_rng(seed),
+        "seed": seed,
     }
     if n == 1:
         single = (

@@ -22,6 +22,7 @@ from __future__ import annotations
 import argparse
 import functools
 import itertools
+import math
 import sys
 from pathlib import Path
 
@@ -198,8 +199,15 @@ angles as floats and use the math module (fast for one pose); ``*_many`` functio
 """
 
 from math import cos, sin
+from struct import Struct
 
 import numpy as np
+
+# one pose is written straight into a fresh array (cheaper than building it from a tuple)
+_pack16 = Struct("16d").pack_into
+_pack18 = Struct("18d").pack_into
+_pack36 = Struct("36d").pack_into
+_pack112 = Struct("112d").pack_into
 '''
 
 
@@ -254,7 +262,9 @@ def _emit(name: str, doc: str, entries: dict[tuple[int, ...], sp.Expr], shape: t
         one.append(f"    {sym} = {'cos' if sym[0] == 'c' else 'sin'}({arg})")
     one += body
     flat = [pycode(final[keys.index(k)]) if k in entries else "0.0" for k in _all_indices(shape)]
-    one.append(f"    return np.array(({', '.join(flat)},)).reshape({shape})")
+    one.append(f"    out = np.empty({shape})")
+    one.append(f"    _pack{math.prod(shape)}(out, 0, {', '.join(flat)})")
+    one.append("    return out")
 
     many = [
         f"def {name}_many(q, {lengths}, out=None):",

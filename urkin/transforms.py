@@ -14,6 +14,8 @@ Conventions
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -64,6 +66,22 @@ def _vector3(x: ArrayLike, name: str) -> np.ndarray:
     return _core(x, (3,), name)
 
 
+def _is_rotation_one(rows: list[list[float]], tol: float) -> bool:
+    """Whether the upper-left 3×3 block of ``rows`` (lists of floats) is a rotation within
+    ``tol``; False for NaN or infinite entries too (every entry reaches the determinant)."""
+    (a, b, c, *_), (d, e, f, *_), (g, h, i, *_) = rows[0], rows[1], rows[2]
+    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    return (
+        abs(det - 1.0) <= tol
+        and abs(a * a + d * d + g * g - 1.0) <= tol
+        and abs(b * b + e * e + h * h - 1.0) <= tol
+        and abs(c * c + f * f + i * i - 1.0) <= tol
+        and abs(a * b + d * e + g * h) <= tol
+        and abs(a * c + d * f + g * i) <= tol
+        and abs(b * c + e * f + h * i) <= tol
+    )
+
+
 def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R") -> np.ndarray:
     """Validate one rotation matrix or a stack of them and return it as a float array.
 
@@ -96,6 +114,9 @@ def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R
     ...
     ValueError: R is a reflection, not a rotation: det(R) = -1
     """
+    if type(R) is np.ndarray and R.shape == (3, 3) and R.dtype == np.float64:
+        if _is_rotation_one(R.tolist(), tol):
+            return R  # the scalar fast path; anything else gets the full check's message
     array = _core(R, (3, 3), name)
     # column by column (cheaper than a batched matmul and LU for stacks of small matrices)
     x, y, z = array[..., :, 0], array[..., :, 1], array[..., :, 2]
@@ -163,6 +184,18 @@ def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "
     ...
     ValueError: T must end in the row [0, 0, 0, 1]; got [0. 0. 0. 0.]
     """
+    if type(T) is np.ndarray and T.shape == (4, 4) and T.dtype == np.float64:
+        rows = T.tolist()
+        x, y, z, w = rows[3]
+        if (
+            abs(x) <= tol
+            and abs(y) <= tol
+            and abs(z) <= tol
+            and abs(w - 1.0) <= tol
+            and math.isfinite(rows[0][3] + rows[1][3] + rows[2][3])
+            and _is_rotation_one(rows, tol)
+        ):
+            return T  # the scalar fast path; anything else gets the full check's message
     array = _core(T, (4, 4), name)
     bottom = array[..., 3, :]
     bad = np.abs(bottom - (0.0, 0.0, 0.0, 1.0)).max(axis=-1) > tol
@@ -488,6 +521,24 @@ def pose_error(T1: ArrayLike, T2: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """
     A = check_transform(T1, name="T1")
     B = check_transform(T2, name="T2")
+    if A.shape == B.shape == (4, 4):  # the scalar fast path
+        (a, b, c, x), (d, e, f, y), (g, h, i, z), _ = A.tolist()
+        (a2, b2, c2, x2), (d2, e2, f2, y2), (g2, h2, i2, z2), _ = B.tolist()
+        x, y, z = x - x2, y - y2, z - z2
+        a, b, c, d, e, f, g, h, i = (
+            a - a2,
+            b - b2,
+            c - c2,
+            d - d2,
+            e - e2,
+            f - f2,
+            g - g2,
+            h - h2,
+            i - i2,
+        )
+        frob = math.sqrt(a * a + b * b + c * c + d * d + e * e + f * f + g * g + h * h + i * i)
+        angle = 2.0 * math.asin(min(frob / (2.0 * math.sqrt(2.0)), 1.0))
+        return np.float64(math.sqrt(x * x + y * y + z * z)), np.float64(angle)
     try:
         dp = A[..., :3, 3] - B[..., :3, 3]
         angle = _angle_between(A[..., :3, :3], B[..., :3, :3])
@@ -511,9 +562,12 @@ def wrap_angles(q: ArrayLike) -> np.ndarray:
     return _wrap(real(q, "q", finite=False))
 
 
-def _wrap(angles: np.ndarray) -> np.ndarray:
-    """:func:`wrap_angles` of a float array, without input checks (inner loops)."""
-    return angles - 2.0 * np.pi * np.ceil((angles - np.pi) / (2.0 * np.pi))
+def _wrap(angles: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+    """:func:`wrap_angles` of a float array, without input checks (inner loops); in place
+    with ``out=angles``."""
+    turns = np.ceil((angles - np.pi) / (2.0 * np.pi))
+    turns *= 2.0 * np.pi
+    return np.subtract(angles, turns, out=out)
 
 
 def random_rotations(

@@ -6,8 +6,15 @@ angles as floats and use the math module (fast for one pose); ``*_many`` functio
 """
 
 from math import cos, sin
+from struct import Struct
 
 import numpy as np
+
+# one pose is written straight into a fresh array (cheaper than building it from a tuple)
+_pack16 = Struct("16d").pack_into
+_pack18 = Struct("18d").pack_into
+_pack36 = Struct("36d").pack_into
+_pack112 = Struct("112d").pack_into
 
 
 def t06_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6):
@@ -40,7 +47,9 @@ def t06_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6):
     x11 = c234*x0
     x12 = c5*s234
     x13 = s234*s5
-    return np.array((c6*x0 - s6*x1 + x2*x3, -c6*x1 - s6*x0 - x2*x4, c5*s1 - x6, c1*x7 + c1*x8 + d4*s1 + d5*x1 - d6*x6 + d6*x9, c234*c5*c6*s1 - c6*x5 - s6*x10, c1*s5*s6 - c6*x10 - x4*x9, -x11 - x2, -c1*d4 + d5*x10 - d6*x11 - d6*x2 + s1*x7 + s1*x8, c6*x12 + x4, -s6*x12 + x3, -x13, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x13, 0, 0, 0, 1,)).reshape((4, 4))
+    out = np.empty((4, 4))
+    _pack16(out, 0, c6*x0 - s6*x1 + x2*x3, -c6*x1 - s6*x0 - x2*x4, c5*s1 - x6, c1*x7 + c1*x8 + d4*s1 + d5*x1 - d6*x6 + d6*x9, c234*c5*c6*s1 - c6*x5 - s6*x10, c1*s5*s6 - c6*x10 - x4*x9, -x11 - x2, -c1*d4 + d5*x10 - d6*x11 - d6*x2 + s1*x7 + s1*x8, c6*x12 + x4, -s6*x12 + x3, -x13, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x13, 0, 0, 0, 1)
+    return out
 
 
 def t06_many(q, d1, a2, a3, d4, d5, d6, out=None):
@@ -145,7 +154,9 @@ def frames_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6):
     x27 = s234*s5
     x28 = -x27
     x29 = -c234*d5 + x9
-    return np.array((1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, c1, 0, s1, 0, s1, 0, x0, 0, 0, 1, 0, d1, 0, 0, 0, 1, x1, -c1*s2, s1, x2, x3, -s1*s2, x0, x4, s2, c2, 0, x5, 0, 0, 0, 1, x6, -c1*s23, s1, c1*x8, c23*s1, -s1*s23, x0, s1*x8, s23, c23, 0, x9, 0, 0, 0, 1, x10, s1, x11, x12, x13, x0, x14, x15, s234, 0, -c234, x9, 0, 0, 0, 1, x16 + x17, -x11, x19, x20, c234*c5*s1 - x21, -x14, x24, x25, x26, c234, x28, x29, 0, 0, 0, 1, c6*x16 + c6*x17 - s6*x11, -c6*x11 - s6*x16 - s6*x17, x19, c5*d6*s1 - d6*x18 + x20, c234*c5*c6*s1 - c6*x21 - s6*x14, c1*s5*s6 - c5*s6*x13 - c6*x14, x24, -d6*x22 - d6*x23 + x25, c234*s6 + c6*x26, c234*c6 - s6*x26, x28, -d6*x27 + x29, 0, 0, 0, 1,)).reshape((7, 4, 4))
+    out = np.empty((7, 4, 4))
+    _pack112(out, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, c1, 0, s1, 0, s1, 0, x0, 0, 0, 1, 0, d1, 0, 0, 0, 1, x1, -c1*s2, s1, x2, x3, -s1*s2, x0, x4, s2, c2, 0, x5, 0, 0, 0, 1, x6, -c1*s23, s1, c1*x8, c23*s1, -s1*s23, x0, s1*x8, s23, c23, 0, x9, 0, 0, 0, 1, x10, s1, x11, x12, x13, x0, x14, x15, s234, 0, -c234, x9, 0, 0, 0, 1, x16 + x17, -x11, x19, x20, c234*c5*s1 - x21, -x14, x24, x25, x26, c234, x28, x29, 0, 0, 0, 1, c6*x16 + c6*x17 - s6*x11, -c6*x11 - s6*x16 - s6*x17, x19, c5*d6*s1 - d6*x18 + x20, c234*c5*c6*s1 - c6*x21 - s6*x14, c1*s5*s6 - c5*s6*x13 - c6*x14, x24, -d6*x22 - d6*x23 + x25, c234*s6 + c6*x26, c234*c6 - s6*x26, x28, -d6*x27 + x29, 0, 0, 0, 1)
+    return out
 
 
 def frames_many(q, d1, a2, a3, d4, d5, d6, out=None):
@@ -348,7 +359,9 @@ def jacobian_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6):
     x15 = s5*x14
     x16 = x1 - x15 + x2
     x17 = -c1
-    return np.array((c1*c5*d6 + c1*d4 + c234*d6*s1*s5 - s1*x0 - s1*x1 - s1*x2, -c1*x7, c1*x9, c1*x8, -d6*(c234*x11 + x10), 0, c1*x0 + c1*x1 + c1*x2 + d4*s1 + d6*x12 - x13*x14, -s1*x7, s1*x9, s1*x8, d6*(-c234*x12 + x13), 0, 0, x0 + x16, x16, d5*s234 - x15, -c5*d6*s234, 0, 0, s1, s1, s1, c1*s234, -c234*x13 + c5*s1, 0, x17, x17, x17, s1*s234, -c234*x10 - x11, 1, 0, 0, 0, -c234, -x5,)).reshape((6, 6))
+    out = np.empty((6, 6))
+    _pack36(out, 0, c1*c5*d6 + c1*d4 + c234*d6*s1*s5 - s1*x0 - s1*x1 - s1*x2, -c1*x7, c1*x9, c1*x8, -d6*(c234*x11 + x10), 0, c1*x0 + c1*x1 + c1*x2 + d4*s1 + d6*x12 - x13*x14, -s1*x7, s1*x9, s1*x8, d6*(-c234*x12 + x13), 0, 0, x0 + x16, x16, d5*s234 - x15, -c5*d6*s234, 0, 0, s1, s1, s1, c1*s234, -c234*x13 + c5*s1, 0, x17, x17, x17, s1*s234, -c234*x10 - x11, 1, 0, 0, 0, -c234, -x5)
+    return out
 
 
 def jacobian_many(q, d1, a2, a3, d4, d5, d6, out=None):
@@ -456,7 +469,9 @@ def position_jacobian_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6):
     x11 = c1*s5
     x12 = c234*x5
     x13 = x1 - x12 + x2
-    return np.array((c1*c5*d6 + c1*d4 + c234*d6*s1*s5 - s1*x0 - s1*x1 - s1*x2, -c1*x7, c1*x9, c1*x8, -d6*(c1*c234*c5 + s1*s5), 0, c1*x0 + c1*x1 + c1*x2 - c234*d6*x11 + d4*s1 + d6*x10, -s1*x7, s1*x9, s1*x8, d6*(-c234*x10 + x11), 0, 0, x0 + x13, x13, d5*s234 - x12, -c5*d6*s234, 0,)).reshape((3, 6))
+    out = np.empty((3, 6))
+    _pack18(out, 0, c1*c5*d6 + c1*d4 + c234*d6*s1*s5 - s1*x0 - s1*x1 - s1*x2, -c1*x7, c1*x9, c1*x8, -d6*(c1*c234*c5 + s1*s5), 0, c1*x0 + c1*x1 + c1*x2 - c234*d6*x11 + d4*s1 + d6*x10, -s1*x7, s1*x9, s1*x8, d6*(-c234*x10 + x11), 0, 0, x0 + x13, x13, d5*s234 - x12, -c5*d6*s234, 0)
+    return out
 
 
 def position_jacobian_many(q, d1, a2, a3, d4, d5, d6, out=None):
