@@ -1,0 +1,147 @@
+"""The scalar fast paths give what the stacked code gives, and refuse what it refuses.
+
+A single pose or configuration takes a path written on Python floats (DESIGN §2); these tests
+hold each one to the stacked path of the same function, on random input, near the singular
+families, and on input that must be refused with the same message.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import urkin
+from urkin.numerical_ik import _rotation_parts_one
+from urkin.transforms import (
+    check_rotation,
+    check_transform,
+    pose_error,
+    random_transforms,
+    rotation_parts,
+    so3_exp,
+    wrap_angles,
+)
+
+ARMS = [urkin.robot(name) for name in urkin.ROBOTS]
+
+
+def _configurations(rng: np.random.Generator, n: int) -> np.ndarray:
+    """Random configurations, a third of them pushed to within 1e-3 … 1e-12 of a wrist,
+    elbow or shoulder-adjacent singularity."""
+    q = rng.uniform(-np.pi, np.pi, (n, 6))
+    near = 10.0 ** rng.uniform(-12, -3, n) * rng.choice([-1.0, 1.0], n)
+    third = n // 3
+    q[:third, 4] = rng.choice([0.0, np.pi], third) + near[:third]  # wrist
+    q[third : 2 * third, 2] = rng.choice([0.0, np.pi], third) + near[third : 2 * third]  # elbow
+    return q
+
+
+@pytest.mark.parametrize("arm", ARMS, ids=lambda arm: arm.name)
+def test_one_pose_of_ik_analytic_is_the_stack_of_one(arm):
+    rng = np.random.default_rng(11)
+    poses = urkin.fk(arm, _configurations(rng, 300))
+    stacked, mask = urkin.ik_analytic(arm, poses, return_mask=True)
+    for T, rows, keep in zip(poses, stacked, mask):
+        single = urkin.ik_analytic(arm, T)
+        assert len(single) == keep.sum()
+        if len(single):
+            gap = np.abs(wrap_angles(single[:, None, :] - rows[keep][None, :, :])).max(axis=-1)
+            # every single-pose solution is a stacked one and vice versa (modulo 2π); near a
+            # double root the two roundings of √(small) may differ by ~1e-8 rad, both exact
+            assert gap.min(axis=1).max() < 1e-6 and gap.min(axis=0).max() < 1e-6
+            reached = urkin.fk(arm, single)
+            position, angle = pose_error(reached, np.broadcast_to(T, reached.shape))
+            assert position.max() < 1e-12 and angle.max() < 1e-12
+
+
+@pytest.mark.parametrize("arm", ARMS[:2], ids=lambda arm: arm.name)
+def test_one_configuration_of_fk_and_jacobian_is_the_stack_of_one(arm):
+    q = _configurations(np.random.default_rng(12), 200)
+    np.testing.assert_allclose(
+        np.array([urkin.fk(arm, x) for x in q]), urkin.fk(arm, q), rtol=0, atol=1e-15
+    )
+    np.testing.assert_allclose(
+        np.array([urkin.jacobian(arm, x) for x in q]), urkin.jacobian(arm, q), rtol=0, atol=1e-15
+    )
+
+
+@pytest.mark.parametrize(
+    "bad, message",
+    [
+        (np.array([0.1, 0.2, np.nan, 0.0, 0.0, 0.0]), "q contains NaN or infinity"),
+        (np.array([0.1, 0.2, np.inf, 0.0, 0.0, 0.0]), "q contains NaN or infinity"),
+        (np.array([0.1, 0.2, 30.0, 0.0, 0.0, 0.0]), "q has an angle of 30 rad"),
+    ],
+)
+def test_the_fast_path_refuses_what_the_stack_refuses(bad, message):
+    for function in (urkin.fk, urkin.jacobian, urkin.position_jacobian, urkin.fk_frames):
+        for q in (bad, bad[None]):
+            with pytest.raises(ValueError, match=message):
+                function(urkin.robot("ur5"), q)
+
+
+def test_check_transform_and_check_rotation_refuse_one_pose_as_they_refuse_a_stack():
+    T = random_transforms(seed=3)
+    cases = []
+    shear = T.copy()
+    shear[0, 1] += 1e-3
+    reflection = T.copy()
+    reflection[:3, 2] *= -1.0
+    bottom = T.copy()
+    bottom[3, 0] = 0.1
+    nan = T.copy()
+    nan[1, 3] = np.nan
+    cases = [shear, reflection, bottom, nan]
+    for case in cases:
+        with pytest.raises(ValueError) as one:
+            check_transform(case)
+        with pytest.raises(ValueError) as stack:
+            check_transform(case[None])
+        assert (
+            str(one.value).split(";")[0].split("(")[0]
+            == str(stack.value).split(";")[0].split("(")[0]
+        )
+    for case in cases[:2]:
+        with pytest.raises(ValueError):
+            check_rotation(case[:3, :3])
+    assert check_transform(T) is T and check_rotation(T[:3, :3].copy()).shape == (3, 3)
+
+
+def test_pose_error_of_one_pair_is_the_stack_of_one():
+    A, B = random_transforms(500, seed=1), random_transforms(500, seed=2)
+    B[:100, :3, :3] = A[:100, :3, :3] @ so3_exp(
+        np.random.default_rng(3).normal(size=(100, 3)) * 1e-9
+    )
+    position, angle = pose_error(A, B)
+    for i in range(500):
+        p, a = pose_error(A[i], B[i])
+        # 2·asin near a half turn amplifies rounding by 1/cos(angle/2): same bound, both ways
+        assert abs(p - position[i]) <= 1e-15
+        assert abs(a - angle[i]) <= 2e-15 / max(np.cos(angle[i] / 2), 1e-3)
+
+
+def test_the_float_rotation_log_matches_the_stacked_one_near_a_half_turn():
+    rng = np.random.default_rng(5)
+    axis = rng.normal(size=(3000, 3))
+    axis /= np.linalg.norm(axis, axis=1, keepdims=True)
+    angle = np.concatenate(
+        [rng.uniform(0.0, np.pi, 1000), np.pi - 10.0 ** rng.uniform(-12, -1, 2000)]
+    )
+    R = so3_exp(axis * angle[:, None])
+    _, theta, omega = rotation_parts(R)
+    for i in range(len(R)):
+        _, t, w = _rotation_parts_one(R[i].tolist())
+        assert abs(t - theta[i]) < 1e-15
+        np.testing.assert_allclose(w, omega[i], rtol=0, atol=1e-12)
+
+
+def test_a_single_ik_solve_is_the_batch_of_one():
+    arm = urkin.robot("ur5")
+    rng = np.random.default_rng(8)
+    targets = urkin.fk(arm, rng.uniform(-np.pi, np.pi, (40, 6)))
+    batch = urkin.ik(arm, targets)
+    for i, T in enumerate(targets):
+        one = urkin.ik(arm, T)
+        assert one.success and batch.success[i]
+        position, angle = pose_error(urkin.fk(arm, one.q), T)
+        assert position <= 1e-10 and angle <= 1e-10
