@@ -145,3 +145,23 @@ def test_a_single_ik_solve_is_the_batch_of_one():
         assert one.success and batch.success[i]
         position, angle = pose_error(urkin.fk(arm, one.q), T)
         assert position <= 1e-10 and angle <= 1e-10
+
+
+@pytest.mark.parametrize("size", [1, 2, 5, 9, 10])
+def test_small_stacks_take_the_one_pose_code_with_the_stack_layout(size):
+    arm = urkin.robot("ur5")
+    q = _configurations(np.random.default_rng(13), 60)
+    poses = urkin.fk(arm, q)
+    big, big_mask = urkin.ik_analytic(arm, poses, return_mask=True)
+    for start in range(0, 60 - size, size):
+        part = slice(start, start + size)
+        np.testing.assert_allclose(urkin.fk(arm, q[part]), poses[part], rtol=0, atol=1e-15)
+        np.testing.assert_allclose(
+            urkin.jacobian(arm, q[part]), urkin.jacobian(arm, q)[part], rtol=0, atol=1e-15
+        )
+        small, small_mask = urkin.ik_analytic(arm, poses[part], return_mask=True)
+        np.testing.assert_array_equal(small_mask, big_mask[part])
+        gap = np.abs(wrap_angles(small - big[part]))[small_mask]
+        assert gap.max() < 1e-6  # row i is branch i in both; double roots may round apart
+    grid = urkin.fk(arm, q[:6].reshape(2, 3, 6))
+    assert grid.shape == (2, 3, 4, 4) and urkin.ik_analytic(arm, grid).shape == (2, 3, 8, 6)

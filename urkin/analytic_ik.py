@@ -93,8 +93,10 @@ def _wrap_one(angle: float) -> float:
 
 def _solve_one(
     rows: list[list[float]], lengths: tuple[float, ...], misses: list[float] | None = None
-) -> list[list[float]]:
-    """Every solution for one flange pose given as ``T.tolist()``: plain floats, no numpy.
+) -> list[list[float] | None]:
+    """The eight branches of one flange pose given as ``T.tolist()``, plain floats, no numpy:
+    entry ``i`` is the solution of branch ``i`` (the row layout of :func:`ik_analytic` for a
+    stack), or None where that branch has no solution or repeats an earlier one.
 
     When given, ``misses`` collects how far the elbow falls short on each branch it drops."""
     d1, a2, a3, d4, d5, d6 = lengths
@@ -102,19 +104,19 @@ def _solve_one(
     wx, wy, wz = px - d6 * zx, py - d6 * zy, pz - d6 * zz
     r2 = wx * wx + wy * wy
     r = math.sqrt(r2)
+    found: list[list[float] | None] = [None] * 8
     if r - d4 < -REACH_TOLERANCE or r2 == 0.0:
-        return []
+        return found
     gap = r - d4 if abs(r - d4) > _ROUNDOFF * (abs(px) + abs(py) + d6 + d4) else 0.0
     root = math.sqrt(max(gap * (r + d4), 0.0))
     big, small = abs(a2) + abs(a3), abs(abs(a2) - abs(a3))
     two_a2a3 = 2.0 * a2 * a3
-    found: list[list[float]] = []
     # Rows can repeat only where two branches meet: at a wrist representative, or where the
     # θ1 or θ3 branches are closer than DUPLICATE_TOLERANCE; elsewhere θ1, θ6 (by π) or θ3
     # tells them apart, and the pairwise comparison is skipped.
     suspect = False
     shoulders: list[float] = []
-    for shoulder in (1.0, -1.0) if root > 0.0 else (1.0,):
+    for branch, shoulder in enumerate((1.0, -1.0) if root > 0.0 else (1.0,)):
         s1 = wx * d4 - shoulder * wy * root
         c1 = -(wy * d4 + shoulder * wx * root)
         norm = math.hypot(s1, c1)
@@ -126,7 +128,7 @@ def _solve_one(
         C = zx * s1 - zy * c1  # cos θ5
         S = math.hypot(A, B)
         X, Y = c1 * wx + s1 * wy, wz - d1  # the wrist point in the arm's plane
-        for flip in (1.0, -1.0):
+        for sign5, flip in enumerate((1.0, -1.0)):
             if S > WRIST_TOLERANCE:
                 q5 = math.atan2(flip * S, C)
                 q6 = math.atan2(flip * B, flip * A)
@@ -161,12 +163,15 @@ def _solve_one(
             s3 = math.sqrt(product) / abs(two_a2a3)
             heading = math.atan2(ey, ex)
             q5, q6 = _wrap_one(q5), _wrap_one(q6)
+            slot = 4 * branch + 2 * sign5
             for elbow in (1.0, -1.0) if s3 > 0.0 else (1.0,):
                 q3 = math.atan2(elbow * s3, c3)
                 q2 = _wrap_one(heading - math.atan2(a3 * elbow * s3, a2 + a3 * c3))
                 q4 = _wrap_one(q234 - q2 - q3)
-                found.append([q1, q2, _wrap_one(q3), q4, q5, q6])
-            if s3 > 0.0 and abs(_wrap_one(found[-1][2] - found[-2][2])) < DUPLICATE_TOLERANCE:
+                found[slot + (elbow < 0.0)] = [q1, q2, _wrap_one(q3), q4, q5, q6]
+            if s3 > 0.0 and abs(_wrap_one(found[slot][2] - found[slot + 1][2])) < (
+                DUPLICATE_TOLERANCE
+            ):
                 suspect = True
     if len(shoulders) == 2 and abs(_wrap_one(shoulders[0] - shoulders[1])) < DUPLICATE_TOLERANCE:
         suspect = True
@@ -182,15 +187,21 @@ def _representative_one(X: float, Y: float, which: float, a2, a3, d5) -> float:
     return beta + half if which > 0 else beta + _PI - half
 
 
-def _distinct_one(found: list[list[float]]) -> list[list[float]]:
+def _distinct_one(found: list[list[float] | None]) -> list[list[float] | None]:
+    """``found`` with every branch that repeats an earlier one (within DUPLICATE_TOLERANCE,
+    modulo 2π) set to None."""
     kept: list[list[float]] = []
+    distinct: list[list[float] | None] = []
     for q in found:
-        if not any(
+        if q is not None and any(
             max(abs(_wrap_one(a - b)) for a, b in zip(q, other)) < DUPLICATE_TOLERANCE
             for other in kept
         ):
+            q = None
+        if q is not None:
             kept.append(q)
-    return kept
+        distinct.append(q)
+    return distinct
 
 
 # ----------------------------------------------------------------------------- a stack
@@ -315,12 +326,23 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
 
 #: Stacks are solved in blocks of this many poses, which keeps temporaries in cache.
 _BLOCK = 1024
+#: Up to this many poses, a stack is solved pose by pose (bench/ik_analytic.py).
+_FEW = 9
 
 
 def _solve(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_solve_stack` block by block, without floating-point warnings (out-of-reach
     poses are expected)."""
     n = len(T)
+    if n <= _FEW:  # a few poses: the one-pose code, pose by pose, beats the stack's fixed cost
+        nan = [math.nan] * 6
+        q = np.array(
+            [
+                [nan if row is None else row for row in _solve_one(pose, lengths)]
+                for pose in T.tolist()
+            ]
+        )
+        return q, ~np.isnan(q[..., 0])
     q, keep = np.empty((n, 8, 6)), np.empty((n, 8), dtype=bool)
     with np.errstate(invalid="ignore", divide="ignore"):
         for start in range(0, n, _BLOCK):
@@ -387,7 +409,7 @@ def ik_analytic(
     _check_lengths(robot)
     poses, lead = _flange_poses(robot, check_transform(T, name="T"))
     if lead == ():
-        found = _solve_one(poses[0].tolist(), robot.lengths)
+        found = [row for row in _solve_one(poses[0].tolist(), robot.lengths) if row is not None]
         return np.array(found) if found else np.empty((0, 6))
     q, keep = _solve(poses, robot.lengths)
     q[~keep] = np.nan

@@ -47,6 +47,9 @@ MAX_JOINT_ANGLE = 8 * math.pi
 
 #: Batches are evaluated in blocks of this many poses, which keeps temporaries in cache.
 _BLOCK = 2048
+#: Up to this many poses, a stack is evaluated pose by pose with the one-pose code: the column
+#: code's fixed cost (~100 numpy calls) is then larger than the rows' (bench/kinematics.py).
+_FEW = 24
 
 
 def _many(function, array: np.ndarray, robot: Robot, shape: tuple[int, ...]) -> np.ndarray:
@@ -139,18 +142,34 @@ def _six(q: ArrayLike) -> list[float] | None:
     path checks ``q`` and explains what is wrong)."""
     if type(q) is np.ndarray and q.shape == (6,) and q.dtype is _FLOAT:
         values = q.tolist()
-        a, b, c, d, e, f = values
-        top = MAX_JOINT_ANGLE  # NaN fails every comparison
-        if (
-            -top <= a <= top
-            and -top <= b <= top
-            and -top <= c <= top
-            and -top <= d <= top
-            and -top <= e <= top
-            and -top <= f <= top
-        ):
+        if _in_range(values):
             return values
     return None
+
+
+def _few(q: ArrayLike) -> list[list[float]] | None:
+    """The rows of ``q`` when it is a small stack (k ≤ :data:`_FEW`, k, 6) of float angles, all
+    finite and in range; else None (the general path checks ``q``)."""
+    if type(q) is np.ndarray and q.ndim == 2 and q.shape[1] == 6 and q.dtype is _FLOAT:
+        if len(q) <= _FEW:
+            rows = q.tolist()
+            if all(map(_in_range, rows)):
+                return rows
+    return None
+
+
+def _in_range(values: list[float]) -> bool:
+    """Six floats, finite and within ±:data:`MAX_JOINT_ANGLE` (NaN fails every comparison)."""
+    a, b, c, d, e, f = values
+    top = MAX_JOINT_ANGLE
+    return (
+        -top <= a <= top
+        and -top <= b <= top
+        and -top <= c <= top
+        and -top <= d <= top
+        and -top <= e <= top
+        and -top <= f <= top
+    )
 
 
 def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> np.ndarray:
@@ -159,10 +178,24 @@ def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> 
     values = _six(q)
     if values is not None:
         return one(*values, *robot.lengths)
-    array, lead, values = _joints(q, complex_ok=True)
-    if values is not None:
-        return one(*values, *robot.lengths)
-    return unstack(_many(many, array, robot, shape), lead)
+    rows = _few(q)
+    if rows is None:
+        array, lead, values = _joints(q, complex_ok=True)
+        if values is not None:
+            return one(*values, *robot.lengths)
+        if len(array) > _FEW or array.dtype.kind != "f":
+            return unstack(_many(many, array, robot, shape), lead)
+        rows = array.tolist()
+    else:
+        lead = (len(rows),)
+    # a few poses: the one-pose code row by row beats the column code's fixed cost
+    lengths = robot.lengths
+    if len(rows) == 1:
+        return unstack(one(*rows[0], *lengths)[None], lead)
+    out = np.empty((len(rows), *shape))
+    for i, row in enumerate(rows):
+        out[i] = one(*row, *lengths)
+    return unstack(out, lead)
 
 
 def fk(robot: Robot, q: ArrayLike) -> np.ndarray:

@@ -66,6 +66,19 @@ def _vector3(x: ArrayLike, name: str) -> np.ndarray:
     return _core(x, (3,), name)
 
 
+def _is_transform_one(rows: list[list[float]], tol: float) -> bool:
+    """Whether ``rows`` (a 4×4 pose as lists of floats) is rigid within ``tol``, finite."""
+    x, y, z, w = rows[3]
+    return (
+        abs(x) <= tol
+        and abs(y) <= tol
+        and abs(z) <= tol
+        and abs(w - 1.0) <= tol
+        and math.isfinite(rows[0][3] + rows[1][3] + rows[2][3])
+        and _is_rotation_one(rows, tol)
+    )
+
+
 def _is_rotation_one(rows: list[list[float]], tol: float) -> bool:
     """Whether the upper-left 3×3 block of ``rows`` (lists of floats) is a rotation within
     ``tol``; False for NaN or infinite entries too (every entry reaches the determinant)."""
@@ -184,18 +197,12 @@ def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "
     ...
     ValueError: T must end in the row [0, 0, 0, 1]; got [0. 0. 0. 0.]
     """
-    if type(T) is np.ndarray and T.shape == (4, 4) and T.dtype == np.float64:
-        rows = T.tolist()
-        x, y, z, w = rows[3]
-        if (
-            abs(x) <= tol
-            and abs(y) <= tol
-            and abs(z) <= tol
-            and abs(w - 1.0) <= tol
-            and math.isfinite(rows[0][3] + rows[1][3] + rows[2][3])
-            and _is_rotation_one(rows, tol)
-        ):
-            return T  # the scalar fast path; anything else gets the full check's message
+    if type(T) is np.ndarray and T.dtype == np.float64 and T.shape[-2:] == (4, 4):
+        # the scalar fast path, for one pose or a few; anything else gets the full check
+        if T.ndim == 2 and _is_transform_one(T.tolist(), tol):
+            return T
+        if T.ndim == 3 and len(T) <= 16 and all(_is_transform_one(t, tol) for t in T.tolist()):
+            return T
     array = _core(T, (4, 4), name)
     bottom = array[..., 3, :]
     bad = np.abs(bottom - (0.0, 0.0, 0.0, 1.0)).max(axis=-1) > tol
