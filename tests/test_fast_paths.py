@@ -82,7 +82,6 @@ def test_the_fast_path_refuses_what_the_stack_refuses(bad, message):
 
 def test_check_transform_and_check_rotation_refuse_one_pose_as_they_refuse_a_stack():
     T = random_transforms(seed=3)
-    cases = []
     shear = T.copy()
     shear[0, 1] += 1e-3
     reflection = T.copy()
@@ -97,10 +96,8 @@ def test_check_transform_and_check_rotation_refuse_one_pose_as_they_refuse_a_sta
             check_transform(case)
         with pytest.raises(ValueError) as stack:
             check_transform(case[None])
-        assert (
-            str(one.value).split(";")[0].split("(")[0]
-            == str(stack.value).split(";")[0].split("(")[0]
-        )
+        # the same complaint; only the place of a bad entry is written with the stack's index
+        assert str(one.value).split("(")[0] == str(stack.value).split("(")[0]
     for case in cases[:2]:
         with pytest.raises(ValueError):
             check_rotation(case[:3, :3])
@@ -135,7 +132,7 @@ def test_the_float_rotation_log_matches_the_stacked_one_near_a_half_turn():
         np.testing.assert_allclose(w, omega[i], rtol=0, atol=1e-12)
 
 
-def test_a_single_ik_solve_is_the_batch_of_one():
+def test_a_single_ik_solve_reaches_every_target_the_batch_reaches():
     arm = urkin.robot("ur5")
     rng = np.random.default_rng(8)
     targets = urkin.fk(arm, rng.uniform(-np.pi, np.pi, (40, 6)))

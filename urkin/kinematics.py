@@ -81,22 +81,10 @@ def _joints(
     fast path), else ``values`` is None.  Complex angles (complex-step derivatives) are taken
     only with ``complex_ok``.
     """
-    if type(q) is np.ndarray and q.shape == (6,) and q.dtype == np.float64:
-        values = q.tolist()  # the common case, checked without building another array
-        array = q
-    else:
-        array = real(q, name, complex_ok=complex_ok)
-        if array.shape == (6,) and array.dtype.kind == "f":
-            values = array.tolist()
-        else:
-            values = None
-    if values is not None:
-        if not all(map(math.isfinite, values)):
-            real(array, name)  # raises, naming the entry
-        largest = max(map(abs, values))
-        if largest > MAX_JOINT_ANGLE:
-            raise _range_error(largest, name)
-        return array.reshape(1, 6), (), values
+    values = _six(q)
+    if values is not None:  # the common case, checked without building another array
+        return q.reshape(1, 6), (), values
+    array = real(q, name, complex_ok=complex_ok)  # NaN and infinity are refused here
     if array.ndim == 0 or array.shape[-1] != 6:
         raise ValueError(
             f"{name} must be 6 joint angles in radians, shape (6,) or (..., 6); got {array.shape}"
@@ -106,6 +94,8 @@ def _joints(
     largest = float(np.abs(array.real).max(initial=0.0))
     if largest > MAX_JOINT_ANGLE:
         raise _range_error(largest, name)
+    if lead == () and array.dtype.kind == "f":
+        return array, lead, array[0].tolist()
     return array, lead, None
 
 

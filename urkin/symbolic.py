@@ -204,10 +204,6 @@ from struct import Struct
 import numpy as np
 
 # one pose is written straight into a fresh array (cheaper than building it from a tuple)
-_pack16 = Struct("16d").pack_into
-_pack18 = Struct("18d").pack_into
-_pack36 = Struct("36d").pack_into
-_pack112 = Struct("112d").pack_into
 '''
 
 
@@ -306,23 +302,25 @@ def generate_code() -> str:
     all_frames: dict = {}
     for i, frame in enumerate(frames):
         all_frames |= _matrix_entries(frame, (i,))
-    parts = [
-        _HEADER,
-        _emit("t06", "Flange pose T_0_6", t06, (4, 4)),
-        _emit("frames", "Frames T_0_i, i = 0 … 6", all_frames, (7, 4, 4)),
-        _emit(
+    functions = [
+        ("t06", "Flange pose T_0_6", t06, (4, 4)),
+        ("frames", "Frames T_0_i, i = 0 … 6", all_frames, (7, 4, 4)),
+        (
             "jacobian",
             "Geometric Jacobian [v; ω] of the flange origin",
             _matrix_entries(ur_geometric_jacobian()),
             (6, 6),
         ),
-        _emit(
+        (
             "position_jacobian",
             "Position Jacobian ∂p/∂q",
             _matrix_entries(ur_position_jacobian()),
             (3, 6),
         ),
     ]
+    sizes = sorted({math.prod(shape) for *_, shape in functions})
+    header = _HEADER + "".join(f'_pack{n} = Struct("{n}d").pack_into\n' for n in sizes)
+    parts = [header, *(_emit(*function) for function in functions)]
     return "\n\n\n".join(part.rstrip("\n") for part in parts) + "\n"
 
 
