@@ -9,8 +9,9 @@ import pytest
 
 import urkin
 from tests.reference import OFFICIAL_DH, dh_fk
-from urkin.analytic_ik import ik_analytic, ik_closest, wrap_angles
+from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import singularity_factors
+from urkin.transforms import wrap_angles
 
 N_RANDOM = 10_000
 

@@ -16,6 +16,7 @@ from tests.reference import OFFICIAL_DH, dh_fk
 from urkin import poe
 from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import dh_chain, dh_transform
+from urkin.robots import random_configurations
 from urkin.transforms import (
     adjoint,
     inv_transform,
@@ -23,8 +24,11 @@ from urkin.transforms import (
     random_rotations,
     random_transforms,
     rotation_angle,
+    rotation_parts,
     rotation_to_rpy,
     rpy_to_rotation,
+    se3_log,
+    so3_log,
     wrap_angles,
 )
 
@@ -209,3 +213,47 @@ def test_random_rotations_and_poses_are_seeded_and_rigid():
         a @ np.swapaxes(a, 1, 2), np.broadcast_to(np.eye(3), a.shape), atol=1e-14
     )
     assert random_transforms(seed=2).shape == (4, 4)
+
+
+def test_random_configurations_are_seeded_and_within_the_limits():
+    ur5 = urkin.robot("ur5")
+    a, b = random_configurations(ur5, (4, 5), seed=9), random_configurations(ur5, (4, 5), seed=9)
+    np.testing.assert_array_equal(a, b)
+    assert a.shape == (4, 5, 6) and np.all(np.abs(a) <= np.pi)
+    narrow = urkin.Robot("narrow", *ur5.lengths, joint_limits=((-0.1, 0.2),) * 6)
+    q = random_configurations(narrow, 1000, seed=1)
+    assert q.min() >= -0.1 and q.max() <= 0.2 and q.max() - q.min() > 0.29
+    with pytest.raises(TypeError, match="robot must be a urkin"):
+        random_configurations("ur5")
+
+
+CHECKED = [
+    (so3_log, lambda rng: random_rotations(7, rng), "R is not a rotation"),
+    (rotation_parts, lambda rng: random_rotations(7, rng), "R is not a rotation"),
+    (se3_log, lambda rng: random_transforms(7, rng), "T is not a rigid|not a rotation"),
+    (adjoint, lambda rng: random_transforms(7, rng), "T is not a rigid|not a rotation"),
+]
+
+
+@pytest.mark.parametrize(("function", "draw", "message"), CHECKED)
+def test_check_false_skips_only_the_validation(function, draw, message, rng):
+    """One function per concept: ``check=False`` gives the same answer on valid input (it only
+    skips the validation an inner loop has already done); the default refuses bad input."""
+    X = draw(rng)
+    checked, unchecked = function(X), function(X, check=False)
+    for a, b in zip(
+        checked if isinstance(checked, tuple) else (checked,),
+        unchecked if isinstance(unchecked, tuple) else (unchecked,),
+    ):
+        np.testing.assert_array_equal(a, b)
+    bad = X.copy()
+    bad[..., 0, 0] += 1e-3
+    with pytest.raises(ValueError, match=message):
+        function(bad)
+
+
+def test_wrap_angles_in_place_without_the_check():
+    q = np.array([3 * np.pi, -np.pi, 0.25])
+    out = wrap_angles(q, check=False, out=q)
+    assert out is q
+    np.testing.assert_array_equal(q, [np.pi, np.pi, 0.25])

@@ -6,8 +6,9 @@ import pytest
 
 import urkin
 from tests.test_analytic_ik import distance_mod_2pi
-from urkin.analytic_ik import ik_analytic, wrap_angles
+from urkin.analytic_ik import ik_analytic
 from urkin.course.lab import LAB_LINKS, fk_lab, ik_lab, lab_robot
+from urkin.transforms import wrap_angles
 
 
 def lab_grid():

@@ -45,7 +45,7 @@ from urkin._inputs import real, unstack
 from urkin.ik_result import IKResult, no_solution_reason, verified
 from urkin.kinematics import flange_pose
 from urkin.robots import Robot, check_robot
-from urkin.transforms import _wrap, check_transform, wrap_angles
+from urkin.transforms import check_transform, wrap_angles
 
 __all__ = [
     "DUPLICATE_TOLERANCE",
@@ -53,7 +53,6 @@ __all__ = [
     "WRIST_TOLERANCE",
     "ik_analytic",
     "ik_closest",
-    "wrap_angles",
 ]
 
 #: A pose this far (metres) outside the reachable set is taken as on its border.
@@ -304,7 +303,7 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
     q[3] = q234[:, :, None, :] - q[1] - q[2]
     q[4] = q5[:, :, None, :]
     q[5] = q6[:, :, None, :]
-    _wrap(q, out=q)
+    wrap_angles(q, check=False, out=q)
     keep = np.empty((2, 2, 2, n), dtype=bool)
     keep[...] = (reach1 & reach3)[:, :, None, :]
     keep[1] &= root > 0.0  # the θ1 branches merge
@@ -313,12 +312,15 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
     keep = np.ascontiguousarray(keep.reshape(8, n).T)
     # Rows can repeat only where two branches meet (see _solve_one): compare all pairs there.
     suspect = wrist.any(axis=0)
-    suspect |= (root > 0.0) & (np.abs(_wrap(q[:, 0, 0] - q[:, 4, 0])) < DUPLICATE_TOLERANCE)
-    suspect |= ((s3 > 0.0) & (np.abs(_wrap(2.0 * q3)) < DUPLICATE_TOLERANCE)).any(axis=(0, 1))
+    shoulder_gap = np.abs(wrap_angles(q[:, 0, 0] - q[:, 4, 0], check=False))
+    elbow_gap = np.abs(wrap_angles(2.0 * q3, check=False))
+    suspect |= (root > 0.0) & (shoulder_gap < DUPLICATE_TOLERANCE)
+    suspect |= ((s3 > 0.0) & (elbow_gap < DUPLICATE_TOLERANCE)).any(axis=(0, 1))
     if suspect.any():
         rows = q[suspect]
         kept = keep[suspect]
-        gap = np.abs(_wrap(rows[:, :, None, :] - rows[:, None, :, :])).max(axis=-1)
+        pairs = rows[:, :, None, :] - rows[:, None, :, :]
+        gap = np.abs(wrap_angles(pairs, check=False)).max(axis=-1)
         same = (gap < DUPLICATE_TOLERANCE) & kept[:, None, :] & np.tri(8, 8, -1, dtype=bool)
         keep[suspect] = kept & ~same.any(axis=-1)
     return q, keep
@@ -465,7 +467,7 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
     lower = np.array([lo for lo, _ in robot.joint_limits])
     upper = np.array([hi for _, hi in robot.joint_limits])
     # the 2π-equivalent of each angle nearest the current one, pushed back inside the limits
-    shifted = current[:, None, :] + _wrap(q - current[:, None, :])
+    shifted = current[:, None, :] + wrap_angles(q - current[:, None, :], check=False)
     shifted = np.where(shifted > upper, shifted - 2 * np.pi, shifted)
     shifted = np.where(shifted < lower, shifted + 2 * np.pi, shifted)
     inside = np.all((shifted >= lower) & (shifted <= upper), axis=-1) & valid

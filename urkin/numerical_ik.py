@@ -55,16 +55,17 @@ from urkin._generated import ur_kinematics as _gen
 from urkin._inputs import real
 from urkin.ik_result import IKResult, unreachable, verified
 from urkin.kinematics import _joints, fk, flange_pose, jacobian
-from urkin.robots import Robot, check_robot
+from urkin.robots import Robot, check_robot, random_configurations
 from urkin.transforms import (
     _is_rotation_one,
-    _wrap,
+    check_rotation,
     check_transform,
     orthonormalize,
     rotation_angle,
     rotation_parts,
+    se3_log,
     skew,
-    twist_parts,
+    wrap_angles,
 )
 
 __all__ = [
@@ -106,9 +107,9 @@ def orientation_error(R_current: ArrayLike, R_target: ArrayLike, form: str = "lo
     """
     if form not in ("log", "cross"):
         raise ValueError(f"orientation error form must be 'log' or 'cross'; got {form!r}")
-    Rc = real(R_current, "R_current")
-    Rt = real(R_target, "R_target")
-    sin_axis, _, omega = rotation_parts(Rt @ np.swapaxes(Rc, -1, -2))
+    Rc = check_rotation(R_current, name="R_current")
+    Rt = check_rotation(R_target, name="R_target")
+    sin_axis, _, omega = rotation_parts(Rt @ np.swapaxes(Rc, -1, -2), check=False)
     return omega if form == "log" else sin_axis
 
 
@@ -149,7 +150,9 @@ class _Problem:
         position_error = np.sqrt(np.sum(e_p * e_p, axis=-1))
         if self.R is None:
             return T, e_p, position_error, np.zeros(len(rows))
-        sin_axis, theta, omega = rotation_parts(self.R[rows] @ np.swapaxes(T[:, :3, :3], -1, -2))
+        sin_axis, theta, omega = rotation_parts(
+            self.R[rows] @ np.swapaxes(T[:, :3, :3], -1, -2), check=False
+        )
         e_o = omega if self.form == "log" else sin_axis
         return T, np.concatenate([e_p, e_o], axis=-1), position_error, theta
 
@@ -192,13 +195,8 @@ class _Problem:
     def wrap(self, q: np.ndarray) -> np.ndarray:
         if q.ndim == 1 and self.wide_limits and all(-math.pi < x <= math.pi for x in q.tolist()):
             return q  # one configuration, already wrapped: the common case
-        wrapped = _wrap(q)
+        wrapped = wrap_angles(q, check=False)
         return wrapped if self.wide_limits else np.clip(wrapped, self.lower, self.upper)
-
-    def random_configuration(self, rng: np.random.Generator, count: int) -> np.ndarray:
-        """Uniform joint angles within the limits (and (−π, π]), shape (count, 6)."""
-        low, high = np.maximum(self.lower, -np.pi), np.minimum(self.upper, np.pi)
-        return rng.uniform(low, high, (count, len(self.lower)))
 
 
 def _rotation_parts_one(R: list[list[float]]) -> tuple[list[float], float, list[float]]:
@@ -399,9 +397,11 @@ class MatrixLog(StepRule):
         p, R = T[..., :3, 3], T[..., :3, :3]
         Jw = J[..., 3:, :]
         J_space = np.concatenate([Jw, J[..., :3, :] + skew(p) @ Jw], axis=-2)
-        dR = problem.R[rows] @ np.swapaxes(R, -1, -2)
-        dp = problem.p[rows] - (dR @ p[..., None])[..., 0]
-        return _pinv_step(J_space, twist_parts(dR, dp))
+        T_error = np.zeros_like(T)  # T_target T⁻¹: the error twist in the space frame
+        T_error[..., :3, :3] = dR = problem.R[rows] @ np.swapaxes(R, -1, -2)
+        T_error[..., :3, 3] = problem.p[rows] - (dR @ p[..., None])[..., 0]
+        T_error[..., 3, 3] = 1.0
+        return _pinv_step(J_space, se3_log(T_error, check=False))
 
 
 #: The step rules by ``method`` name.
@@ -465,7 +465,7 @@ def _iterate_one(problem, rule, q0, *, max_iterations, max_restarts, max_step, s
             attempt, since_progress, attempt_best = 0, 0, math.inf
             rule.restart(0)
             rng = np.random.default_rng(seed) if rng is None else rng
-            q = problem.random_configuration(rng, 1)[0]
+            q = random_configurations(problem.robot, (), rng)
             T, e, pos, rot = problem.evaluate_one(q)
             continue
         J = problem.jacobian_one(q)
@@ -518,7 +518,7 @@ def _iterate(problem, rule, Q0, candidates, *, max_iterations, max_restarts, max
                 restarts[fresh] += 1
                 attempt[fresh], since_progress[fresh], attempt_best[fresh] = 0, 0, np.inf
                 rule.restart(fresh)
-                q[fresh] = problem.random_configuration(rng, len(fresh))
+                q[fresh] = random_configurations(problem.robot, len(fresh), rng)
                 T[again], e[again], pos[again], rot[again] = problem.evaluate(q[fresh], fresh)
             go = ~done & ~(stalled & ~again)
         else:

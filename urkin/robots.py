@@ -34,6 +34,7 @@ __all__ = [
     "T_BASE_LINK_BASE",
     "Robot",
     "check_robot",
+    "random_configurations",
     "robot",
 ]
 
@@ -241,3 +242,32 @@ def robot(name: str) -> Robot:
         raise KeyError(
             f"unknown robot {name!r}; urkin knows {', '.join(ROBOTS)} (case does not matter)"
         ) from None
+
+
+def random_configurations(
+    robot: Robot, shape: int | tuple[int, ...] = (), seed: int | np.random.Generator = 0
+) -> np.ndarray:
+    """Seeded joint configurations drawn uniformly within ``robot``'s limits and (−π, π].
+
+    Parameters
+    ----------
+    robot : Robot
+    shape : int or tuple of int
+        Leading shape; ``()`` (default) for one configuration.
+    seed : int or numpy.random.Generator
+
+    Returns
+    -------
+    ndarray, shape (*shape, 6)
+
+    Examples
+    --------
+    >>> q = random_configurations(robot("ur5"), (2, 3), seed=1)
+    >>> q.shape, bool((abs(q) <= math.pi).all())
+    ((2, 3, 6), True)
+    """
+    arm = check_robot(robot)
+    size = (shape,) if isinstance(shape, int) else tuple(shape)
+    lower = np.maximum([lo for lo, _ in arm.joint_limits], -math.pi)
+    upper = np.minimum([hi for _, hi in arm.joint_limits], math.pi)
+    return np.random.default_rng(seed).uniform(lower, upper, (*size, 6))

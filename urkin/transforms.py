@@ -44,7 +44,6 @@ __all__ = [
     "so3_exp",
     "so3_log",
     "twist_matrix",
-    "twist_parts",
     "twist_vector",
     "unskew",
     "wrap_angles",
@@ -419,7 +418,7 @@ def so3_exp(omega: ArrayLike) -> np.ndarray:
     return np.eye(3) + a * W + b * (W @ W)
 
 
-def so3_log(R: ArrayLike) -> np.ndarray:
+def so3_log(R: ArrayLike, *, check: bool = True) -> np.ndarray:
     """Rotation vector ``ω = θ k`` of a rotation matrix, with ``θ`` in [0, π].
 
     Accurate over the whole range, including angles near 0 and exactly π (where the axis is
@@ -428,7 +427,10 @@ def so3_log(R: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     R : array_like, shape (..., 3, 3)
-        Rotation matrices (validated with :func:`check_rotation`).
+        Rotation matrices.
+    check : bool
+        Validate ``R`` with :func:`check_rotation` (default).  ``check=False`` is for inner
+        loops that pass float rotations they computed themselves.
 
     Returns
     -------
@@ -441,11 +443,13 @@ def so3_log(R: ArrayLike) -> np.ndarray:
     >>> np.round(so3_log(rot_y(np.pi)), 12)
     array([0.        , 3.14159265, 0.        ])
     """
-    return rotation_parts(check_rotation(R))[2]
+    return rotation_parts(R, check=check)[2]
 
 
-def rotation_parts(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(sin θ · k, θ, θ · k)`` of rotation matrices, without input checks (inner loops).
+def rotation_parts(
+    R: ArrayLike, *, check: bool = True
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(sin θ · k, θ, θ · k)`` of rotation matrices: :func:`so3_log` with its by-products.
 
     ``sin θ · k`` is the axial vector of the antisymmetric part of ``R`` (the course reports'
     cross-product orientation error); ``θ = atan2(‖sin θ k‖, (trace − 1)/2)`` is accurate at
@@ -458,6 +462,8 @@ def rotation_parts(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     >>> float(angle), omega.round(12) + 0.0
     (0.5, array([0. , 0. , 0.5]))
     """
+    if check:
+        R = check_rotation(R)
     s = 0.5 * np.stack(
         [R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]],
         axis=-1,
@@ -556,22 +562,29 @@ def pose_error(T1: ArrayLike, T2: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     return np.sqrt(np.sum(dp * dp, axis=-1)), angle
 
 
-def wrap_angles(q: ArrayLike) -> np.ndarray:
+def wrap_angles(q: ArrayLike, *, check: bool = True, out: np.ndarray | None = None) -> np.ndarray:
     """Angles wrapped into (−π, π], the one interval urkin uses everywhere.
 
     NaN stays NaN (the rows of a stack of closed-form solutions that are not solutions).
+
+    Parameters
+    ----------
+    q : array_like
+        Angles in radians, any shape.
+    check : bool
+        Validate ``q`` (numbers, not complex).  ``check=False`` is for inner loops that pass a
+        float array they built themselves.
+    out : ndarray, optional
+        Where to write the result (``out=q`` wraps a float array in place).
 
     Examples
     --------
     >>> wrap_angles([np.pi, -np.pi, 3 * np.pi / 2, 0.5])
     array([ 3.14159265,  3.14159265, -1.57079633,  0.5       ])
     """
-    return _wrap(real(q, "q", finite=False))
-
-
-def _wrap(angles: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
-    """:func:`wrap_angles` of a float array, without input checks (inner loops); in place
-    with ``out=angles``."""
+    angles = real(q, "q", finite=False) if check else q
+    # ceil((x − π)/2π) counts the turns to remove; −π lands on π exactly (the division by 2π
+    # is kept rather than a multiplication by 1/2π, which is not exact at x = −π)
     turns = np.ceil((angles - np.pi) / (2.0 * np.pi))
     turns *= 2.0 * np.pi
     return np.subtract(angles, turns, out=out)
@@ -762,7 +775,7 @@ def se3_exp(V: ArrayLike) -> np.ndarray:
     return T
 
 
-def se3_log(T: ArrayLike) -> np.ndarray:
+def se3_log(T: ArrayLike, *, check: bool = True) -> np.ndarray:
     """Exponential coordinates ``V = (ω, v)`` of a rigid-body transform, ``‖ω‖ ≤ π``.
 
     The inverse of :func:`se3_exp`: ``ω = log(R)`` and ``v = G⁻¹ p`` with
@@ -771,6 +784,9 @@ def se3_log(T: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     T : array_like, shape (..., 4, 4)
+    check : bool
+        Validate ``T`` with :func:`check_transform` (default).  ``check=False`` is for inner
+        loops that pass float transforms they computed themselves.
 
     Returns
     -------
@@ -782,21 +798,10 @@ def se3_log(T: ArrayLike) -> np.ndarray:
     >>> np.allclose(se3_log(se3_exp(V)), V)
     True
     """
-    array = check_transform(T)
-    return twist_parts(array[..., :3, :3], array[..., :3, 3])
-
-
-def twist_parts(R: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """:func:`se3_log` of the transform ``(R, p)``, without input checks (inner loops).
-
-    Examples
-    --------
-    >>> V = np.array([0.1, -0.2, 0.3, 0.4, 0.5, -0.6])
-    >>> T = se3_exp(V)
-    >>> np.allclose(twist_parts(T[:3, :3], T[:3, 3]), V)
-    True
-    """
-    _, theta, omega = rotation_parts(R)
+    if check:
+        T = check_transform(T)
+    p = T[..., :3, 3]
+    _, theta, omega = rotation_parts(T[..., :3, :3], check=False)
     theta = theta[..., None, None]
     W = skew(omega)
     small = theta < 1e-4
@@ -811,7 +816,7 @@ def twist_parts(R: np.ndarray, p: np.ndarray) -> np.ndarray:
     return np.concatenate([omega, v], axis=-1)
 
 
-def adjoint(T: ArrayLike) -> np.ndarray:
+def adjoint(T: ArrayLike, *, check: bool = True) -> np.ndarray:
     """Adjoint ``Ad_T = [[R, 0], [[p] R, R]]``, mapping twists ``(ω, v)`` through ``T``.
 
     If ``V_b`` is a twist in frame b and ``T = T_a_b``, then ``V_a = Ad_T @ V_b``.
@@ -819,6 +824,8 @@ def adjoint(T: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     T : array_like, shape (..., 4, 4)
+    check : bool
+        Validate ``T`` with :func:`check_transform` (default); ``check=False`` for inner loops.
 
     Returns
     -------
@@ -831,11 +838,8 @@ def adjoint(T: ArrayLike) -> np.ndarray:
     >>> np.allclose(twist_matrix(adjoint(T) @ V), T @ twist_matrix(V) @ inv_transform(T))
     True
     """
-    return _adjoint(check_transform(T))
-
-
-def _adjoint(T: np.ndarray) -> np.ndarray:
-    """:func:`adjoint` without input checks, for inner loops."""
+    if check:
+        T = check_transform(T)
     R, p = T[..., :3, :3], T[..., :3, 3]
     P = np.zeros((*T.shape[:-2], 3, 3))
     P[..., 0, 1], P[..., 0, 2] = -p[..., 2], p[..., 1]

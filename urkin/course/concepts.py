@@ -88,7 +88,6 @@ ROTATION_LOG = (
     transforms.so3_log,
     transforms.rotation_parts,
     transforms.se3_log,
-    transforms.twist_parts,
     numerical_ik,
 )
 #: Every inverse kinematics solver: numerical, closed form and the lab's (the numerical solver's

@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin.analytic_ik import wrap_angles
+from urkin.transforms import wrap_angles
 from urkin.kinematics import fk
 from urkin.robots import Robot
 from urkin.transforms import make_transform, rot_z

@@ -20,6 +20,7 @@ from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_pose, random_rotation
 from urkin.course.submission import StudentRaised
 from urkin.transforms import (
+    wrap_angles,
     inv_transform,
     make_transform,
     rot_x,
@@ -57,11 +58,6 @@ def _matrix(value, shape, what, inputs, wrong_shapes):
             raise exc from None
         exc.mistake = exc.mistake or wrong_shapes.get(got_shape)
         raise
-
-
-def _wrap(angles):
-    """Angles in (−π, π]."""
-    return -np.remainder(-np.asarray(angles, dtype=float) + np.pi, 2 * np.pi) + np.pi
 
 
 # ------------------------------------------------------------------------------ 1.1 rot_z
@@ -344,7 +340,7 @@ _RPY_SHAPES = {
 
 def _second_solution(rpy):
     roll, pitch, yaw = rpy
-    return _wrap([roll + np.pi, np.pi - pitch, yaw + np.pi])
+    return wrap_angles([roll + np.pi, np.pi - pitch, yaw + np.pi])
 
 
 def _rpy_hypotheses(R):
@@ -377,7 +373,7 @@ def _rpy_hypotheses(R):
 
 def _rpy_diagnosis(got, expected):
     """Which of the three angles are wrong, when the hypotheses do not say."""
-    difference = _wrap(np.asarray(got, dtype=float) - expected)
+    difference = wrap_angles(np.asarray(got, dtype=float) - expected)
     names = ("roll", "pitch", "yaw")
     wrong = [n for n, d in zip(names, difference) if abs(d) > 1e-6]
     right = [n for n in names if n not in wrong]

@@ -20,6 +20,7 @@ from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import negated_a, random_arm, random_q
 from urkin.kinematics import SINGULARITIES, dh_transform, singularity_factors
 from urkin.poe import space_from_geometric
+from urkin.transforms import wrap_angles
 
 _fk, _fk_frames, _jacobian = urkin.fk, urkin.fk_frames, urkin.jacobian
 
@@ -474,17 +475,13 @@ def _factor(arm, q) -> float:
     return float(singularity_factors(arm, q)[0])
 
 
-def _wrap(angle: float) -> float:
-    return float((angle + np.pi) % (2 * np.pi) - np.pi)
-
-
 def _shoulder_q4(arm, q, target: float) -> float | None:
     """q4 that makes the shoulder factor equal ``target`` (None if the wrist cannot)."""
     reach = arm.a2 * np.cos(q[1]) + arm.a3 * np.cos(q[1] + q[2])
     s = (target - reach) / arm.d5
     if abs(s) > 0.95:
         return None
-    return _wrap(np.arcsin(s) - q[1] - q[2])
+    return float(wrap_angles(np.arcsin(s) - q[1] - q[2]))
 
 
 def _configuration(arm, rng, families=(), near: dict | None = None) -> np.ndarray:
@@ -497,14 +494,14 @@ def _configuration(arm, rng, families=(), near: dict | None = None) -> np.ndarra
             if family in families:
                 q[joint] = rng.choice([0.0, np.pi, -np.pi])
             elif family in near:
-                q[joint] = _wrap(np.arcsin(near[family]) + rng.choice([0.0, np.pi]))
+                q[joint] = wrap_angles(np.arcsin(near[family]) + rng.choice([0.0, np.pi]))
         if "shoulder" in families or "shoulder" in near:
             target = near.get("shoulder", 0.0)
             # choose q2 so that the reach is within the wrist's d5 of the target
             A, B = arm.a2 + arm.a3 * np.cos(q[2]), -arm.a3 * np.sin(q[2])
             K = float(np.hypot(A, B))
             reach = rng.uniform(-0.8, 0.8) * min(arm.d5, K)
-            q[1] = _wrap(np.arctan2(B, A) + rng.choice([-1.0, 1.0]) * np.arccos(reach / K))
+            q[1] = wrap_angles(np.arctan2(B, A) + rng.choice([-1.0, 1.0]) * np.arccos(reach / K))
             q4 = _shoulder_q4(arm, q, target)
             if q4 is None:
                 continue

@@ -11,14 +11,10 @@ from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_arm, random_pose, random_regular_q
 from urkin.course.submission import StudentRaised
 from urkin.numerical_ik import orientation_error
-from urkin.transforms import make_transform, rotation_angle, so3_exp
+from urkin.transforms import make_transform, rotation_angle, so3_exp, wrap_angles
 
 _fk, _ik, _jacobian = urkin.fk, urkin.ik, urkin.jacobian
 _orientation_error = orientation_error
-
-
-def _wrap(q):
-    return (np.asarray(q, dtype=float) + np.pi) % (2.0 * np.pi) - np.pi
 
 
 def _unit(rng) -> np.ndarray:
@@ -237,7 +233,7 @@ def _plain_newton(arm, T_target, q0, limit, norm, position_only) -> bool:
         J = _jacobian(arm, q)
         step = np.linalg.pinv(J[:3] if position_only else J) @ e
         size = np.linalg.norm(step) if norm else np.abs(step).max()
-        q = _wrap(q + step * min(1.0, limit / max(size, 1e-300)))
+        q = wrap_angles(q + step * min(1.0, limit / max(size, 1e-300)))
     return False
 
 
@@ -283,11 +279,11 @@ _TOO_EARLY = (
 
 def _check_reached(arm, q, q0, T_target, what, inputs, position_only=False):
     """Raise Mismatch unless fk(arm, q) reaches the target within 1e-8 (float32: its precision)."""
-    if np.max(np.abs(_wrap(q - np.asarray(q0, dtype=float)))) < 1e-12:
+    if np.max(np.abs(wrap_angles(q - np.asarray(q0, dtype=float)))) < 1e-12:
         raise Mismatch(
             f"{what} returned its initial guess unchanged", inputs=inputs, got=q, mistake=_UNCHANGED
         )
-    T = _fk(arm, _wrap(q))  # fk takes angles within a few turns: wrap the answer first
+    T = _fk(arm, wrap_angles(q))  # fk takes angles within a few turns: wrap the answer first
     position = float(np.linalg.norm(T[:3, 3] - T_target[:3, 3]))
     angle = 0.0 if position_only else float(rotation_angle(T[:3, :3], T_target[:3, :3]))
     tol = tolerance(1e-8, like=q)
@@ -354,7 +350,7 @@ def _one_step(sub, name, arm, target, q0, max_step, inputs):
             call,
             inputs,
         )
-        d = _wrap(q - q0)
+        d = wrap_angles(q - q0)
         if np.abs(d).max() > 1e-12:
             return q, d, call
     raise Mismatch(
@@ -408,7 +404,7 @@ def _judge_step(q, d, steps, max_step, call, inputs, hypotheses, ignores_iterati
         )
     s = steps[0]
     mistake = None
-    if any(close(d, _wrap(step), 1e-9) for step in steps):  # the whole step, then wrapped
+    if any(close(d, wrap_angles(step), 1e-9) for step in steps):  # the whole step, then wrapped
         mistake = _NO_LIMIT
     elif ignores_iterations():
         mistake = _ITERATIONS
@@ -481,7 +477,7 @@ def _check_wrapped(q, what, inputs):
         f"{what} must return joint angles wrapped into [−π, π) (the same arm pose without extra "
         "turns); this start has whole extra turns on some joints",
         inputs=inputs,
-        expected=_wrap(q),
+        expected=wrap_angles(q),
         got=q,
         mistake=mistake or _NOT_WRAPPED,
     )

@@ -15,16 +15,12 @@ from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_arm, random_q, random_regular_q
 from urkin.course.submission import StudentRaised
 from urkin.numerical_ik import orientation_error
-from urkin.transforms import rotation_angle
+from urkin.transforms import rotation_angle, wrap_angles
 
 _fk, _ik, _jacobian = urkin.fk, urkin.ik, urkin.jacobian
 _orientation_error = orientation_error
 
 _HOME = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])
-
-
-def _wrap(q):
-    return (np.asarray(q, dtype=float) + np.pi) % (2.0 * np.pi) - np.pi
 
 
 def _random_qs(rng, count: int) -> np.ndarray:
@@ -341,9 +337,9 @@ def _plain_lm(arm, T_target, q0, down, up, mu, limit, iterations=200) -> tuple[b
         J = _jacobian(arm, q)
         step = np.linalg.solve(J.T @ J + mu * np.eye(6), J.T @ e)
         step *= min(1.0, limit / max(np.abs(step).max(), 1e-300))
-        trial = _pose_error(arm, _wrap(q + step), T_target)
+        trial = _pose_error(arm, wrap_angles(q + step), T_target)
         if trial @ trial < e @ e:
-            q, e, mu = _wrap(q + step), trial, max(mu / down, 1e-12)
+            q, e, mu = wrap_angles(q + step), trial, max(mu / down, 1e-12)
             kept += 1
         else:
             if not rejected and np.all(_norms(trial) > 1.01 * _norms(e)):
@@ -538,7 +534,7 @@ def _check_lm_reached(arm, T_target, q0, value, trace, start, inputs):
             got=q,
             mistake=_UNCHANGED,
         )
-    T = _fk(arm, _wrap(q))  # fk takes angles within a few turns: wrap the answer first
+    T = _fk(arm, wrap_angles(q))  # fk takes angles within a few turns: wrap the answer first
     position = float(np.linalg.norm(T[:3, 3] - T_target[:3, 3]))
     angle = float(rotation_angle(T[:3, :3], T_target[:3, :3]))
     tol = tolerance(1e-8, like=q)
@@ -622,7 +618,7 @@ def _kept(arm, q, step, J_next) -> float | None:
     tol = 1e-9 * max(1.0, float(np.abs(J_next).max()))
 
     def gap(c):
-        return float(np.abs(_jacobian(arm, _wrap(q + c * step)) - J_next).max())
+        return float(np.abs(_jacobian(arm, wrap_angles(q + c * step)) - J_next).max())
 
     if gap(0.0) <= tol:
         return 0.0

@@ -10,7 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from urkin.analytic_ik import ik_analytic, wrap_angles
+from urkin.analytic_ik import ik_analytic
+from urkin.transforms import wrap_angles
 from urkin.course import concepts
 from urkin.course.compare import Mismatch, as_array, close, format_array, tolerance
 from urkin.course.exercise import Check, Exercise, Lesson
