@@ -241,7 +241,7 @@ class StepRule:
     max_step : float
         Default largest change of any joint in one step (radians; ``inf``: no limit).
     patience : int
-        An attempt restarts when its error has not fallen below 90 % of its best for this many
+        An attempt restarts when its error has not fallen below 99 % of its best for this many
         iterations.
     """
 
@@ -389,9 +389,12 @@ class MatrixLog(StepRule):
     """Modern Robotics' ``IKinSpace``: ``Δq = J_s⁺ V_s``, ``V_s = log(T_target T⁻¹)``.
 
     Modern Robotics takes full steps; pass ``max_step=math.inf`` to :func:`urkin.ik` for its
-    exact iteration (the default keeps the 1 rad limit of the other rules)."""
+    exact iteration (the default keeps the 1 rad limit of the other rules).  Full Newton steps
+    on the twist can wander for a dozen iterations before they converge, so an attempt gets
+    Modern Robotics' whole budget of 20 iterations to make progress."""
 
     name = "poe"
+    patience = 20
 
     def step(self, problem, rows, T, J, e):
         p, R = T[..., :3, 3], T[..., :3, :3]
@@ -425,8 +428,10 @@ def _rule(method: str | StepRule, damping: float) -> StepRule:
 # ----------------------------------------------------------------------------- the core
 
 #: An attempt restarts when its error has not fallen below _PROGRESS × its best for the rule's
-#: patience (a local minimum), or after max_iterations in all.
-_PROGRESS = 0.9
+#: patience (a local minimum), or after max_iterations in all.  Progress means 1 %: near a
+#: nearly singular solution LM's damped steps gain only a few per cent per iteration, and a
+#: 10 % rule restarted them there (178 unsolved in 1e6 random UR5 poses; 70 with 1 %).
+_PROGRESS = 0.99
 
 
 def _limited(step: np.ndarray, max_step: float) -> np.ndarray:
