@@ -11,7 +11,9 @@ import numpy as np
 import pytest
 
 import urkin
+from urkin import numerical_ik
 from urkin.numerical_ik import _rotation_parts_one
+from urkin.robots import random_configurations
 from urkin.transforms import (
     check_rotation,
     check_transform,
@@ -162,3 +164,46 @@ def test_small_stacks_take_the_one_pose_code_with_the_stack_layout(size):
         assert gap.max() < 1e-6  # row i is branch i in both; double roots may round apart
     grid = urkin.fk(arm, q[:6].reshape(2, 3, 6))
     assert grid.shape == (2, 3, 4, 4) and urkin.ik_analytic(arm, grid).shape == (2, 3, 8, 6)
+
+
+@pytest.mark.parametrize("lead", [(2,), (3,), (2, 4)])
+def test_a_few_ik_targets_are_solved_exactly_as_if_alone(lead):
+    """Up to eight targets go one by one through the single path: each result equals the
+    single call's (same configuration, iterations and restarts), in the stack's axes."""
+    arm = urkin.robot("ur5")
+    q = random_configurations(arm, lead, seed=21)
+    targets = urkin.fk(arm, q)
+    # one target out of reach, to show failures are stacked too
+    targets[(0,) * len(lead) + (slice(0, 3), 3)] = [3.0, 0.0, 0.0]
+    batch = urkin.ik(arm, targets)
+    assert batch.q.shape == (*lead, 6) and np.shape(batch.success) == lead
+    flat_targets, flat_q = targets.reshape(-1, 4, 4), batch.q.reshape(-1, 6)
+    flat_reason = np.array(batch.reason, dtype=object).reshape(-1)
+    for i, T in enumerate(flat_targets):
+        one = urkin.ik(arm, T)
+        np.testing.assert_array_equal(flat_q[i], one.q)
+        assert np.ravel(batch.iterations)[i] == one.iterations
+        assert np.ravel(batch.success)[i] == one.success
+        assert flat_reason[i] == one.reason
+    assert not np.ravel(batch.success)[0] and "unreachable" in flat_reason[0]
+
+
+def test_a_dwindling_batch_hands_its_last_targets_to_the_single_path(monkeypatch):
+    """The last few unsolved targets of a batch are finished on the single path (each once),
+    and every result is still verified with fk."""
+    arm = urkin.robot("ur5")
+    targets = urkin.fk(arm, random_configurations(arm, 60, seed=5))
+    handed = []
+    single = numerical_ik._iterate_one
+
+    def spy(problem, *args, **kwargs):
+        handed.append(kwargs["seed"])
+        return single(problem, *args, **kwargs)
+
+    monkeypatch.setattr(numerical_ik, "_iterate_one", spy)
+    result = urkin.ik(arm, targets)
+    rows = [row for _, row in handed]
+    assert 1 <= len(rows) <= numerical_ik._HAND_OFF and len(set(rows)) == len(rows)
+    assert result.success.all()
+    position, angle = pose_error(urkin.fk(arm, result.q), targets)
+    assert position.max() <= 1e-10 and angle.max() <= 1e-10

@@ -21,7 +21,7 @@ from urkin.kinematics import fk, flange_pose
 from urkin.robots import Robot
 from urkin.transforms import pose_error
 
-__all__ = ["IKResult", "no_solution_reason", "unreachable", "verified"]
+__all__ = ["IKResult", "no_solution_reason", "stacked", "unreachable", "verified"]
 
 
 @dataclass
@@ -234,16 +234,38 @@ def verified(
     result = IKResult(
         q, success, residual, position_error, rotation_error, iterations, restarts, why
     )
-    if lead == ():
-        return result[0]
-    if len(lead) > 1:
-        shaped = np.empty(n, dtype=object)
-        shaped[:] = why
-        result = IKResult(
-            q.reshape(*lead, 6),
-            *(a.reshape(lead) for a in (success, residual, position_error, rotation_error)),
-            iterations.reshape(lead),
-            restarts.reshape(lead),
-            shaped.reshape(lead).tolist(),
+    return result[0] if lead == () else _with_leading_axes(result, lead)
+
+
+def stacked(results: list[IKResult], lead: tuple[int, ...]) -> IKResult:
+    """One result for a stack of targets from the results of its targets solved one by one,
+    with the stack's leading axes ``lead``."""
+    columns = [
+        np.array([getattr(r, name) for r in results])
+        for name in (
+            "success",
+            "residual",
+            "position_error",
+            "orientation_error",
+            "iterations",
+            "restarts",
         )
-    return result
+    ]
+    flat = IKResult(np.stack([r.q for r in results]), *columns, [r.reason for r in results])
+    return _with_leading_axes(flat, lead)
+
+
+def _with_leading_axes(result: IKResult, lead: tuple[int, ...]) -> IKResult:
+    """A flat result (one leading axis) reshaped to the leading axes ``lead``."""
+    if len(lead) <= 1:
+        return result
+    shaped = np.empty(len(result.reason), dtype=object)
+    shaped[:] = result.reason
+    fields = (result.success, result.residual, result.position_error, result.orientation_error)
+    return IKResult(
+        result.q.reshape(*lead, 6),
+        *(a.reshape(lead) for a in fields),
+        result.iterations.reshape(lead),
+        result.restarts.reshape(lead),
+        shaped.reshape(lead).tolist(),
+    )
