@@ -59,6 +59,7 @@ lessons: $(STAMP)
 bench: $(STAMP)
 	$(PY) bench/kinematics.py
 	$(PY) bench/ik.py
+	$(PY) bench/ik_success.py
 	$(PY) bench/ik_analytic.py
 	$(PY) bench/grading.py
 

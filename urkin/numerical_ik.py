@@ -45,6 +45,7 @@ the iteration aims at the nearest rotation, and when the given one is further fr
 
 from __future__ import annotations
 
+import copy
 import functools
 import math
 
@@ -266,6 +267,12 @@ class StepRule:
     def restart(self, rows: np.ndarray) -> None:
         """A new attempt begins for these targets (nothing to reset by default)."""
 
+    def for_row(self, row: int) -> StepRule:
+        """This rule for target ``row`` alone, its attempt's state kept: how a stack hands a
+        target to the single path.  Rules with per-target state override it (the default
+        suits rules without state)."""
+        return self
+
     def step(self, problem: _Problem, rows, T, J, e) -> np.ndarray:
         raise NotImplementedError
 
@@ -346,6 +353,11 @@ class LevenbergMarquardt(StepRule):
 
     def restart(self, rows):
         self.mu[rows], self.nu[rows] = np.nan, 2.0
+
+    def for_row(self, row):
+        one = copy.copy(self)
+        one.mu, one.nu = self.mu[row : row + 1].copy(), self.nu[row : row + 1].copy()
+        return one
 
     def step(self, problem, rows, T, J, e):
         if J.ndim == 2:  # one target (rows is its index): the same step, fewer numpy calls
@@ -457,16 +469,25 @@ def _stalled(attempt, since_progress, given_up, patience: int, max_iterations: i
     return (attempt >= max_iterations) | (since_progress >= patience) | given_up
 
 
-def _iterate_one(problem, rule, q0, *, max_iterations, max_restarts, max_step, seed):
+def _iterate_one(
+    problem, rule, q0, *, max_iterations, max_restarts, max_step, seed, attempt_state=None
+):
     """:func:`_iterate` for one target, with the bookkeeping in Python floats: the same rules
     (called on unstacked arrays) and the same stall and restart policy.  Returns the best
     configuration, whether it met the tolerances, the iterations and restarts used and the
-    best residual."""
-    rule.start(1)
+    best residual.
+
+    ``attempt_state`` — ``(iterations in this attempt, iterations since progress, the
+    attempt's best residual)`` with ``rule`` already holding the attempt's state — continues
+    an attempt begun in a stack instead of starting one."""
     rng = None  # made at the first restart: most solves need none
     q, best_q, best = q0.copy(), q0.copy(), math.inf
-    iterations = attempt = restarts = since_progress = 0
-    attempt_best = math.inf
+    iterations = restarts = 0
+    if attempt_state is None:
+        rule.start(1)
+        attempt, since_progress, attempt_best = 0, 0, math.inf
+    else:
+        attempt, since_progress, attempt_best = attempt_state
     T, e, pos, rot = problem.evaluate_one(q)
     while True:
         residual = max(pos, rot)
@@ -509,9 +530,9 @@ def _iterate(problem, rule, Q0, candidates, *, max_iterations, max_restarts, max
     """The iteration loop over every unsolved target at once: returns the best configuration
     of each target, whether it met the tolerances, and the iterations and restarts used.
 
-    Once at most :data:`_HAND_OFF` targets are left (at once, for a small stack), each is
-    handed to :func:`_iterate_one`: it goes on from its current configuration with a new
-    attempt, the restarts it has left and its own restart stream (``(seed, row)``)."""
+    Once at most :data:`_HAND_OFF` targets are left, each is handed to :func:`_iterate_one`:
+    it goes on with its current attempt (configuration, damping, stall counters), the restarts
+    it has left and its own restart stream (``(seed, row)``)."""
     n = len(Q0)
     rule.start(n)
     rng = np.random.default_rng(seed)
@@ -575,12 +596,13 @@ def _iterate(problem, rule, Q0, candidates, *, max_iterations, max_restarts, max
     for r in rows.tolist():
         q_r, success[r], used, restarted, residual = _iterate_one(
             problem.row(r),
-            rule,
+            rule.for_row(r),
             q[r],
             max_iterations=max_iterations,
             max_restarts=max_restarts - int(restarts[r]),
             max_step=max_step,
             seed=(seed, r),
+            attempt_state=(int(attempt[r]), int(since_progress[r]), float(attempt_best[r])),
         )
         iterations[r] += used
         restarts[r] += restarted
