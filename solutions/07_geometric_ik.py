@@ -34,10 +34,9 @@ from matplotlib.patches import Arc, Circle, Patch, Wedge
 import urkin
 import urkin.kinematics
 import urkin.plot
-from urkin.analytic_ik import wrap_angles
 from urkin.course import below, check
 from urkin.course.lab import LAB_BASE_IN_WORLD, LAB_LINKS, LAB_OFFSET, lab_robot
-from urkin.transforms import make_transform, rot_x, rot_z, rotation_angle
+from urkin.transforms import make_transform, rot_x, rot_z, rotation_angle, wrap_angles
 
 np.set_printoptions(precision=4, suppress=True)
 

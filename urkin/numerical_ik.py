@@ -412,12 +412,9 @@ class MatrixLog(StepRule):
     """Modern Robotics' ``IKinSpace``: ``Δq = J_s⁺ V_s``, ``V_s = log(T_target T⁻¹)``.
 
     Modern Robotics takes full steps; pass ``max_step=math.inf`` to :func:`urkin.ik` for its
-    exact iteration (the default keeps the 1 rad limit of the other rules).  Full Newton steps
-    on the twist can wander for a dozen iterations before they converge, so an attempt gets
-    Modern Robotics' whole budget of 20 iterations to make progress."""
+    exact iteration (the default keeps the 1 rad limit of the other rules)."""
 
     name = "poe"
-    patience = 20
 
     def step(self, problem, rows, T, J, e):
         p, R = T[..., :3, 3], T[..., :3, :3]
