@@ -2,16 +2,17 @@
 targets.
 
 ``urkin.ik(robot, target, q0=None, method="lm")`` finds joint angles ``q`` with
-``fk(robot, q) ≈ target``.  The core (:func:`_iterate`) owns everything the step rules share, for
-one target or a stack of them alike (a single target is a stack of one, evaluated with the
-generated one-pose kinematics):
+``fk(robot, q) ≈ target``.  The core owns everything the step rules share, with the same rules
+for one target (:func:`_iterate_one`, bookkeeping in Python floats on the generated one-pose
+kinematics) and for a stack (:func:`_iterate`, every unsolved target a row; a stack of up to
+eight targets is solved target by target, and a stack's last few unsolved targets are handed to
+the single path, each continuing its attempt):
 
 * an error that is re-measured after every step (a step rule may reject a trial step);
 * separate tolerances on the position (metres) and the orientation (radians);
 * step limiting (no joint moves more than ``max_step`` radians in one step);
 * angle wrapping into (−π, π] and the robot's joint limits;
-* restarts from seeded random configurations when an attempt stalls (restarted targets stay
-  rows of the same stack);
+* restarts from seeded random configurations when an attempt stalls;
 * verification: success is reported only when the pose error of the returned ``q``, measured
   with :func:`urkin.fk` against the target as given, is within both tolerances.
 
@@ -269,9 +270,11 @@ class StepRule:
 
     def for_row(self, row: int) -> StepRule:
         """This rule for target ``row`` alone, its attempt's state kept: how a stack hands a
-        target to the single path.  Rules with per-target state override it (the default
-        suits rules without state)."""
-        return self
+        target to the single path.  Rules with per-target state override it to keep that
+        state; the default gives a copy with the state of a new attempt."""
+        one = copy.copy(self)
+        one.start(1)
+        return one
 
     def step(self, problem: _Problem, rows, T, J, e) -> np.ndarray:
         raise NotImplementedError
@@ -747,9 +750,8 @@ def ik(
             if robot._plain
             else Robot(robot.name, *robot.lengths, joint_limits=robot.joint_limits)
         )
-        exact = min(1e-14, 0.1 * tol_orientation)
-        if n <= _HAND_OFF and all(_is_rotation_one(g, exact) for g in goal.tolist()):
-            rigid, skew_angle = goal, np.zeros(n)  # orthonormal already: no SVD
+        if n == 1 and _is_rotation_one(goal[0].tolist(), min(1e-14, 0.1 * tol_orientation)):
+            rigid, skew_angle = goal, np.zeros(1)  # orthonormal already: no SVD
         else:
             rigid = goal.copy()
             rigid[:, :3, :3] = orthonormalize(goal[:, :3, :3])
