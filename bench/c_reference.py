@@ -46,9 +46,9 @@ def _c_function(name: str, function) -> str:
     body, entries = [], []
     for line in lines[2:]:
         text = line.strip()
-        if text.startswith("out = ") or text == "return out":
+        if text.startswith(("out = ", "if out is None")) or text == "return out":
             continue
-        match = re.match(r"_pack\d+\(out, 0, (.*)\)$", text)
+        match = re.match(r"_pack\d+\(out, at, (.*)\)$", text)
         if match:
             entries = _split(match.group(1))
             continue

@@ -37,6 +37,30 @@ def test_batches_larger_than_a_block_match_single_poses(rng):
         np.testing.assert_allclose(J[i], urkin.jacobian(ur10, Q[i]), rtol=0, atol=1e-14)
 
 
+def test_column_code_cos_sin_match_numpy_over_the_whole_angle_range(rng):
+    # the batched code takes cos and sin from tan(angle / 2); angles reach ±8π per joint and
+    # ±24π as sums, and the tangent is largest next to odd multiples of π
+    from urkin._generated.ur_kinematics import _cos_sin
+
+    odd = np.pi * np.arange(-23, 24, 2)
+    near = (odd[:, None] + np.array([-1e-8, -1e-15, 0.0, 1e-15, 1e-8])).ravel()
+    angles = np.concatenate([rng.uniform(-24 * np.pi, 24 * np.pi, 100_000), near])
+    c, s = np.empty_like(angles), np.empty_like(angles)
+    _cos_sin(angles, c, s)
+    np.testing.assert_allclose(c, np.cos(angles), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(s, np.sin(angles), rtol=0, atol=1e-15)
+
+
+def test_complex_batches_larger_than_a_block_keep_their_derivative(rng):
+    ur5 = urkin.robot("ur5")
+    Q = random_q(rng, 4100)
+    h = 1e-20
+    T = urkin.fk(ur5, Q + 1j * h * np.eye(6)[2])  # d/dq3 by complex step, over three blocks
+    for i in (0, 2500, 4099):
+        dT = complex_step_jacobian(OFFICIAL_DH["UR5"], Q[i])  # columns [v; ω]
+        np.testing.assert_allclose(T[i, :3, 3].imag / h, dT[:3, 2], rtol=0, atol=1e-12)
+
+
 def test_fk_frames_are_the_partial_products(arm, rng):
     from tests.reference import dh_matrix, dh_table
 

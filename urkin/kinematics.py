@@ -45,22 +45,24 @@ __all__ = [
 MAX_JOINT_ANGLE = 8 * math.pi
 
 
-#: Batches are evaluated in blocks of this many poses, which keeps temporaries in cache.
-_BLOCK = 2048
+#: Batches are evaluated in blocks of this many poses, which keeps the workspace in cache (not a
+#: power of two: rows 16 kB apart would compete for the same cache sets).
+_BLOCK = 2000
 #: Up to this many poses, a stack is evaluated pose by pose with the one-pose code: the column
 #: code's fixed cost (~100 numpy calls) is then larger than the rows' (bench/kinematics.py).
 _FEW = 24
 
 
 def _many(function, array: np.ndarray, robot: Robot, shape: tuple[int, ...]) -> np.ndarray:
-    """Evaluate a generated ``*_many`` function block by block into one output array."""
+    """Evaluate a generated ``*_many`` function block by block into one output array, with one
+    contiguous workspace for all blocks."""
     n = array.shape[0]
-    if n <= _BLOCK:
-        return function(array, *robot.lengths)
-    out = np.empty((n, *shape))
+    out = np.empty((n, *shape), dtype=array.dtype)
+    work = np.empty((function.work_rows, min(n, _BLOCK)), dtype=array.dtype)
+    lengths = robot.lengths
     for start in range(0, n, _BLOCK):
         stop = start + _BLOCK
-        function(array[start:stop], *robot.lengths, out=out[start:stop])
+        function(array[start:stop], *lengths, out=out[start:stop], work=work)
     return out
 
 
@@ -84,6 +86,10 @@ def _joints(
     values = _six(q)
     if values is not None:  # the common case, checked without building another array
         return q.reshape(1, 6), (), values
+    if type(q) is np.ndarray and q.dtype is _FLOAT and q.ndim > 1 and q.shape[-1] == 6 and q.size:
+        # a float stack: two reductions check it (NaN fails both comparisons)
+        if -MAX_JOINT_ANGLE <= q.min() and q.max() <= MAX_JOINT_ANGLE:
+            return q.reshape(-1, 6), q.shape[:-1], None
     array = real(q, name, complex_ok=complex_ok)  # NaN and infinity are refused here
     if array.ndim == 0 or array.shape[-1] != 6:
         raise ValueError(
@@ -137,6 +143,15 @@ def _six(q: ArrayLike) -> list[float] | None:
     return None
 
 
+def _one_row(q: ArrayLike) -> list[float] | None:
+    """:func:`_six` for a stack of one configuration, shape (1, 6)."""
+    if type(q) is np.ndarray and q.shape == (1, 6) and q.dtype is _FLOAT:
+        (values,) = q.tolist()
+        if _in_range(values):
+            return values
+    return None
+
+
 def _few(q: ArrayLike) -> list[list[float]] | None:
     """The rows of ``q`` when it is a small stack (k ≤ :data:`_FEW`, k, 6) of float angles, all
     finite and in range; else None (the general path checks ``q``)."""
@@ -168,6 +183,9 @@ def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> 
     values = _six(q)
     if values is not None:
         return one(*values, *robot.lengths)
+    values = _one_row(q)
+    if values is not None:  # a stack of one pose costs what one pose does
+        return one(*values, *robot.lengths)[None]
     rows = _few(q)
     if rows is None:
         array, lead, values = _joints(q, complex_ok=True)
@@ -178,14 +196,14 @@ def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> 
         rows = array.tolist()
     else:
         lead = (len(rows),)
-    # a few poses: the one-pose code row by row beats the column code's fixed cost
+    # a few poses: the one-pose code row by row, straight into the output, beats the column
+    # code's fixed cost
     lengths = robot.lengths
-    if len(rows) == 1:
-        return unstack(one(*rows[0], *lengths)[None], lead)
     out = np.empty((len(rows), *shape))
+    size = 8 * math.prod(shape)
     for i, row in enumerate(rows):
-        out[i] = one(*row, *lengths)
-    return unstack(out, lead)
+        one(*row, *lengths, out, i * size)
+    return out if len(lead) == 1 else unstack(out, lead)
 
 
 def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
