@@ -176,6 +176,9 @@ def test_complex_input_is_refused_unless_documented(call, message):
         (lambda: ik_closest(urkin.robot("ur5"), np.eye(4), np.zeros(5)), ValueError, "q_current"),
         (lambda: pose_error(np.eye(4), np.eye(3)), ValueError, "T2 must have shape"),
         (lambda: wrap_angles("a"), TypeError, "q must be numbers"),
+        (lambda: wrap_angles([0.0, np.inf]), ValueError, "q contains infinity"),
+        (lambda: rotation_angle(None), TypeError, "R1 must be numbers; got None"),
+        (lambda: urkin.fk(urkin.robot("ur5"), [0, None, 0, 0, 0, 0]), TypeError, "q must be num"),
     ],
 )
 def test_bad_input_names_the_argument(call, error, message):

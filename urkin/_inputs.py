@@ -53,6 +53,8 @@ def real(x: Any, name: str, *, complex_ok: bool = False, finite: bool = True) ->
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be numbers; got {type(x).__name__}") from exc
     kind = array.dtype.kind
+    if kind == "O" and any(item is None for item in array.flat):
+        raise TypeError(f"{name} must be numbers; got None" + (" in it" if array.ndim else ""))
     if kind == "O":
         try:
             array = array.astype(complex if complex_ok else float)
