@@ -52,7 +52,7 @@ _NOT_IN_VIEW = ("urkin.cli", "urkin.__main__")
 # library functions it calls are looked up when called, so they are the view's stand-ins).
 _RUNTIME = ("urkin.course.grading.child", "urkin.course.hidden", "urkin.course.wire")
 
-_STUDENT_COURSE_INIT = '''"""The course wing as a submission sees it while it is graded: check() does nothing."""
+_STUDENT_COURSE_INIT = '''"""The course wing as graded code sees it: check() does nothing."""
 
 import importlib
 

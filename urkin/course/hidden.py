@@ -30,7 +30,7 @@ class Hidden:
     Traceback (most recent call last):
     ...
     urkin.course.hidden.ForbiddenCallError: urkin.kinematics.fk is urkin's own answer to exercise 2.2 (or computes it): it earns no points there, so it is hidden while 2.2 is graded. Write the exercise with numpy.
-    """
+    """  # noqa: E501
 
     __slots__ = ("_exercise", "_name")
 

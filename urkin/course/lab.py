@@ -26,10 +26,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin.transforms import wrap_angles
 from urkin.kinematics import fk
 from urkin.robots import Robot
-from urkin.transforms import make_transform, rot_z
+from urkin.transforms import make_transform, rot_z, wrap_angles
 
 __all__ = ["LAB_LINKS", "fk_lab", "ik_lab", "lab_robot"]
 

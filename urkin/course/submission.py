@@ -269,7 +269,9 @@ class LocalSubmission(Submission):
         try:
             return wire.copy(value, lenient=True, trusted=False), calls
         except wire.WireError as exc:
-            raise StudentRaised("ValueError", f"the answer cannot be read: {exc}", "", inputs)
+            raise StudentRaised(
+                "ValueError", f"the answer cannot be read: {exc}", "", inputs
+            ) from None
 
     def code(self, name: str) -> dict[str, str]:
         sources = {}

@@ -36,7 +36,7 @@ def _quiet() -> None:
     os.dup2(devnull, 1)
     os.close(devnull)
     faulthandler.enable(file=sys.__stderr__)
-    sink = open(os.devnull, "w")  # noqa: SIM115  (lives as long as the process)
+    sink = open(os.devnull, "w")
     sys.stdout = sys.stderr = sink
 
 

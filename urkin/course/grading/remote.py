@@ -297,7 +297,9 @@ class RemoteSubmission(Submission):
                         )
                     )
         except (wire.WireError, TypeError, ValueError) as exc:
-            raise StudentRaised("ValueError", f"the answer cannot be read: {exc}", "", inputs)
+            raise StudentRaised(
+                "ValueError", f"the answer cannot be read: {exc}", "", inputs
+            ) from None
         return value, calls
 
     def code(self, name: str) -> dict[str, str]:

@@ -26,8 +26,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urkin.course.answers import PACKAGE, answer_for
-from urkin.course.exercise import Exercise, ExerciseResult, Lesson, link_dependencies
-from urkin.course.exercise import CheckResult, run_exercise
+from urkin.course.exercise import (
+    CheckResult,
+    Exercise,
+    ExerciseResult,
+    Lesson,
+    link_dependencies,
+    run_exercise,
+)
 from urkin.course.grading import isolation
 from urkin.course.grading.read import Notebook, Site, exercise_cells, read_notebook
 from urkin.course.grading.remote import RemoteSubmission

@@ -20,7 +20,6 @@ from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_pose, random_rotation
 from urkin.course.submission import StudentRaised
 from urkin.transforms import (
-    wrap_angles,
     inv_transform,
     make_transform,
     rot_x,
@@ -30,6 +29,7 @@ from urkin.transforms import (
     rpy_to_rotation,
     skew,
     so3_exp,
+    wrap_angles,
 )
 
 
