@@ -167,8 +167,10 @@ plt.show()
 # degrees — lesson 01).
 #
 # Rotating one joint moves everything after it. Here the shoulder sweeps from −π/2 to 0 while
-# the other joints stay at home; the flange traces an arc of radius equal to the arm's length
-# beyond the shoulder.
+# the other joints stay at home; the flange traces an arc about the shoulder axis. Its radius
+# is the flange's distance from that axis: at home the upper arm ($|a_2|$), the forearm
+# ($|a_3|$) and the wrist's $d_5$ stand in one line, so the radius is $|a_2| + |a_3| + d_5$
+# (the offsets $d_4$ and $d_6$ run along the shoulder axis and do not count).
 
 # %%
 sweep = np.tile(home, (40, 1))
@@ -185,6 +187,13 @@ plt.show()
 
 start, end = flange[0].round(3) + 0.0, flange[-1].round(3) + 0.0  # + 0.0 avoids "-0."
 print(f"flange moved {np.linalg.norm(end - start):.3f} m from {start} to {end}")
+shoulder = urkin.fk_frames(ur3, home)[1]  # frame 1: the shoulder axis is its z axis
+along = (flange - shoulder[:3, 3]) @ shoulder[:3, 2]
+radius = np.linalg.norm(flange - shoulder[:3, 3] - along[:, None] * shoulder[:3, 2], axis=1)
+arm = abs(ur3.a2) + abs(ur3.a3) + ur3.d5
+assert np.allclose(radius, arm, rtol=0, atol=1e-12)
+print(f"distance of the flange from the shoulder axis: {radius.min():.5f} to "
+      f"{radius.max():.5f} m; |a2| + |a3| + d5 = {arm:.5f} m")
 
 # %% [markdown]
 # Notice that `urkin.fk` took all forty configurations at once, as an array of shape `(40, 6)`,
@@ -257,21 +266,22 @@ check("0.2", base_link_pose)
 # ## Seven arms, one structure
 #
 # All seven arms share the same joint layout; only six lengths differ. That is why one
-# derivation (lesson 02) serves them all. The longest, the UR10 and UR10e, reach about two and
-# a half times as far as the UR3.
+# derivation (lesson 02) serves them all. The chart measures each arm as the sweep above did:
+# the flange's distance from the shoulder axis with the arm stretched, $|a_2| + |a_3| + d_5$.
+# The longest, the UR10 and UR10e, reach about two and a half times as far as the UR3.
 
 # %%
 names = urkin.ROBOTS
-reach = [abs(urkin.robot(n).a2) + abs(urkin.robot(n).a3) for n in names]
-print("arm     upper arm + forearm (m)")
+reach = [abs(urkin.robot(n).a2) + abs(urkin.robot(n).a3) + urkin.robot(n).d5 for n in names]
+print("arm     |a2| + |a3| + d5 (m)")
 for name, value in zip(names, reach):
     print(f"{name:<6}  {value:.4f}")
 
 fig, ax = plt.subplots(figsize=(7, 3.5))
 ax.bar(names, reach, color="tab:blue")
-ax.set_ylabel("upper arm + forearm, |a2| + |a3| (m)")
+ax.set_ylabel("|a2| + |a3| + d5 (m)")
 ax.set_xlabel("arm")
-ax.set_title("How far each UR arm reaches beyond its shoulder")
+ax.set_title("How far each UR arm's flange reaches from its shoulder axis")
 plt.show()
 
 # %% [markdown]

@@ -550,8 +550,10 @@ print("|d1|, |a2|, |a3|, |d4|, |d5|, |d6| (m):       ",
 #
 # Seed 002 is a UR5 project. It prints a closed-form flange position (in millimetres), uses it
 # for a Newton–Raphson inverse kinematics, and says it verified the formula with its own
-# implementation of the DH chain. The pose it checked at had $q_2 + q_3 + q_4 = 90°$. Let us
-# repeat the test, and then test more carefully.
+# implementation of the DH chain. It does not print the pose it checked at; we will find
+# that its formula agrees with the true chain exactly when $\cos(q_2 + q_3 + q_4) = 0$, so the
+# test pose must have had, for instance, $q_2 + q_3 + q_4 = 90°$ — an inference, not a quote
+# (ERRATA draws the same conclusion). Let us repeat such a test, and then test more carefully.
 #
 # The report works in its own convention: positive $a_2 = 425$ mm and $a_3 = 392$ mm, lengths
 # 89.2, 425, 392, 109.3, 94.75 and 82.5 mm (close to, but not exactly, UR's UR5 numbers), and
@@ -584,9 +586,10 @@ print(f"seed table at q_UR + SEED002_SHIFT vs urkin.fk at q_UR, 1000 poses: larg
       f"{'below 1e-12' if shift_gap < 1e-12 else f'{shift_gap:.3g}'}")
 
 # %% [markdown]
-# Now the test the report ran: a pose with $q_2 + q_3 + q_4 = 90°$ (the sum is the same in both
-# conventions, since the shifts $+\pi$ and $-\pi$ cancel). Here, 0.35 rad on every joint except
-# $q_4$, which makes up the 90°. The "true" answer is the report's *own* DH chain.
+# Now a test like the one the report must have run: a pose with $q_2 + q_3 + q_4 = 90°$ (the
+# sum is the same in both conventions, since the shifts $+\pi$ and $-\pi$ cancel). Here,
+# 0.35 rad on every joint except $q_4$, which makes up the 90°. The "true" answer is the
+# report's *own* DH chain.
 
 # %%
 def millimetres(p):
@@ -632,8 +635,9 @@ display(p_error)
 #
 # $$\|e\| = d_6\,|\cos(q_2+q_3+q_4)|\,(1 - \sin q_5),$$
 #
-# which is zero whenever $\cos(q_2+q_3+q_4) = 0$ — exactly at the report's test pose, which
-# could therefore never reveal it — and reaches $2 d_6 = 165$ mm when $\sin q_5 = -1$. At the
+# which is zero whenever $\cos(q_2+q_3+q_4) = 0$ — at any pose like the one the report must
+# have tested at (its verification passed), which could therefore never reveal it — and
+# reaches $2 d_6 = 165$ mm when $\sin q_5 = -1$. At the
 # report's `q = 0` it is already $d_6 = 82.5$ mm.
 #
 # The property from earlier catches the slip without any reference formula: $p - d_6 z_6$ is

@@ -20,7 +20,9 @@
 # * write PoE forward kinematics in the *space* form and the *body* form, and check them
 #   against lesson 02 on all seven UR arms;
 # * get screw axes automatically from a DH table, and reproduce a worked UR5 example from
-#   *Modern Robotics*.
+#   *Modern Robotics*;
+# * go back from a pose to its twist with the matrix logarithm, including its two special
+#   cases, θ = 0 and θ = π.
 #
 # **Time:** about 90 minutes. **You need:** lesson 01 (transforms, skew matrices, Rodrigues'
 # formula, the exponential map) and lesson 02 (DH frames and forward kinematics).
@@ -39,6 +41,7 @@ from urkin.transforms import (
     make_transform,
     rot_z,
     se3_exp,
+    se3_log,
     skew,
     so3_exp,
     twist_matrix,
@@ -724,9 +727,14 @@ tool = make_transform(p=[0.0, 0.0, 0.15])  # a 15 cm tool along the flange's z a
 mount = make_transform(rot_z(0.5), [1.0, 0.2, 0.0])  # the arm bolted elsewhere, turned
 S_tool, M_tool = urkin.poe.space_screws(ur5.with_tool(tool))
 B_mount, _ = urkin.poe.body_screws(ur5.with_base(mount))
+S_mount, M_mount = urkin.poe.space_screws(ur5.with_base(mount))
 print("with a tool:     S unchanged:", np.allclose(S_tool, S_ur5, rtol=0, atol=1e-15),
       "  M becomes M @ T_flange_tool:", np.allclose(M_tool, M_ur5 @ tool))
-print("moved base:      B unchanged:", np.allclose(B_mount, B_ur5, rtol=0, atol=1e-15))
+print("moved base:      B unchanged:", np.allclose(B_mount, B_ur5, rtol=0, atol=1e-15),
+      "  S becomes Ad(T_world_base) S:",
+      np.allclose(S_mount, adjoint(mount) @ S_ur5, rtol=0, atol=1e-14),
+      "  M becomes T_world_base @ M:", np.allclose(M_mount, mount @ M_ur5, rtol=0, atol=1e-15))
+assert not np.allclose(M_mount, M_ur5)  # a new mounting moves M too, not only S
 
 # %% [markdown]
 # The last joint of a UR arm turns about the flange's own z axis, so $B_6 = (0, 0, 1, 0, 0,
@@ -735,8 +743,9 @@ print("moved base:      B unchanged:", np.allclose(B_mount, B_ur5, rtol=0, atol=
 # * **a new tool** changes only M (to $M\,T_{\text{flange,tool}}$) in the space form — the
 #   joint axes in the base frame are the same — while the body axes, seen from the new tool
 #   frame, change;
-# * **a new mounting** moves the axes in the world frame, so S changes, but not B: seen from
-#   the end effector, the joints have not moved.
+# * **a new mounting** moves everything in the world frame: S becomes
+#   $\mathrm{Ad}(T_{\text{world,base}})\,S$ *and* M becomes $T_{\text{world,base}}\,M$. Only B
+#   stays: seen from the end effector, the joints have not moved.
 #
 # **Which to prefer?** Both give the same pose; choose the one whose numbers you have, or
 # whose numbers stay fixed. Use the space form when your data lives in the base or world
@@ -827,7 +836,8 @@ for name in urkin.ROBOTS:
 # intermediate frames simply are not needed. What that buys:
 #
 # * **Any frame, any data.** Axes measured in a simulator or by a calibration rig go straight
-#   into S, as seed 001 did; a tool or a new mounting changes only M or only S.
+#   into S, as seed 001 did; a new tool changes only M, a new mounting changes S and M
+#   together (and leaves B alone).
 # * **No rules to juggle.** No choice of x axes, no sign conventions for $a_2$, $a_3$, no
 #   standard-versus-modified confusion: the two tables above give the *same* S.
 # * **Smoothness.** A screw axis changes a little when the joint's axis is shifted or tilted a
@@ -961,7 +971,132 @@ print(f"with UR's exact UR5 lengths the flange is {1000 * real_gap:.2f} mm from 
 # the flange by 0.8 mm. At this configuration the upper arm points straight up
 # ($\theta_2 = -\pi/2$), the forearm continues upwards, and after the quarter turn of joint 5
 # the flange points straight up too, $H_1 + L_1 + L_2 + W_2 = 0.988$ m above the base.
+
+# %% [markdown]
+# ## 8. Back from a pose to a twist: the matrix logarithm
 #
+# Forward kinematics goes from twists to a pose. Inverse kinematics (lesson 06) needs the way
+# back: given a pose $T = (R, p)$, which twist $V = S\theta = (\omega\theta, v\theta)$ has
+# $e^{[V]} = T$? That twist is the motion that, followed for unit time, carries the identity
+# to $T$ — the matrix logarithm $[V] = \log T$.
+#
+# **The rotation** is lesson 01's log map: $R = e^{[\omega]\theta}$ gives the unit axis ω and
+# the angle θ ∈ [0, π], from $\theta = \operatorname{atan2}(|\tfrac12(R - R^\mathsf{T})^\vee|,\
+# \tfrac12(\operatorname{tr}R - 1))$ and $[\omega] = (R - R^\mathsf{T})/(2\sin\theta)$.
+#
+# **The translation** is new. Section 3 found $p = G(\theta)\,v$ with
+#
+# $$G(\theta) = I\theta + (1 - \cos\theta)[\omega] + (\theta - \sin\theta)[\omega]^2 .$$
+#
+# So $v = G^{-1}(\theta)\,p$. $G$ is a polynomial in $[\omega]$, and so is its inverse: since
+# $[\omega]^3 = -[\omega]$ for a unit ω, every power of $[\omega]$ folds back into $I$,
+# $[\omega]$ and $[\omega]^2$. Try $G^{-1} = aI + b[\omega] + c[\omega]^2$, multiply, and set
+# the product to $I$: three equations for $a, b, c$, with the solution
+#
+# $$G^{-1}(\theta) = \frac{1}{\theta}\,I - \frac12\,[\omega]
+#   + \left(\frac{1}{\theta} - \frac12\cot\frac{\theta}{2}\right)[\omega]^2 .$$
+#
+# Two cases need care:
+#
+# * **θ = 0** (R = I): there is no rotation axis and $1/\theta$ blows up. The motion is a pure
+#   translation: ω = 0 and $v\theta = p$, so $V = (0, p)$. Just above 0 the coefficient
+#   $\frac1\theta - \frac12\cot\frac\theta2 = \frac{\theta}{12} + O(\theta^3)$ stays small,
+#   and $v\theta = \theta\,G^{-1}p \to p$ smoothly: only the exact zero needs its own branch.
+# * **θ = π**: $\sin\theta = 0$, so $(R - R^\mathsf{T})/(2\sin\theta)$ is 0/0. Read ω from the
+#   symmetric part, $R = I + 2[\omega]^2 = 2\omega\omega^\mathsf{T} - I$, as lesson 01 did
+#   (either sign of ω is right). $G^{-1}$ itself is harmless there: $\cot(\pi/2) = 0$.
+#
+# Check the inverse and the round trip numerically, then the two special cases with urkin's
+# `se3_log`:
+
+# %%
+def G_matrix(w, theta):
+    """G(θ) of section 3, for a unit axis w."""
+    W = skew(w)
+    return np.eye(3) * theta + (1 - np.cos(theta)) * W + (theta - np.sin(theta)) * W @ W
+
+
+def G_inverse(w, theta):
+    """The closed form of G(θ)⁻¹ derived above (0 < θ ≤ π)."""
+    W = skew(w)
+    return np.eye(3) / theta - W / 2 + (1 / theta - 0.5 / np.tan(theta / 2)) * W @ W
+
+
+rng = np.random.default_rng(5)
+worst = 0.0
+for _ in range(1000):
+    w = rng.normal(size=3)
+    w /= np.linalg.norm(w)
+    theta = rng.uniform(1e-3, np.pi)
+    worst = max(worst, np.abs(G_inverse(w, theta) @ G_matrix(w, theta) - np.eye(3)).max())
+print(f"G⁻¹(θ) G(θ) = I for 1000 random axes and angles: largest error {difference_text(worst)}")
+
+twists = rng.normal(size=(1000, 6))
+twists[:, :3] *= (rng.uniform(0.0, 3.1, 1000) / np.linalg.norm(twists[:, :3], axis=1))[:, None]
+back = se3_log(se3_exp(twists))  # θ = |ω θ| below π: the log is unique
+print(f"se3_log(se3_exp(V)) = V for 1000 twists with θ < π: largest error "
+      f"{difference_text(np.abs(back - twists).max())}")
+
+translation = make_transform(p=[0.3, -0.2, 0.5])
+print("log of a pure translation:", se3_log(translation).round(4) + 0.0)
+half_turn = se3_exp(np.r_[np.pi * np.array([0.0, 0.6, 0.8]), 0.1, 0.2, -0.3])
+V_half = se3_log(half_turn)
+print(f"a half turn: θ = |ωθ| = {np.linalg.norm(V_half[:3]):.6f} rad (π = {np.pi:.6f}); "
+      f"exp(log T) = T: {np.allclose(se3_exp(V_half), half_turn, rtol=0, atol=1e-12)}")
+
+# %% [markdown]
+# ### Exercise 3.5 — `twist_log` (4 points)
+#
+# Write `twist_log(T)`: the twist $V = (\omega\theta, v\theta)$, shape `(6,)`, angular part
+# first, with $e^{[V]} = T$ and θ in [0, π]. Use the rotation log of lesson 01 (compute θ with
+# `atan2`, as there, or take `urkin.transforms.so3_log`) and the $G^{-1}$ above; `se3_log`,
+# which answers the whole exercise, is hidden while it is graded.
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): (2 points) $V$ equals the
+# logarithm for random poses with 0.1 ≤ θ ≤ 3 rad; (1 point) pure translations and the
+# identity give $(0, p)$ — no NaN; (1 point) half turns, θ = π exactly (with $R$ exactly
+# symmetric) and θ = π − 1e-8, and small turns, θ from 1e-9 to 1e-3: $e^{[V]}$ reproduces $T$
+# to 1e-8, with θ ≤ π (at a half turn either sign of ω is right, so only the round trip is
+# compared).
+
+# %%
+def twist_log(T):
+    """The matrix logarithm of a rigid motion: the twist V with e^[V] = T.
+
+    Parameters
+    ----------
+    T : array_like, shape (4, 4)
+        A homogeneous transform.
+
+    Returns
+    -------
+    ndarray, shape (6,)
+        V = (ω θ, v θ), angular part first, with θ = |ω θ| in [0, π].
+    """
+    ### BEGIN SOLUTION
+    T = np.asarray(T, dtype=float)
+    R, p = T[:3, :3], T[:3, 3]
+    sin_axis = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    theta = np.arctan2(np.linalg.norm(sin_axis), 0.5 * (np.trace(R) - 1.0))
+    if theta < 1e-12:  # no rotation: a pure translation
+        return np.concatenate([np.zeros(3), p])
+    if theta > np.pi - 1e-6:  # near a half turn: the axis from the symmetric part
+        B = R + R.T - 2.0 * np.cos(theta) * np.eye(3)  # = 2 (1 − cos θ) w wᵀ
+        column = B[:, int(np.argmax(np.diag(B)))]
+        w = column / np.linalg.norm(column)
+        w = w if w @ sin_axis >= 0 else -w
+    else:
+        w = sin_axis / np.sin(theta)
+    W = skew(w)
+    G_inv = np.eye(3) / theta - W / 2 + (1 / theta - 0.5 / np.tan(theta / 2)) * W @ W
+    return np.concatenate([w * theta, G_inv @ p * theta])
+    ### END SOLUTION
+
+
+# %%
+check("3.5", twist_log)
+
+# %% [markdown]
 # ## Summary
 #
 # * A **twist** $(\omega, v)$ is a rigid body's angular velocity and the velocity of its point
@@ -976,7 +1111,8 @@ print(f"with UR's exact UR5 lengths the flange is {1000 * real_gap:.2f} mm from 
 #   base frame and **M the end-effector pose at q = 0** (not the base frame). The current axes
 #   are $\mathrm{Ad}(e^{[S_1]q_1}\cdots)S_i$; the home axes never move.
 # * **Body form:** $T = M e^{[B_1]q_1} \cdots e^{[B_n]q_n}$ with $B = \mathrm{Ad}(M^{-1})S$. A new
-#   tool changes M and B, a new mounting changes S.
+#   tool changes M and B (not S); a new mounting changes M and S — only the body screws B are
+#   invariant to it.
 # * From a standard-DH table, $S_i$ is the z axis of frame i−1 through its origin at q = 0
 #   (`urkin.poe.space_screws`); both DH conventions give the same S. Space form, body form and
 #   DH agree to round-off on all seven UR arms.
@@ -984,6 +1120,9 @@ print(f"with UR's exact UR5 lengths the flange is {1000 * real_gap:.2f} mm from 
 #   world frame and end-effector frame are matched to the DH model.
 # * PoE needs no link frames and varies smoothly with the geometry; DH is more compact, gives
 #   link frames for free and is what manufacturers publish.
+# * The **matrix log** inverts the exponential: $V = (\omega\theta, \theta\,G^{-1}(\theta)p)$
+#   with $G^{-1} = I/\theta - [\omega]/2 + (1/\theta - \cot(\theta/2)/2)[\omega]^2$; a pure
+#   translation gives $(0, p)$, and at θ = π the axis comes from the symmetric part of R.
 #
 # ## What comes next
 #
@@ -992,5 +1131,5 @@ print(f"with UR's exact UR5 lengths the flange is {1000 * real_gap:.2f} mm from 
 # column from the joint axes — the current axes drawn in section 5 — and numerically by finite
 # differences, and it finds the configurations where a UR arm loses a direction of motion.
 #
-# Before you move on: restart the kernel and run the whole notebook. All four check cells
+# Before you move on: restart the kernel and run the whole notebook. All five check cells
 # should report full marks.

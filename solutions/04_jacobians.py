@@ -18,7 +18,9 @@
 # * find every configuration where a UR arm loses a direction of motion — its
 #   **singularities** — from one factorised determinant;
 # * measure how far a configuration is from trouble: manipulability and the condition
-#   number.
+#   number;
+# * use the transposed Jacobian for statics, $\tau = J^\mathsf{T} F$, and compare the force
+#   ellipsoid with the velocity ellipsoid.
 #
 # **Time:** about 2 hours. **You need:** lesson 01 (rotations, the cross product as a matrix),
 # lesson 02 (DH frames, the UR forward kinematics) and lesson 03 (screw axes $(\omega, v)$,
@@ -48,13 +50,13 @@ from urkin.course.seeds import (
 )
 from urkin.kinematics import dh_chain
 from urkin.symbolic import LENGTHS, Q, simplify_angles
-from urkin.transforms import adjoint, so3_log
+from urkin.transforms import adjoint, se3_exp, so3_log
 
 np.set_printoptions(precision=4, suppress=True)
 
 
 # %% [markdown]
-# `urkin.kinematics` has a function `singularities`, and so does exercise 4.3. Once you have
+# `urkin.kinematics` has a function `singularities`, and so does exercise 4.5. Once you have
 # run the exercise cell, the bare name `singularities` means *your* function, so the
 # demonstrations always spell urkin's in full: `urkin.kinematics.singularities`.
 #
@@ -485,15 +487,19 @@ check("4.2", numeric_jacobian)
 # $\partial p/\partial q$ (generated from the SymPy derivation), for step sizes from
 # $10^{-16}$ to $10^{-1}$ rad. A third method joins in: the **complex step**. Evaluate $f$ at
 # a *complex* point $q + \mathrm{i}h e_j$; for a function built from analytic operations,
-# $f(q + \mathrm{i}h e_j) = f(q) + \mathrm{i}h\,\partial f/\partial q_j - \tfrac{h^2}{2}f''
-# + \dots$, so
+#
+# $$f(q + \mathrm{i}h e_j) = f(q) + \mathrm{i}h\,\frac{\partial f}{\partial q_j}
+#   \;-\; \frac{h^2}{2}\,\frac{\partial^2 f}{\partial q_j^2} \;+\; \dots,$$
+#
+# so
 #
 # $$\frac{\partial f}{\partial q_j} \approx \frac{\operatorname{Im} f(q + \mathrm{i}h e_j)}{h}$$
 #
 # with an error of order $h^2$ and **no subtraction** at all — nothing cancels, so $h$ can be
-# as small as we like. It needs an $f$ that accepts complex numbers: `urkin.fk` converts its
-# input to real numbers, dropping the imaginary part, so we use the SymPy formula turned into
-# numpy code with `lambdify`, which works with complex arrays as it is.
+# as small as we like. It needs an $f$ that accepts complex numbers. `urkin.fk` does (its
+# documentation says so; most numeric code silently drops the imaginary part, or refuses it),
+# and so does the SymPy formula turned into numpy code with `lambdify`, which we use as an
+# independent check.
 
 # %%
 rng = np.random.default_rng(11)
@@ -510,9 +516,13 @@ p_minus = urkin.fk(ur5, (2 * q_fd - nudged).reshape(-1, 6))[:, :3, 3].reshape(61
 p_here = urkin.fk(ur5, q_fd)[:3, 3]
 forward = ((p_plus - p_here) / steps_h[:, None, None]).transpose(0, 2, 1)  # (61, 3, 6)
 central = ((p_plus - p_minus) / (2 * steps_h[:, None, None])).transpose(0, 2, 1)
-complex_step = np.array(
-    [[np.imag(p_ur5(*(q_fd + 1j * step * e))) / step for e in np.eye(6)] for step in steps_h]
-).transpose(0, 2, 1)
+p_complex = urkin.fk(ur5, (q_fd + 1j * steps_h[:, None, None] * np.eye(6)).reshape(-1, 6))
+complex_step = (p_complex[:, :3, 3].imag.reshape(61, 6, 3)
+                / steps_h[:, None, None]).transpose(0, 2, 1)
+nudged_once = q_fd + 1j * 1e-20 * np.eye(6)  # row j: joint j nudged
+sympy_step = np.imag(np.array(p_ur5(*nudged_once.T))) / 1e-20  # (3, 6): ∂p_k/∂q_j
+print(f"complex step through urkin.fk vs through the lambdified SymPy p (h = 1e-20): "
+      f"largest difference {below(np.abs(complex_step[0] - sympy_step).max(), 1e-12)}")
 
 errors = {name: np.abs(estimate - exact).max(axis=(1, 2))
           for name, estimate in [("forward", forward), ("central", central),
@@ -627,7 +637,101 @@ print("  geometric [v; ω]:    ", J_demo[:, 0].round(4) + 0.0)
 # base frame" — the question jogging and Cartesian control ask. Space and body Jacobians fit
 # the product-of-exponentials machinery and the log-map pose errors of lesson 03; the IK
 # lessons use both. All three carry the same information, and the conversions are exact.
+
+# %% [markdown]
+# ### Exercise 4.3 — `jacobian_space` (4 points)
 #
+# Write `jacobian_space(S, q)`, Modern Robotics' `JacobianSpace`: the space Jacobian of an arm
+# with space screw axes `S` of shape `(6, n)` (one per column, ordered (ω, v)) at joint
+# angles `q` of shape `(n,)`, as a `(6, n)` array whose column $i$ is
+# $\mathrm{Ad}(e^{[S_1]q_1}\cdots e^{[S_{i-1}]q_{i-1}})\,S_i$ — column 1 is $S_1$ itself. Build
+# the exponentials with `urkin.transforms.se3_exp(S_i * q_i)` (what your `twist_exp` of
+# lesson 03 computes) and the adjoint with `urkin.transforms.adjoint`.
+#
+# *Checked* (to 1e-9, and to 1e-7 against finite differences; a float32 answer to float32's
+# precision): (1 point) $J_s = S$ at $q = 0$ and column 1 is $S_1$ at any $q$; (2 points) the
+# Jacobian for the space screws of random UR arms and for random arms of 2 to 7 joints;
+# (1 point) column $i$ is the spatial twist $\dot T T^{-1}$ when joint $i$ alone turns at
+# 1 rad/s, by central differences of the product of exponentials. The feedback recognises
+# (v, ω) rows, untransported home axes, the product multiplied on the wrong side, degrees and
+# the body Jacobian. urkin's Jacobians (`urkin.jacobian`, `urkin.poe.jacobian_space` and
+# `jacobian_body`, the conversions) are hidden while it is graded.
+
+# %%
+def jacobian_space(S, q):
+    """Space Jacobian from space screw axes: column i is Ad(e^[S1]q1 ⋯ e^[S(i−1)]q(i−1)) S_i.
+
+    Parameters
+    ----------
+    S : array_like, shape (6, n)
+        Space screw axes at q = 0, one per column, each ordered (ω, v).
+    q : array_like, shape (n,)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (6, n)
+        Rows (ω; v_s): the spatial twist per unit joint rate.
+    """
+    ### BEGIN SOLUTION
+    axes = np.asarray(S, dtype=float)
+    angles = np.asarray(q, dtype=float)
+    J = np.zeros(axes.shape)
+    T = np.eye(4)  # e^[S1]q1 ⋯ e^[S(i−1)]q(i−1)
+    for i in range(axes.shape[1]):
+        J[:, i] = adjoint(T) @ axes[:, i]
+        T = T @ se3_exp(axes[:, i] * angles[i])
+    return J
+    ### END SOLUTION
+
+
+# %%
+check("4.3", jacobian_space)
+
+# %% [markdown]
+# ### Exercise 4.4 — `jacobian_body` (4 points)
+#
+# Write `jacobian_body(B, q)`, Modern Robotics' `JacobianBody`: the body Jacobian from body
+# screw axes `B` of shape `(6, n)` at joint angles `q`, as a `(6, n)` array whose column $i$
+# is $\mathrm{Ad}(e^{-[B_n]q_n}\cdots e^{-[B_{i+1}]q_{i+1}})\,B_i$ — the joints *after* $i$,
+# undone, seen from the end effector; the last column is $B_n$ itself.
+#
+# *Checked* as exercise 4.3, with body screw axes, the last column fixed and the body twist
+# $T^{-1}\dot T$; the feedback recognises exponentials of $+B_k q_k$, the product taken from
+# joint 1 forwards and the space Jacobian. The same urkin functions are hidden.
+
+# %%
+def jacobian_body(B, q):
+    """Body Jacobian from body screw axes: column i is Ad(e^−[Bn]qn ⋯ e^−[B(i+1)]q(i+1)) B_i.
+
+    Parameters
+    ----------
+    B : array_like, shape (6, n)
+        Body screw axes (seen from the end effector at q = 0), one per column, ordered (ω, v).
+    q : array_like, shape (n,)
+        Joint angles in radians.
+
+    Returns
+    -------
+    ndarray, shape (6, n)
+        Rows (ω_b; v_b): the body twist per unit joint rate.
+    """
+    ### BEGIN SOLUTION
+    axes = np.asarray(B, dtype=float)
+    angles = np.asarray(q, dtype=float)
+    J = np.zeros(axes.shape)
+    T = np.eye(4)  # e^−[Bn]qn ⋯ e^−[B(i+1)]q(i+1)
+    for i in reversed(range(axes.shape[1])):
+        J[:, i] = adjoint(T) @ axes[:, i]
+        T = T @ se3_exp(-axes[:, i] * angles[i])
+    return J
+    ### END SOLUTION
+
+
+# %%
+check("4.4", jacobian_body)
+
+# %% [markdown]
 # ## 6. Singularities
 #
 # A square Jacobian can be inverted — $\dot q = J^{-1}\,[v;\ \omega]$ gives the joint rates
@@ -699,9 +803,11 @@ print(f"det J with q1 and q6 changed: largest change {below(spread)}")
 # shoulder factor is its horizontal distance from the base axis, measured in the arm's own
 # vertical plane (lesson 02's reading of $p$: the reach $a_2 c_2 + a_3 c_{23}$ plus the
 # wrist's $d_5 s_{234}$). When it is zero, the wrist centre sits off the base axis only by the
-# sideways offset $d_4$, in the plane the figure shades. Turning joint 1 then moves it
-# straight towards or away from the base axis — a direction the shoulder and elbow can
-# already produce — and no joint can move it along the shoulder axis.
+# sideways offset $d_4$, in the plane the figure shades. Turning joint 1 then swings it about
+# the base axis, so it moves *tangentially*: along $(c_1, s_1, 0)$, the arm plane's horizontal
+# direction, perpendicular to the $d_4$ offset — a direction the shoulder and elbow can
+# already produce. Moving it along the offset (along the shoulder axis, away from or towards
+# the base axis) is what no joint can do. The cell after the figure measures this.
 #
 # The elbow condition is the stretched arm of the classic two-link example: the wrist can move
 # towards or away from the shoulder only to second order. The wrist condition makes joints 4
@@ -770,6 +876,18 @@ for family, q in families.items():
     factors = urkin.kinematics.singularity_factors(ur5, q).round(4) + 0.0
     print(f"{family:<10} {urkin.kinematics.singularities(ur5, q)!s:<34} {factors}")
 
+# the shoulder family, measured: how turning joint 1 moves the wrist centre
+q = families["shoulder"]
+wrist_centre = urkin.fk_frames(ur5, q)[5, :3, 3]
+offset = wrist_centre * [1.0, 1.0, 0.0]  # horizontal, from the base axis to the wrist centre
+velocity = np.cross([0.0, 0.0, 1.0], wrist_centre)  # d(wrist centre)/dq1: a turn about z
+tangent = np.array([np.cos(q[0]), np.sin(q[0]), 0.0])
+assert np.isclose(np.linalg.norm(offset), ur5.d4, atol=1e-12)
+assert np.allclose(velocity / np.linalg.norm(velocity), tangent, atol=1e-12)
+assert abs(velocity @ offset) < 1e-12
+print(f"shoulder family: the wrist centre is {ur5.d4:.5f} m (= d4) from the base axis; "
+      "turning joint 1 moves it along (c1, s1, 0), perpendicular to that offset")
+
 # %% [markdown]
 # UR's "home" configuration, $q = (0, -\pi/2, 0, -\pi/2, 0, 0)$ with the arm pointing straight
 # up, is about as singular as a configuration can be: all three factors vanish at once. The
@@ -794,7 +912,7 @@ print("rank of J at home:", np.linalg.matrix_rank(urkin.jacobian(ur5, home), tol
 # keeps that step finite. Starting an iterative solver at a singular configuration is asking for
 # trouble; the IK lessons start elsewhere.
 #
-# ### Exercise 4.3 — `singularities` (5 points)
+# ### Exercise 4.5 — `singularities` (5 points)
 #
 # Write `singularities(robot, q)`: the set of singular families present at `q`, a subset of
 # `{"shoulder", "elbow", "wrist"}` (the empty set when `q` is regular). A family is present
@@ -855,7 +973,7 @@ def singularities(robot, q, tol=1e-9):
 
 
 # %%
-check("4.3", singularities)
+check("4.5", singularities)
 
 # %% [markdown]
 # ## 7. How far from trouble? Manipulability and the condition number
@@ -900,8 +1018,6 @@ Jv_path = urkin.jacobian(ur5, path)[:, :3, :]
 sigma_v = np.linalg.svd(Jv_path, compute_uv=False)  # (101, 3), m/s per rad/s
 
 ellipsoid_scale = 0.15
-u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 30), np.linspace(0, np.pi, 16))
-sphere = np.stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)])  # (3, 16, 30)
 shown = [0, 25, 50, 75, 100]
 shades = plt.cm.viridis(np.linspace(0.0, 0.85, len(shown)))
 
@@ -913,10 +1029,8 @@ ax3 = urkin.plot.axes3d(fig.add_subplot(grid[:, 0], projection="3d"),
                               "straightens")
 for k, colour in zip(shown, shades):
     U, semi_axes, _ = np.linalg.svd(Jv_path[k])  # directions and lengths of the semi-axes
-    surface = (U * (ellipsoid_scale * semi_axes)) @ sphere.reshape(3, -1)
-    centre = urkin.fk(ur5, path[k])[:3, 3]
-    x, y, z = (surface + centre[:, None]).reshape(3, 16, 30)
-    ax3.plot_surface(x, y, z, color=colour, alpha=0.35, linewidth=0)
+    urkin.plot.draw_ellipsoid(ax3, urkin.fk(ur5, path[k])[:3, 3], U * semi_axes,
+                              scale=ellipsoid_scale, color=colour, alpha=0.35)
     degrees = round(np.degrees(path[k, 2])) + 0
     urkin.plot.draw_robot(ax3, ur5, path[k], frames=False, color=colour, linewidth=2.5,
                           label=f"s = {path_s[k]:.2f}  (q3 = {degrees}°)")
@@ -977,6 +1091,84 @@ for k in shown:
 # radians when it uses the full $J$. Both are cheap, and both are worth logging along any
 # planned path.
 #
+# ### Statics: the same Jacobian, transposed
+#
+# The Jacobian also says which joint torques hold a load. Let the flange push on the world (a
+# payload, a workpiece) with a force $f$ (N) at its origin and a moment $m$ (N·m), together
+# the **wrench**
+# $F = [f;\ m]$ in the base frame, ordered like $[v;\ \omega]$. If the joints move by
+# $\dot q$, the flange does work at the rate $F^\mathsf{T} [v;\ \omega] = F^\mathsf{T} J\dot q$
+# and the motors at the rate $\tau^\mathsf{T}\dot q$. At rest (no acceleration, no friction,
+# gravity on the links left out) the two balance for *every* $\dot q$, so
+#
+# $$\tau = J^\mathsf{T} F .$$
+#
+# No inverse is needed: torques follow from forces as directly as velocities follow from
+# joint rates. (The moment $m$ is about the flange origin, the point whose velocity $v$ is;
+# a wrench about another point pairs with the Jacobian of that point.)
+#
+# **The force ellipsoid.** Which forces can the arm hold, at the flange origin, with joint
+# torques of length at most 1, $\|J_v^\mathsf{T} f\| \le 1$? With $J_v = U\Sigma V^\mathsf{T}$
+# the answer is again an ellipsoid, with the **same** axes $U$ as the velocity ellipsoid and
+# the **inverse** lengths $1/\sigma_i$ (N per N·m). The two are duals: a direction the flange
+# moves in slowly is one it pushes in strongly. At the elbow singularity the force ellipsoid
+# stretches to infinity along the arm — the straight arm carries a push along itself in its
+# structure, with no torque at all — while the velocity ellipsoid goes flat there.
+
+# %%
+rng = np.random.default_rng(4)
+q_load = path[0]
+J_load = urkin.jacobian(ur5, q_load)
+F = np.r_[rng.normal(size=3) * 20.0, rng.normal(size=3) * 2.0]  # N and N·m
+tau = J_load.T @ F
+rates = rng.normal(size=(100, 6))  # any joint rates: the power balance must hold for all
+power_gap = np.abs(rates @ tau - (rates @ J_load.T) @ F).max()
+assert power_gap < 1e-9
+print(f"τ·q̇ = F·(J q̇) for 100 random q̇: largest difference {below(power_gap, 1e-9)} W")
+
+hold = np.r_[0.0, 0.0, 2.0 * 9.81, 0.0, 0.0, 0.0]  # the flange pushes 2 kg up: F on the load
+print("\njoint torques holding 2 kg at the flange origin, τ = Jᵀ F (N·m):")
+for k in (0, 100):
+    torques = (urkin.jacobian(ur5, path[k]).T @ hold).round(2) + 0.0  # + 0.0: no "-0.00"
+    print(f"  s = {path_s[k]:.2f}: " + "  ".join(f"{t:7.2f}" for t in torques))
+
+fig = plt.figure(figsize=(15, 6.5))
+for index, (kind, scale, unit) in enumerate((("velocity", 0.15, "m/s per rad/s"),
+                                             ("force", 0.03, "N per N·m"))):
+    ax = urkin.plot.axes3d(fig.add_subplot(1, 2, index + 1, projection="3d"),
+                           center=(-0.4, -0.1, 0.45), half_width=0.5,
+                           title=f"{kind} ellipsoids of the flange origin (×{scale}, {unit})")
+    for k, colour in zip(shown[:-1], shades[:-1]):  # the force ellipsoid is infinite at s = 1
+        U, sigma, _ = np.linalg.svd(Jv_path[k])
+        lengths = sigma if kind == "velocity" else 1.0 / sigma
+        urkin.plot.draw_ellipsoid(ax, urkin.fk(ur5, path[k])[:3, 3], U * lengths,
+                                  scale=scale, color=colour, alpha=0.35)
+        urkin.plot.draw_robot(ax, ur5, path[k], frames=False, color=colour, linewidth=2.5,
+                              label=f"s = {path_s[k]:.2f}")
+    ax.view_init(elev=18, azim=-62)
+    ax.legend(loc="upper left", fontsize=8)
+fig.suptitle("Velocity and force ellipsoids: the same axes, inverse lengths (UR5, base frame)")
+fig.subplots_adjust(left=0.02, right=0.98, top=0.9, bottom=0.03, wspace=0.05)
+plt.show()
+
+print("   s    velocity semi-axes σ (m/s per rad/s)    force semi-axes 1/σ (N per N·m)")
+for k in shown[:-1]:
+    sigma = sigma_v[k]
+    print(f"{path_s[k]:5.2f}   " + " ".join(f"{v:6.3f}" for v in sigma) + "          "
+          + " ".join(f"{1 / v:6.2f}" for v in sigma))
+
+# %% [markdown]
+# The torque table is the lever rule at work: the same 2 kg costs the shoulder 4.2 N·m with
+# the elbow bent and 15.1 N·m with the arm stretched out, because the flange is further from
+# the shoulder axis. Joint 1 turns about the vertical, parallel to the weight, so it needs no
+# torque; nor do joints 5 and 6 here: each of their axes meets the load's vertical line of
+# action or runs parallel to it, so the weight has no lever about them.
+#
+# As the elbow opens, the smallest velocity semi-axis shrinks and the largest force
+# semi-axis grows in step, along the same direction — along the arm. Near a singularity a
+# robot is slow in some direction and, by the same token, stiff in it: a stretched arm is
+# good for holding a push along itself and poor for moving along it.
+#
 # ## Summary
 #
 # * The geometric Jacobian maps joint rates to the flange's $[v;\ \omega]$ in the base frame,
@@ -994,6 +1186,9 @@ for k in shown:
 # * For every UR arm, $\det J = a_2 a_3 \sin q_3 \sin q_5\,(a_2 c_2 + a_3 c_{23} + d_5 s_{234})$:
 #   the elbow, wrist and shoulder singular families. Home is all three at once, rank 3.
 # * Manipulability and the condition number measure the distance to trouble before it arrives.
+# * Statics uses the same matrix transposed: a wrench $F = [f;\ m]$ at the flange is held by
+#   the joint torques $\tau = J^\mathsf{T} F$. The force ellipsoid has the velocity
+#   ellipsoid's axes and inverse lengths: slow directions are strong ones.
 #
 # ## What comes next
 #

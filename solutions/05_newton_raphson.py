@@ -15,13 +15,15 @@
 #   and why it needs a step limit;
 # * solve for the position alone, as seed 002 does, and track a square with warm starts —
 #   then find out why seed 002's square came out wrong (it was not its initial guess);
+# * spend the three joints a position-only task leaves free on a secondary objective, by
+#   moving in the Jacobian's null space;
 # * write the 6-vector error between two poses, and full-pose Newton–Raphson on top of it;
 # * watch the error shrink *quadratically*, and measure how far from a solution the method
 #   still finds one;
 # * take apart seed 000's start at "home": a triple singularity and an orientation error
 #   that reads zero when the tool is half a turn away.
 #
-# **Time:** about 2 hours. **You need:** lesson 01 (the log map; the cross-product error
+# **Time:** about 3 hours. **You need:** lesson 01 (the log map; the cross-product error
 # and its blind spot at 180°), lesson 02 (forward kinematics; seed 002's position formula)
 # and lesson 04 (the geometric Jacobian $[v;\ \omega]$, singularities).
 
@@ -513,6 +515,85 @@ print(f"report's formula: misses of {formula_misses.min():.1f} to {formula_misse
 # right as the model it iterates on**, and a model must be checked against an independent
 # forward kinematics, not against itself.
 #
+# ### Three spare joints: motion in the null space
+#
+# For a position-only target the arm is **redundant**: six joints, three task coordinates.
+# $J_v$ is 3 × 6, so at a regular configuration it has a three-dimensional **null space** —
+# joint motions $\dot q$ with $J_v \dot q = 0$, which leave the flange's position where it is
+# (to first order). The projector onto it is
+#
+# $$N = I - J_v^{+} J_v, \qquad J_v N = 0,$$
+#
+# and a Newton step may add any null-space motion without disturbing the task:
+#
+# $$\Delta q = J_v^{+}\,e + N\,k\,(q_\text{rest} - q).$$
+#
+# The second term pursues a **secondary objective** with the spare freedom — here, staying
+# close to a preferred rest configuration (elbow up, tool down, UR's "ready" posture) with
+# gain $k$ — while the first term solves the task. Once the position is reached the steps
+# keep sliding the arm along the solution family towards the rest posture, until the part
+# of $q_\text{rest} - q$ that the null space can absorb is gone.
+
+# %%
+q_rest = np.array([0.0, -np.pi / 2, np.pi / 2, -np.pi / 2, -np.pi / 2, 0.0])
+p_far = np.array([0.25, 0.025, 0.1])  # a point the arm must reach, far from q_rest
+
+
+def ik_position_secondary(robot, p_target, q0, q_rest, gain=0.5, max_iterations=200):
+    """Position-only Newton–Raphson that uses the null space to stay near q_rest."""
+    q = np.asarray(q0, dtype=float).copy()
+    for _ in range(max_iterations):
+        e = p_target - urkin.fk(robot, q)[:3, 3]
+        J = urkin.kinematics.position_jacobian(robot, q)
+        J_plus = np.linalg.pinv(J)
+        pull = (np.eye(6) - J_plus @ J) @ wrapped(q_rest - q)  # N (q_rest − q)
+        if np.linalg.norm(e) < 1e-10 and np.linalg.norm(pull) < 1e-8:
+            break
+        step = J_plus @ e + gain * pull
+        largest = np.abs(step).max()
+        q = q + (step if largest <= 1.0 else step / largest)  # steps limited to 1 rad
+    return wrapped(q)
+
+
+rng = np.random.default_rng(8)
+J_rest = urkin.kinematics.position_jacobian(SEED002_ARM, q_rest)
+N_rest = np.eye(6) - np.linalg.pinv(J_rest) @ J_rest
+leak = np.abs(J_rest @ N_rest @ rng.normal(size=(6, 100))).max()
+print(f"J_v N z for 100 random z: largest entry {below(leak)} (m/rad): N moves no position")
+
+plain = urkin.ik(SEED002_ARM, p_far, q0=q_rest, method="nr", max_restarts=0)
+secondary = ik_position_secondary(SEED002_ARM, p_far, q_rest, q_rest)
+print("from q_rest     position miss (m)   elbow height (m)   distance from q_rest (rad)")
+for name, q in (("plain NR", wrapped(plain.q)), ("with N k (q_rest − q)", secondary)):
+    miss = np.linalg.norm(urkin.fk(SEED002_ARM, q)[:3, 3] - p_far)
+    elbow = urkin.fk_frames(SEED002_ARM, q)[2, 2, 3]
+    print(f"{name:<22} {below(miss, 1e-10):>12}   {elbow:13.2f}   "
+          f"{np.linalg.norm(wrapped(q - q_rest)):18.2f}")
+
+fig = plt.figure(figsize=(8, 6.5))
+ax = urkin.plot.axes3d(fig.add_subplot(projection="3d"), center=(0.0, 0.0, 0.25),
+                       half_width=0.45, title="one target, two answers (base frame)")
+for q, colour, label in ((q_rest, "0.7", "q_rest: the preferred posture (the start)"),
+                         (wrapped(plain.q), "tab:red", "plain Newton–Raphson"),
+                         (secondary, "tab:blue", "with the null-space pull towards q_rest")):
+    urkin.plot.draw_robot(ax, SEED002_ARM, q, frames=False, color=colour, linewidth=3,
+                          label=label)
+ax.scatter(*p_far, color="black", marker="*", s=80, depthshade=False, label="the target")
+floor_x, floor_y = np.meshgrid([-0.45, 0.45], [-0.45, 0.45])
+ax.plot_surface(floor_x, floor_y, 0.0 * floor_x, color="0.5", alpha=0.12)
+ax.view_init(elev=18, azim=-60)
+ax.legend(loc="upper left", fontsize=8)
+plt.show()
+
+# %% [markdown]
+# Both answers put the flange on the target; they differ only by motion in the null space.
+# Plain Newton–Raphson takes whichever solution its steps happen to reach — here one with the
+# elbow below the plane the robot stands on. The null-space term spends the three spare
+# joints on the secondary objective and ends with the elbow up, much nearer the rest
+# posture. The same idea keeps joints away from their limits, or from singularities (pull
+# along the gradient of manipulability), and is how redundant robots — seven-joint arms,
+# or any arm on a task with fewer than six coordinates — are controlled.
+#
 # ## 3. The full pose: seed 000's error vector
 #
 # For a full pose the error needs an orientation part too. The position part is as before,
@@ -886,10 +967,11 @@ for delta, log_rate, same_rate, cross_rate in zip(deltas, rates["log"], rates["s
 #
 # ## 6. Seed 000's start: home, a triple singularity and a false zero
 #
-# Seed 000 starts every solve of its UR3 from the "home" configuration
-# $q = (0, -\pi/2, 0, -\pi/2, 0, 0)$, arm pointing straight up, and asks for targets with
-# the identity orientation: the square and the circle of its report, both around
-# (0.25, 0.1, 0.3) m. Two of lesson 04's and lesson 01's findings meet here:
+# Seed 000's UR3 starts in the "home" configuration $q = (0, -\pi/2, 0, -\pi/2, 0, 0)$, arm
+# pointing straight up, and warm-starts every solve from the robot's *current* state: the
+# first solve starts from home, each later one from where the previous one ended. Its targets
+# have the identity orientation: the square and the circle of its report, both around
+# (0.25, 0.1, 0.3) m. For that first solve, two of lesson 04's and lesson 01's findings meet:
 #
 # * home is singular three times over: the elbow is straight ($\sin q_3 = 0$), the wrist is
 #   straight ($\sin q_5 = 0$), and the wrist centre stands above the base, so the shoulder
@@ -958,6 +1040,8 @@ for form, name, inverse in (("cross", "pseudo-inverse", pseudo_inverse),
                             ("log", "pseudo-inverse", pseudo_inverse)):
     (first_size, second_size), smallest = first_steps(form, inverse)
     print(f"{form:<12}  {name:<20}  {first_size:12.2f}   {second_size:12.2f}")
+    if inverse is seed000_damped:  # seed 000's own step: the second one is the huge one
+        assert first_size < 0.5 and second_size > 12
 print("two smallest singular values of J after the first (cross, pseudo-inverse) step:",
       first_steps("cross", pseudo_inverse)[1][1].round(4))
 
@@ -968,8 +1052,9 @@ print("two smallest singular values of J after the first (cross, pseudo-inverse)
 # but two of its singular values are tiny (0.03 and 0.008). The position error still points
 # partly along those nearly lost directions, and inverting 0.008 multiplies by more than a
 # hundred: the second step turns a joint by 34 rad — five and a half turns. The damping of
-# seed 000's inverse tempers it to 13.5 rad, still two full turns in one "small" correction;
-# this is the step of more than 12 rad in seed 000's runs. Without a step limit, such a step
+# seed 000's inverse tempers it to 13.5 rad, still two full turns in one "small" correction:
+# it is the *second* step from home, not the first, that is huge in seed 000's first solve.
+# Without a step limit, such a step
 # lands anywhere; the wound-up joint angles of the report (one reached −865°) come from
 # steps like this one.
 #

@@ -17,7 +17,7 @@
 # update with a minus sign where a product belongs, a loop condition the wrong way round — and
 # finish with a race between all four of urkin's methods on 1000 random poses.
 #
-# **Time:** about 2 hours. **You need:** lesson 03 (twists, the matrix log, the adjoint),
+# **Time:** about 3 hours. **You need:** lesson 03 (twists, the matrix log, the adjoint),
 # lesson 04 (Jacobians, the three singular families, singular values) and lesson 05 (the pose
 # error and Newton–Raphson IK).
 
@@ -703,11 +703,16 @@ print(f"their remaining pose errors: {no_restarts.residual[stuck].min():.0e} to 
 #   $q + \Delta q$.
 # * If $\|e\|$ went down: **accept** the step and divide $\mu$ by 3 (but keep it at least
 #   $10^{-12}$). Otherwise: **reject** it (stay at $q$) and double $\mu$.
-# * Return $q$ as soon as every component of $e$ is below $10^{-12}$ (metres and radians).
-# * If $\mu$ grows beyond $10^8$ (a trap), or after 200 iterations, **restart** from a random
-#   configuration, uniform in $[-\pi, \pi)^6$, drawn from `np.random.default_rng(0)` — so the
-#   result is reproducible — with $\mu$ reset. Allow 20 restarts; if none succeeds, return
-#   the best $q$ you saw.
+# * **Stop** before each step: return $q$ as soon as every one of the six components of
+#   $e(q)$ — three position errors in metres, three rotation-vector components in radians —
+#   is below $10^{-12}$ in absolute value.
+# * Every call of `lm_step` counts as one **iteration**, whether its step is accepted or
+#   rejected. If $\mu$ grows beyond $10^8$ (a trap), or after 200 iterations of one attempt,
+#   **restart** from a random configuration, uniform in $[-\pi, \pi)^6$, with $\mu$ reset to
+#   $10^{-3}$. Draw the restarts from one generator, created once per call of `ik_lm`
+#   before the first attempt, `rng = np.random.default_rng(0)`, so the result is
+#   reproducible. Allow 20 restarts; if none succeeds, return the best $q$ you saw (the one
+#   with the smallest $\|e\|$).
 #
 # *Checked* (to 1e-8 m and 1e-8 rad, measured with `urkin.fk`; a float32 answer to float32's
 # precision): that your answer reaches random targets on random UR arms from starts 0.5 rad away on
@@ -789,7 +794,7 @@ check("6.3", ik_lm)
 #
 # Seed 001 measures the pose error differently: not as a position difference plus a rotation
 # vector, but as the **twist** that carries the current pose $T = T(q)$ to the target in unit
-# time — lesson 03's matrix logarithm:
+# time — the matrix logarithm of lesson 03, section 8:
 #
 # $$[V_s] = \log\!\left(T_\text{target}\,T^{-1}\right), \qquad
 # [V_b] = \log\!\left(T^{-1}\,T_\text{target}\right).$$
@@ -892,7 +897,73 @@ print(f"urkin.ik(method='poe'): success {poe_result.success} after {poe_result.i
 # body point at the base origin. And the twist error couples rotation and translation through
 # the logarithm, whereas lesson 05's error treats them separately. Both measures vanish exactly
 # at the target, so both solve the same problem; they take different paths there.
+
+# %% [markdown]
+# ### Exercise 6.4 — `ik_poe` (4 points)
 #
+# Write `ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50)`,
+# Modern Robotics' `IKinSpace`, for an arm given by its home pose `M` (4 × 4) and space screw
+# axes `S` (6 × n): starting from `q0` (n,), repeat
+#
+# * the error twist $[V_s] = \log(T_\text{target}\,T(q)^{-1})$, with
+#   $T(q) = e^{[S_1]q_1}\cdots e^{[S_n]q_n}M$ (`urkin.poe.fk_space`) and the log of lesson 03
+#   (your `twist_log`, or `urkin.transforms.se3_log`);
+# * stop when $\|\omega_s\| \le$ `tol_omega` and $\|v_s\| \le$ `tol_v`, or after
+#   `max_iterations` steps;
+# * $q \leftarrow q + J_s^{+}(q)\,V_s$ with the space Jacobian (`urkin.poe.jacobian_space`, or
+#   your `jacobian_space` of lesson 04) and `np.linalg.pinv`: full steps, no limit, no wrapping;
+#
+# and return $q$ (n,).
+#
+# *Checked* (to 1e-9; the target to 1e-8 m and 1e-8 rad; a float32 answer to float32's
+# precision): (2 points) that `max_iterations=1` returns exactly one step
+# $q_0 + J_s^{+}V_s$ — the feedback recognises the body twist, the body Jacobian, the twist of
+# the inverse motion and (v, ω) order; (1 point) that it reaches targets on UR arms from
+# 0.3 rad away on every joint; (1 point) and on random arms of 2 to 7 joints (fewer than six:
+# reachable targets only). urkin's IK solvers are hidden while it is graded; `fk_space`,
+# `jacobian_space` and `se3_log` are not.
+
+# %%
+def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    """Inverse kinematics by Newton–Raphson on the space error twist (IKinSpace).
+
+    Parameters
+    ----------
+    M : array_like, shape (4, 4)
+        End-effector pose at q = 0.
+    S : array_like, shape (6, n)
+        Space screw axes, one per column, ordered (ω, v).
+    T_target : array_like, shape (4, 4)
+        Target end-effector pose.
+    q0 : array_like, shape (n,)
+        Initial guess, radians.
+    tol_omega, tol_v : float
+        Stop when the error twist's angular part is at most tol_omega (rad) and its linear
+        part at most tol_v (m).
+    max_iterations : int
+        Largest number of Newton steps.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The joint angles after the last step.
+    """
+    ### BEGIN SOLUTION
+    M, S, T_target = (np.asarray(x, dtype=float) for x in (M, S, T_target))
+    q = np.asarray(q0, dtype=float).copy()
+    for _ in range(max_iterations):
+        V = se3_log(T_target @ inv_transform(urkin.poe.fk_space(M, S, q)))
+        if np.linalg.norm(V[:3]) <= tol_omega and np.linalg.norm(V[3:]) <= tol_v:
+            break
+        q = q + np.linalg.pinv(urkin.poe.jacobian_space(S, q)) @ V
+    return q
+    ### END SOLUTION
+
+
+# %%
+check("6.4", ik_poe)
+
+# %% [markdown]
 # ## 6. All four methods on 1000 random poses
 #
 # Time for a fair race. 1000 UR5 configurations, uniform in $[-\pi, \pi]^6$ (seeded), give

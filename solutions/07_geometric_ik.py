@@ -22,7 +22,7 @@
 # * handle the singular poses, where solutions merge or become a whole family, and choose the
 #   one solution a robot should actually move to.
 #
-# **Time:** about 2 hours. **You need:** lesson 01 (transforms, `atan2`), lesson 02 (the UR's
+# **Time:** about 3 hours. **You need:** lesson 01 (transforms, `atan2`), lesson 02 (the UR's
 # DH frames), lesson 04 (the three singular families) and lessons 05–06 (numerical IK).
 
 # %%
@@ -570,6 +570,23 @@ plt.show()
 # %% [markdown]
 # Both elbows reach the same point; the other one dips below the table, which is one reason
 # the lab fixes its branch.
+#
+# **A typo on the sheet.** The sheet names the triangle's third side, from the shoulder to
+# wrist 1, "$c = r - h$". That is not a length at all: the side is the hypotenuse
+# $c = \sqrt{r^2 + h^2}$ of the right triangle with legs $r$ and $h$ drawn in the side view.
+# Measured on this target:
+
+# %%
+print("third side              elbow angle from the law of cosines")
+for name, c in (("c = √(r² + h²)", np.hypot(r_wrist1, h_wrist1)),
+                ("c = r − h (the sheet)", r_wrist1 - h_wrist1)):
+    cos_elbow = (c**2 - L3**2 - L5**2) / (2 * L3 * L5)
+    shown = (f"θ3 = {np.arccos(cos_elbow):.4f} rad" if abs(cos_elbow) <= 1
+             else f"cos θ3 = {cos_elbow:.3f}: no angle at all")
+    print(f"{name:<23} {shown}")
+print(f"the lab's elbow in urkin.ik_analytic's solution: θ3 = {elbows[0][2]:.4f} rad")
+assert np.isclose(np.arccos((r_wrist1**2 + h_wrist1**2 - L3**2 - L5**2) / (2 * L3 * L5)),
+                  elbows[0][2], rtol=0, atol=1e-9)
 
 # %% [markdown]
 # ### Exercise 7.2 — `planar_2r` (4 points)
@@ -874,10 +891,19 @@ plt.show()
 #    so θ6 = `atan2` of the two — fine as long as $\sin\theta_5 \neq 0$.
 # 4. **θ2, θ3, θ4: the planar arm (two).** With θ1, θ5, θ6 known, the direction of the wrist
 #    link in the arm's plane, $\theta_{234} = \theta_2 + \theta_3 + \theta_4$, follows from
-#    the orientation. Stepping back $d_5$ from joint 5's centre along that link gives wrist
-#    1, the tip of a planar two-link arm with links $a_2$ and $a_3$ — the problem your
-#    `planar_2r` solves, with its two elbows $\theta_3 = \pm\arccos(\ldots)$. Finally
-#    $\theta_4 = \theta_{234} - \theta_2 - \theta_3$.
+#    the orientation. The third row of the flange's rotation, $(x_z, y_z, z_z)$, reads
+#    $x_z = c_5 c_6 s_{234} + s_6 c_{234}$, $y_z = c_6 c_{234} - c_5 s_6 s_{234}$ and
+#    $z_z = -s_5 s_{234}$ (lesson 02's $T_{06}$). Combining them so that $c_5^2 + s_5^2 = 1$
+#    and $c_6^2 + s_6^2 = 1$ cancel out,
+#    $$\theta_{234} = \operatorname{atan2}\bigl(c_5 (c_6 x_z - s_6 y_z) - s_5 z_z,\;
+#      s_6 x_z + c_6 y_z\bigr),$$
+#    with no division, so it holds at $s_5 = 0$ too. Stepping back $d_5$ from joint 5's
+#    centre $c$ along that link gives **wrist 1**, the tip of a planar two-link arm with links
+#    $a_2$ and $a_3$, at the signed distance and height (from the shoulder)
+#    $$r = c_1 c_x + s_1 c_y - d_5 s_{234}, \qquad h = c_z - d_1 + d_5 c_{234},$$
+#    which must equal $a_2 c_2 + a_3 c_{23}$ and $a_2 s_2 + a_3 s_{23}$ — the problem your
+#    `planar_2r` solves (it works for negative lengths too), with its two elbows
+#    $\theta_3 = \pm\arccos(\ldots)$. Finally $\theta_4 = \theta_{234} - \theta_2 - \theta_3$.
 #
 # Two choices of θ1, two of θ5, two of θ3: up to $2 \times 2 \times 2 = 8$ solutions, each
 # one exact. `urkin.ik_analytic(robot, T)` returns them as the rows of a `(k, 6)` array; for
@@ -901,6 +927,19 @@ print(f"\nall eight reach the pose: largest position error {below(positions.max(
       f"largest angle {below(max(errors))} rad")
 print(f"row 0 is the configuration we started from: "
       f"{np.allclose(wrap_angles(solutions[0] - q_ur5), 0.0, atol=1e-12)}")
+
+# step 4's formulas, measured on all eight: θ234 from the flange's third row, then wrist 1
+x_z, y_z, z_z = T_ur5[2, :3]
+c_wrist = T_ur5[:3, 3] - ur5.d6 * T_ur5[:3, 2]  # joint 5's centre, c = p − d6 z
+for q1, q2, q3, q4, q5, q6 in solutions:
+    q234 = np.arctan2(np.cos(q5) * (np.cos(q6) * x_z - np.sin(q6) * y_z) - np.sin(q5) * z_z,
+                      np.sin(q6) * x_z + np.cos(q6) * y_z)
+    r = np.cos(q1) * c_wrist[0] + np.sin(q1) * c_wrist[1] - ur5.d5 * np.sin(q234)
+    h = c_wrist[2] - ur5.d1 + ur5.d5 * np.cos(q234)
+    assert abs(wrap_angles(q234 - (q2 + q3 + q4))) < 1e-9
+    assert np.allclose([r, h], [ur5.a2 * np.cos(q2) + ur5.a3 * np.cos(q2 + q3),
+                                ur5.a2 * np.sin(q2) + ur5.a3 * np.sin(q2 + q3)], atol=1e-9)
+print("θ234 and wrist 1 (r, h) from step 4's formulas agree with all eight solutions: True")
 
 # %%
 fig = plt.figure(figsize=(18, 9.5))
@@ -960,7 +999,62 @@ print(f"row 2 has θ5 = −π/2 everywhere: {np.allclose(lab_rows[:, 4], -np.pi 
 # flange axis is $-z$ of the table, which fixes θ5 up to its sign and turns θ6 into a yaw.
 # The other seven rows are just as valid for the same gripper pose, with the wrist link
 # pointing inwards, the elbow below, or the shoulder turned round.
+
+# %% [markdown]
+# ### Exercise 7.4 — `wrist_angles` (4 points)
 #
+# Write `wrist_angles(T, theta1)`: steps 2 and 3 of the recipe. For a flange pose `T`
+# (4 × 4, columns $x, y, z$ of its rotation) and a shoulder angle `theta1`, return both wrist
+# branches as a `(2, 2)` array `[[θ5, θ6], [−θ5, θ6 + π]]` with θ5 ≥ 0 in the first row.
+# Take $|\sin\theta_5| = \|(x\cdot z_1,\ y\cdot z_1)\|$ and $\theta_5 =
+# \operatorname{atan2}(|\sin\theta_5|,\ z\cdot z_1)$ rather than `arccos`, which loses small
+# angles (lesson 01), and $\theta_6 = \operatorname{atan2}(-y\cdot z_1,\ x\cdot z_1)$ for the
+# first row. The poses have $\sin\theta_5 \neq 0$: at the wrist singularity θ6 is not
+# determined (section 6).
+#
+# *Checked* (angles compared modulo 2π, to 1e-9; a float32 answer to float32's precision):
+# (2 points) both rows for the flange poses of random UR arms at random configurations with
+# $|\sin\theta_5| \ge 0.1$; (1 point) that each row, with θ1 and the $\theta_{234}$ of step
+# 4, gives the flange's orientation (to 1e-8 rad); (1 point) next to the wrist singularity,
+# $|\theta_5|$ from 3e-9 to 3e-8: θ5 to 1e-9 and θ6 to 1e-6. The feedback recognises
+# θ5 from `arccos`, θ6 of the second row not turned by π, the wrong axis for $z_1$ and the
+# sign of $y\cdot z_1$. urkin's IK solvers are hidden while it is graded.
+#
+# **Stretch (not graded):** put the whole recipe together — two θ1 from step 1, your
+# `wrist_angles`, θ234 and wrist 1 from step 4, your `planar_2r` — and compare your eight
+# rows with `urkin.ik_analytic` on random poses.
+
+# %%
+def wrist_angles(T, theta1):
+    """θ5 and θ6 of both wrist branches of a UR arm, for a flange pose and θ1.
+
+    Parameters
+    ----------
+    T : array_like, shape (4, 4)
+        The flange pose in the base frame.
+    theta1 : float
+        The shoulder angle, radians.
+
+    Returns
+    -------
+    ndarray, shape (2, 2)
+        ``[[θ5, θ6], [−θ5, θ6 + π]]``, θ5 ≥ 0 first.
+    """
+    ### BEGIN SOLUTION
+    T = np.asarray(T, dtype=float)
+    x, y, z = T[:3, 0], T[:3, 1], T[:3, 2]
+    z1 = np.array([np.sin(theta1), -np.cos(theta1), 0.0])  # the axis of joints 2, 3 and 4
+    a, b = x @ z1, -(y @ z1)  # cos θ6 sin θ5 and sin θ6 sin θ5
+    theta5 = np.arctan2(np.hypot(a, b), z @ z1)
+    theta6 = np.arctan2(b, a)
+    return np.array([[theta5, theta6], [-theta5, wrap_angles(theta6 + np.pi)]])
+    ### END SOLUTION
+
+
+# %%
+check("7.4", wrist_angles)
+
+# %% [markdown]
 # ## 6. Singular poses
 #
 # Each `±arccos` above is a place where two solutions meet when its argument reaches ±1,
@@ -1194,10 +1288,10 @@ plt.show()
 #
 # ## What comes next
 #
-# **Lesson 08** puts the arm in motion: straight lines, circles and squares sampled along the
-# path, time scaling (cubic, quintic, trapezoidal), and tracking a path in task space — with
-# `ik_closest` or warm-started numerical IK — with a report of where the tracking errs, jumps
-# or fails.
+# This is the last lesson so far. The natural next step is motion: sampling straight lines,
+# circles and squares along a path, timing them, and tracking them in task space with
+# `ik_closest` or warm-started numerical IK — the tools of lessons 05–07 put to work, and
+# seed 000's and seed 002's tracking runs to repeat and correct.
 #
-# Before you move on: restart the kernel and run the whole notebook. All three check cells
+# Before you move on: restart the kernel and run the whole notebook. All four check cells
 # should report full marks.

@@ -16,7 +16,7 @@ from urkin.kinematics import fk_frames
 from urkin.robots import Robot
 from urkin.transforms import check_transform, rotation_to_rpy
 
-__all__ = ["axes3d", "draw_frame", "draw_robot", "pose_text", "show_robot"]
+__all__ = ["axes3d", "draw_ellipsoid", "draw_frame", "draw_robot", "pose_text", "show_robot"]
 
 #: Colours of the x, y and z axes of a frame triad (red, green, blue).
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
@@ -104,6 +104,47 @@ def draw_frame(
     if label:
         artists.append(ax.text(*origin, f" {label}", fontsize=8))
     return artists
+
+
+def draw_ellipsoid(
+    ax,
+    center: ArrayLike,
+    axes: ArrayLike,
+    scale: float = 1.0,
+    color="tab:blue",
+    alpha: float = 0.3,
+    resolution: int = 24,
+):
+    """Draw the ellipsoid ``{center + scale · A u : |u| ≤ 1}`` as a surface.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.Axes3D
+    center : array_like, shape (3,)
+        Its centre, metres.
+    axes : array_like, shape (3, 3)
+        ``A``: its semi-axes as columns (for a velocity ellipsoid, ``U Σ`` from the singular
+        value decomposition ``J_v = U Σ Vᵀ``).
+    scale : float
+        Metres of drawing per unit of the semi-axes (m per m/s, m per N…).
+    color, alpha
+        Surface colour and opacity.
+    resolution : int
+        Grid lines around and from pole to pole.
+
+    Returns
+    -------
+    The matplotlib surface.
+    """
+    A = scale * np.asarray(axes, dtype=float)
+    u, v = np.meshgrid(
+        np.linspace(0, 2 * np.pi, resolution), np.linspace(0, np.pi, resolution // 2 + 1)
+    )
+    sphere = np.stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)])
+    x, y, z = (A @ sphere.reshape(3, -1) + np.asarray(center, dtype=float)[:, None]).reshape(
+        3, *u.shape
+    )
+    return ax.plot_surface(x, y, z, color=color, alpha=alpha, linewidth=0)
 
 
 def draw_robot(

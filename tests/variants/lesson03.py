@@ -297,6 +297,50 @@ def fk_body(M, B, q):
     return T
 """,
     ),
+    # ------------------------------------------------------------------------------ 3.5
+    Variant(
+        "3.5",
+        "urkin's so3_log for the rotation, G by solving",
+        """
+from urkin.transforms import so3_log
+
+
+def twist_log(T):
+    T = np.asarray(T, dtype=float)
+    omega_theta = so3_log(T[:3, :3])
+    theta = np.linalg.norm(omega_theta)
+    if theta < 1e-12:
+        return np.r_[0.0, 0.0, 0.0, T[:3, 3]]
+    w = omega_theta / theta
+    W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+    G = np.eye(3) * theta + (1 - np.cos(theta)) * W + (theta - np.sin(theta)) * W @ W
+    return np.r_[omega_theta, np.linalg.solve(G, T[:3, 3]) * theta]
+""",
+    ),
+    Variant(
+        "3.5",
+        "atan2 angle, the axis from a column of R + I near π, a list result",
+        """
+def twist_log(T):
+    R = np.array([[float(x) for x in row[:3]] for row in T[:3]])
+    p = np.array([float(T[0][3]), float(T[1][3]), float(T[2][3])])
+    c = (np.trace(R) - 1) / 2
+    s = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    theta = np.arctan2(np.linalg.norm(s), c)
+    if theta == 0.0:
+        return [0.0, 0.0, 0.0, *p]
+    if np.pi - theta < 1e-5:
+        k = int(np.argmax(np.diag(R)))
+        w = (R[:, k] + np.eye(3)[k]) / np.sqrt(2 * (1 + R[k, k]))
+        if w @ s < 0:
+            w = -w
+    else:
+        w = s / np.sin(theta)
+    W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+    G_inv = np.eye(3) / theta - W / 2 + (1 / theta - 1 / np.tan(theta / 2) / 2) * W @ W
+    return [*(w * theta), *(G_inv @ p * theta)]
+""",
+    ),
 ]
 
 _TWIST_V_THETA = """
@@ -306,6 +350,22 @@ def twist_exp(S, theta):
     T[:3, :3] = so3_exp(S[:3] * theta)
     T[:3, 3] = S[3:] * theta
     return T
+"""
+
+_TWIST_LOG = """
+from urkin.transforms import so3_log
+
+
+def twist_log(T):
+    T = np.asarray(T, dtype=float)
+    wt = so3_log(T[:3, :3])
+    theta = np.linalg.norm(wt)
+    if theta < 1e-12:
+        return np.r_[np.zeros(3), T[:3, 3]]
+    w = wt / theta
+    W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+    G_inv = np.eye(3) / theta - W / 2 + (1 / theta - 0.5 / np.tan(theta / 2)) * W @ W
+    return np.r_[wt, G_inv @ T[:3, 3] * theta]
 """
 
 WRONG = [
@@ -824,6 +884,78 @@ def fk_body(M, B, q):
         "3.4",
         "urkin's fk_body",
         "def fk_body(M, B, q):\n    return urkin.poe.fk_body(M, B, q)\n",
+        points=0,
+    ),
+    # ------------------------------------------------------------------------------ 3.5
+    Variant(
+        "3.5",
+        "(v, ω) order",
+        _TWIST_LOG.replace(
+            "np.r_[wt, G_inv @ T[:3, 3] * theta]", "np.r_[G_inv @ T[:3, 3] * theta, wt]"
+        ).replace("np.r_[np.zeros(3), T[:3, 3]]", "np.r_[T[:3, 3], np.zeros(3)]"),
+        points=0,
+        mistake="(v, ω) order",
+    ),
+    Variant(
+        "3.5",
+        "the linear part is p",
+        """
+from urkin.transforms import so3_log
+
+
+def twist_log(T):
+    T = np.asarray(T, dtype=float)
+    return np.r_[so3_log(T[:3, :3]), T[:3, 3]]
+""",
+        points=1,
+        mistake="the linear part is p",
+    ),
+    Variant(
+        "3.5",
+        "+½[ω] in G⁻¹",
+        _TWIST_LOG.replace("- W / 2", "+ W / 2"),
+        points=1,
+        mistake="+½[ω]",
+    ),
+    Variant(
+        "3.5",
+        "no θ = 0 branch",
+        """
+def twist_log(T):
+    T = np.asarray(T, dtype=float)
+    R, p = T[:3, :3], T[:3, 3]
+    theta = np.arccos(np.clip((np.trace(R) - 1) / 2, -1, 1))
+    w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]]) / (2 * np.sin(theta))
+    W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+    G_inv = np.eye(3) / theta - W / 2 + (1 / theta - 0.5 / np.tan(theta / 2)) * W @ W
+    return np.r_[w * theta, G_inv @ p * theta]
+""",
+        points=2,
+        mistake="handle θ = 0",
+    ),
+    Variant(
+        "3.5",
+        "the axis divided by sin θ at a half turn",
+        """
+def twist_log(T):
+    T = np.asarray(T, dtype=float)
+    R, p = T[:3, :3], T[:3, 3]
+    s = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    theta = np.arctan2(np.linalg.norm(s), (np.trace(R) - 1) / 2)
+    if theta < 1e-12:
+        return np.r_[np.zeros(3), p]
+    w = s / np.sin(theta)
+    W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+    G_inv = np.eye(3) / theta - W / 2 + (1 / theta - 0.5 / np.tan(theta / 2)) * W @ W
+    return np.r_[w * theta, G_inv @ p * theta]
+""",
+        points=3,
+        mistake="symmetric part",
+    ),
+    Variant(
+        "3.5",
+        "urkin's se3_log",
+        "def twist_log(T):\n    return urkin.transforms.se3_log(T)\n",
         points=0,
     ),
 ]

@@ -60,7 +60,82 @@ def numeric_jacobian(f, q, h=1e-6):
 """
 
 
+_JS = """
+def jacobian_space(S, q):
+    S = np.asarray(S, dtype=float)
+    J = np.zeros(S.shape)
+    T = np.eye(4)
+    for i in range(S.shape[1]):
+        J[:, i] = adjoint(T) @ S[:, i]
+        T = T @ se3_exp(S[:, i] * q[i])
+    return J
+"""
+
+_JB = """
+def jacobian_body(B, q):
+    B = np.asarray(B, dtype=float)
+    J = np.zeros(B.shape)
+    T = np.eye(4)
+    for i in reversed(range(B.shape[1])):
+        J[:, i] = adjoint(T) @ B[:, i]
+        T = T @ se3_exp(-B[:, i] * q[i])
+    return J
+"""
+
 CORRECT = [
+    # ------------------------------------------------------------------------------ 4.3
+    Variant(
+        "4.3",
+        "own adjoint and Rodrigues, a list q, columns appended",
+        """
+def hat(w):
+    return np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+
+
+def exp6(S, theta):
+    w, v = S[:3], S[3:]
+    W = hat(w)
+    R = np.eye(3) + np.sin(theta) * W + (1 - np.cos(theta)) * W @ W
+    G = np.eye(3) * theta + (1 - np.cos(theta)) * W + (theta - np.sin(theta)) * W @ W
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = R, G @ v
+    return T
+
+
+def Ad(T):
+    R, p = T[:3, :3], T[:3, 3]
+    A = np.zeros((6, 6))
+    A[:3, :3] = A[3:, 3:] = R
+    A[3:, :3] = hat(p) @ R
+    return A
+
+
+def jacobian_space(S, q):
+    S = np.array(S, dtype=float)
+    columns, T = [], np.eye(4)
+    for i, angle in enumerate(list(q)):
+        columns.append(Ad(T) @ S[:, i])
+        T = T @ exp6(S[:, i], angle)
+    return np.column_stack(columns)
+""",
+    ),
+    # ------------------------------------------------------------------------------ 4.4
+    Variant(
+        "4.4",
+        "inverse adjoints of the product from the end (T⁻¹ of the forward product)",
+        """
+def jacobian_body(B, q):
+    B = np.asarray(B, dtype=float)
+    n = B.shape[1]
+    J = np.zeros((6, n))
+    for i in range(n):
+        T = np.eye(4)
+        for k in range(i + 1, n):
+            T = T @ se3_exp(B[:, k] * q[k])
+        J[:, i] = adjoint(np.linalg.inv(T)) @ B[:, i]
+    return J
+""",
+    ),
     # ------------------------------------------------------------------------------ 4.1
     Variant(
         "4.1",
@@ -228,7 +303,7 @@ def numeric_jacobian(f, q, h=1e-6):
     ),
     # ------------------------------------------------------------------------------ 4.3
     Variant(
-        "4.3",
+        "4.5",
         "factors zipped with the names, a sorted list",
         """
 def singularities(robot, q, tol=1e-9):
@@ -242,7 +317,7 @@ def singularities(robot, q, tol=1e-9):
 """,
     ),
     Variant(
-        "4.3",
+        "4.5",
         "np.isclose with atol = tol, a tuple",
         """
 def singularities(robot, q, tol=1e-9):
@@ -259,7 +334,7 @@ def singularities(robot, q, tol=1e-9):
 """,
     ),
     Variant(
-        "4.3",
+        "4.5",
         "math module, strict <, capitalised names",
         """
 import math
@@ -279,7 +354,7 @@ def singularities(robot, q, tol=1e-9):
 """,
     ),
     Variant(
-        "4.3",
+        "4.5",
         "{} when regular",
         """
 def singularities(robot, q, tol=1e-9):
@@ -300,7 +375,7 @@ def urkin_factors(robot, q):
 """,
     ),
     Variant(
-        "4.3",
+        "4.5",
         "the shoulder from the wrist centre's distance to the plane",
         """
 def singularities(robot, q, tol=1e-9):
@@ -321,6 +396,56 @@ def singularities(robot, q, tol=1e-9):
 ]
 
 WRONG = [
+    # ------------------------------------------------------------------------------ 4.3
+    Variant(
+        "4.3",
+        "(v, ω) rows",
+        _JS.replace("    return J", "    return np.r_[J[3:], J[:3]]"),
+        points=0,
+        mistake="(v, ω)",
+    ),
+    Variant(
+        "4.3",
+        "the home axes",
+        "def jacobian_space(S, q):\n    return np.array(S, dtype=float)\n",
+        points=1,
+        mistake="home axis",
+    ),
+    Variant(
+        "4.3",
+        "product on the left",
+        _JS.replace("T = T @ se3_exp(S[:, i] * q[i])", "T = se3_exp(S[:, i] * q[i]) @ T"),
+        points=1,
+        mistake="on the left",
+    ),
+    Variant(
+        "4.3",
+        "urkin's jacobian_space",
+        "def jacobian_space(S, q):\n    return urkin.poe.jacobian_space(S, q)\n",
+        points=0,
+    ),
+    # ------------------------------------------------------------------------------ 4.4
+    Variant(
+        "4.4",
+        "exponentials of +B q",
+        _JB.replace("se3_exp(-B[:, i] * q[i])", "se3_exp(B[:, i] * q[i])"),
+        points=1,
+        mistake="+B_k q_k",
+    ),
+    Variant(
+        "4.4",
+        "forwards from joint 1",
+        _JB.replace("reversed(range(B.shape[1]))", "range(B.shape[1])"),
+        points=None,
+        mistake="forwards",
+    ),
+    Variant(
+        "4.4",
+        "(v, ω) rows",
+        _JB.replace("    return J", "    return np.r_[J[3:], J[:3]]"),
+        points=0,
+        mistake="(v, ω)",
+    ),
     # ------------------------------------------------------------------------------ 4.1
     Variant(
         "4.1",
@@ -614,35 +739,35 @@ def numeric_jacobian(f, q, h=1e-6):
     ),
     # ------------------------------------------------------------------------------ 4.3
     Variant(
-        "4.3",
+        "4.5",
         "elbow with cos q3",
         _singularities_with(elbow="abs(np.cos(q3)) <= tol"),
         points=0,
         mistake="cos q3",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "wrist with cos q5",
         _singularities_with(wrist="abs(np.cos(q5)) <= tol"),
         points=0,
         mistake="cos q5",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "wrist only at q5 = 0",
         _singularities_with(wrist="abs(q5) <= tol"),
         points=None,
         mistake="±π too",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "elbow compared with 0 exactly",
         _singularities_with(elbow="np.sin(q3) == 0"),
         points=None,
         mistake="compared with 0 exactly",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "elbow tested on the angle",
         _singularities_with(
             elbow="min(abs(q3), abs(abs(q3) - np.pi)) <= tol",
@@ -651,35 +776,35 @@ def numeric_jacobian(f, q, h=1e-6):
         mistake="±2π",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "no abs on sin q3",
         _singularities_with(elbow="np.sin(q3) <= tol"),
         points=None,
         mistake="absolute value is missing",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "no abs on the shoulder factor",
         _singularities_with().replace("if abs(a2 * np.cos", "if (a2 * np.cos"),
         points=None,
         mistake="absolute value is missing",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "default tol 1e-6",
         _singularities_with().replace("tol=1e-9", "tol=1e-6"),
         points=None,
         mistake="default of tol",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "tol ignored",
         _singularities_with(tol="1e-9"),
         points=4,
         mistake="tol argument is ignored",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "np.isclose's default tolerance",
         """
 def singularities(robot, q, tol=1e-9):
@@ -692,14 +817,14 @@ def singularities(robot, q, tol=1e-9):
         mistake="tol argument is ignored",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "shoulder without the wrist term",
         _singularities_with(shoulder="a2 * np.cos(q2) + a3 * np.cos(q2 + q3)"),
         points=None,
         mistake="without its wrist term",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "shoulder with − d5",
         _singularities_with(
             shoulder="a2 * np.cos(q2) + a3 * np.cos(q2 + q3) - d5 * np.sin(q2 + q3 + q4)"
@@ -708,7 +833,7 @@ def singularities(robot, q, tol=1e-9):
         mistake="wrong sign",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "shoulder with d4",
         _singularities_with(
             shoulder="a2 * np.cos(q2) + a3 * np.cos(q2 + q3) + d4 * np.sin(q2 + q3 + q4)"
@@ -717,14 +842,14 @@ def singularities(robot, q, tol=1e-9):
         mistake="d4",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "joint numbers off by one",
         _singularities_with(angles="q[2], q[3], q[4], q[5]"),
         points=0,
         mistake="off by one",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "if / elif",
         """
 def singularities(robot, q, tol=1e-9):
@@ -742,7 +867,7 @@ def singularities(robot, q, tol=1e-9):
         mistake="only one family",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "flags instead of names",
         """
 def singularities(robot, q, tol=1e-9):
@@ -755,7 +880,7 @@ def singularities(robot, q, tol=1e-9):
         mistake="True/False flags",
     ),
     Variant(
-        "4.3",
+        "4.5",
         "names with a suffix",
         _singularities_with().replace('"shoulder"', '"shoulder singularity"'),
         points=None,
@@ -765,7 +890,7 @@ def singularities(robot, q, tol=1e-9):
         "4.3", "always none", "def singularities(robot, q, tol=1e-9):\n    return set()\n", points=0
     ),
     Variant(
-        "4.3",
+        "4.5",
         "urkin's singularities",
         "def singularities(robot, q, tol=1e-9):\n"
         "    return set(urkin.kinematics.singularities(robot, q, tol))\n",

@@ -413,7 +413,38 @@ _IK_LM_NO_UNDO = _IK_LM_TEN.replace(
 """,
 )
 
+_POE = """
+def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    q = np.array(q0, dtype=float)
+    for _ in range(max_iterations):
+        T = urkin.poe.fk_space(M, S, q)
+        V = se3_log(T_target @ inv_transform(T))
+        if np.linalg.norm(V[:3]) <= tol_omega and np.linalg.norm(V[3:]) <= tol_v:
+            break
+        q = q + np.linalg.pinv(urkin.poe.jacobian_space(S, q)) @ V
+    return q
+"""
+
 CORRECT = [
+    # ------------------------------------------------------------------------------ 6.4
+    Variant(
+        "6.4",
+        "Modern Robotics' IKinSpace: Ad(T) log(T⁻¹ T_target), (θ, success) returned",
+        """
+from urkin.transforms import adjoint
+
+
+def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    theta = np.array(q0, dtype=float)
+    for i in range(max_iterations + 1):
+        T_sb = urkin.poe.fk_space(M, S, theta)
+        V_s = adjoint(T_sb) @ se3_log(np.linalg.inv(T_sb) @ T_target)
+        done = np.linalg.norm(V_s[:3]) <= tol_omega and np.linalg.norm(V_s[3:]) <= tol_v
+        if done or i == max_iterations:
+            return theta, done
+        theta = theta + np.linalg.pinv(urkin.poe.jacobian_space(S, theta)) @ V_s
+""",
+    ),
     Variant("6.1", "Cholesky factor and two solves", _DLS_CHOLESKY),
     Variant("6.1", "the (JᵀJ + λ²I) form", _DLS_LM_FORM),
     Variant("6.1", "lstsq on [J; λI]", _DLS_AUGMENTED),
@@ -452,6 +483,44 @@ CORRECT = [
 ]
 
 WRONG = [
+    # ------------------------------------------------------------------------------ 6.4
+    Variant(
+        "6.4",
+        "body twist with the space Jacobian",
+        _POE.replace(
+            "se3_log(T_target @ inv_transform(T))", "se3_log(inv_transform(T) @ T_target)"
+        ),
+        points=None,
+        mistake="body twist",
+    ),
+    Variant(
+        "6.4",
+        "the inverse motion's twist",
+        _POE.replace(
+            "se3_log(T_target @ inv_transform(T))", "se3_log(T @ inv_transform(T_target))"
+        ),
+        points=None,
+        mistake="inverse motion",
+    ),
+    Variant(
+        "6.4",
+        "(v, ω) order",
+        _POE.replace(
+            "        if np.linalg.norm(V[:3])",
+            "        V = np.r_[V[3:], V[:3]]\n        if np.linalg.norm(V[:3])",
+        ),
+        points=None,
+        mistake="(v, ω)",
+    ),
+    Variant(
+        "6.4",
+        "urkin.ik",
+        """
+def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    return urkin.ik(urkin.robot("UR5"), T_target, q0=q0, method="poe").q
+""",
+        points=0,
+    ),
     Variant("6.1", "seed 000's line, I undefined", _SEED000_UNDEFINED_I, 0, "seed 000"),
     Variant("6.1", "seed 000's line, I = eye", _SEED000_EYE, 0, "seed 000"),
     Variant(

@@ -37,7 +37,34 @@ def _ik(body: str) -> str:
 
 # ------------------------------------------------------------------------------------ 7.1
 
+_WRIST = """
+def wrist_angles(T, theta1):
+    T = np.asarray(T, dtype=float)
+    x, y, z = T[:3, 0], T[:3, 1], T[:3, 2]
+    z1 = np.array([np.sin(theta1), -np.cos(theta1), 0.0])
+    a, b = x @ z1, -(y @ z1)
+    theta5 = np.arctan2(np.hypot(a, b), z @ z1)
+    theta6 = np.arctan2(b, a)
+    return np.array([[theta5, theta6], [-theta5, theta6 + np.pi]])
+"""
+
 CORRECT = [
+    # ------------------------------------------------------------------------------ 7.4
+    Variant(
+        "7.4",
+        "from the flange axis in frame 1 (R01ᵀ z), lists, θ6 + π left unwrapped",
+        """
+def wrist_angles(T, theta1):
+    R = np.array(T, dtype=float)[:3, :3]
+    c1, s1 = np.cos(theta1), np.sin(theta1)
+    R01 = np.array([[c1, 0.0, s1], [s1, 0.0, -c1], [0.0, 1.0, 0.0]])
+    R16 = R01.T @ R  # the flange seen from frame 1: its z row is z1 · (x, y, z)
+    sin5 = np.hypot(R16[2, 0], R16[2, 1])
+    t5 = np.arctan2(sin5, R16[2, 2])
+    t6 = np.arctan2(-R16[2, 1], R16[2, 0])
+    return [[t5, t6], [-t5, t6 + np.pi]]
+""",
+    ),
     Variant(
         "7.1",
         "math module",
@@ -114,6 +141,31 @@ def lab_theta1(x_c, y_c):
 ]
 
 WRONG = [
+    # ------------------------------------------------------------------------------ 7.4
+    Variant(
+        "7.4",
+        "θ5 from arccos",
+        _WRIST.replace(
+            "theta5 = np.arctan2(np.hypot(a, b), z @ z1)",
+            "theta5 = np.arccos(np.clip(z @ z1, -1.0, 1.0))",
+        ),
+        points=3,
+        mistake="arccos",
+    ),
+    Variant(
+        "7.4",
+        "θ6 not turned by π",
+        _WRIST.replace("[-theta5, theta6 + np.pi]", "[-theta5, theta6]"),
+        points=0,
+        mistake="turned by π",
+    ),
+    Variant(
+        "7.4",
+        "sign of y · z1",
+        _WRIST.replace("a, b = x @ z1, -(y @ z1)", "a, b = x @ z1, y @ z1"),
+        points=0,
+        mistake="sign of y",
+    ),
     Variant(
         "7.1",
         "the sheet's arctan(y/x)",

@@ -25,6 +25,7 @@ __all__ = [
     "SINGULARITIES",
     "SO3_EXP",
     "TWIST_EXP",
+    "TWIST_LOG",
 ]
 
 #: UR's base frame seen from the URDF base_link frame (Rz(π)).
@@ -62,6 +63,8 @@ FORWARD_KINEMATICS = (
 SCREW_AXIS = (poe.screw_axis,)
 #: The exponential of a twist, e^[S]θ (and the product-of-exponentials machinery).
 TWIST_EXP = (transforms.se3_exp, poe)
+#: The logarithm of a rigid motion, log T = [V] (and the IK core, whose matrix-log step uses it).
+TWIST_LOG = (transforms.se3_log,)
 #: The geometric Jacobian and its space and body forms.
 JACOBIAN = (
     kinematics.jacobian,

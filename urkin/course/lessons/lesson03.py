@@ -25,7 +25,7 @@ from urkin.course.inputs import random_arm, random_q
 from urkin.course.submission import StudentRaised
 from urkin.kinematics import dh_chain
 from urkin.poe import body_screws, screw_axis, space_screws
-from urkin.transforms import se3_exp, skew
+from urkin.transforms import inv_transform, se3_exp, se3_log, skew
 
 _fk = urkin.fk
 
@@ -647,10 +647,160 @@ def _product_exercise(exercise_id: str, form: _ProductForm) -> Exercise:
     )
 
 
+# ----------------------------------------------------------------------------- 3.5 twist_log
+
+
+def _log_inputs(rng, low: float = 0.1, high: float = 3.0) -> tuple[np.ndarray, np.ndarray]:
+    """A twist V = (ωθ, vθ) with θ in [low, high] and the pose e^[V]."""
+    w = _unit(rng)
+    V = np.r_[w, rng.uniform(-0.6, 0.6, 3)] * rng.uniform(low, high)
+    return V, se3_exp(V)
+
+
+def _G_inverse(w, theta, half=-0.5) -> np.ndarray:
+    """G(θ)⁻¹ for a unit axis w (``half``: the coefficient of [ω], −½ when right)."""
+    W = skew(w)
+    return np.eye(3) / theta + half * W + (1 / theta - 0.5 / np.tan(theta / 2)) * W @ W
+
+
+def _log_hypotheses(T):
+    right = se3_log(T)
+    theta = float(np.linalg.norm(right[:3]))
+    w, p = right[:3] / theta, T[:3, 3]
+    G = (
+        theta * np.eye(3)
+        + (1 - np.cos(theta)) * skew(w)
+        + (theta - np.sin(theta)) * (skew(w) @ skew(w))
+    )
+    hypotheses = {
+        "(v, ω) order: a twist is (ω, v), angular part first": lambda: np.r_[right[3:], right[:3]],
+        "the linear part is p: vθ = θ G⁻¹(θ) p — p is where the origin ends up, not the "
+        "twist's linear velocity": lambda: np.r_[right[:3], p],
+        "the linear part is v, not vθ: multiply G⁻¹(θ) p by θ": lambda: np.r_[
+            right[:3], right[3:] / theta
+        ],
+        "the angular part is the unit axis ω, not ωθ": lambda: np.r_[right[:3] / theta, right[3:]],
+        "G⁻¹ with +½[ω]: G⁻¹ = I/θ − [ω]/2 + (1/θ − cot(θ/2)/2)[ω]²": lambda: np.r_[
+            right[:3], theta * _G_inverse(w, theta, half=0.5) @ p
+        ],
+        "G(θ) p instead of G⁻¹(θ) p: p = G(θ) v, so v = G⁻¹(θ) p": lambda: np.r_[right[:3], G @ p],
+        "the twist of T⁻¹ (R read transposed, or log(T⁻¹)): the sign of ω is flipped": lambda: (
+            se3_log(inv_transform(T))
+        ),
+    }
+    return unless_right(hypotheses, right)
+
+
+_LOG_SHAPES = {
+    (2, 3): "ωθ and vθ returned as two rows (2 × 3): V is one vector of six numbers",
+    (4, 4): "a 4 × 4 matrix: return the twist as the 6-vector (ωθ, vθ), not the matrix [V]",
+    (6, 1): "a column of shape (6, 1): V is a flat vector of shape (6,)",
+}
+
+
+def _log_call(sub, T, inputs=None) -> np.ndarray:
+    inputs = {"T": T} if inputs is None else inputs
+    value = sub.twist_log(T)
+    if isinstance(value, (tuple, list)) and len(value) == 2 and np.ndim(value[1]) == 0:
+        raise Mismatch(
+            "twist_log(T) must return one 6-vector V = (ωθ, vθ); got a pair (S, θ)",
+            inputs=inputs,
+            mistake="the screw axis and θ returned separately: return their product S θ",
+        )
+    try:
+        raw = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raw = None
+    if raw is not None and raw.shape == (6,) and not np.all(np.isfinite(raw)):
+        raise Mismatch(
+            "twist_log(T) returned NaN or infinity",
+            inputs=inputs,
+            got=raw,
+            mistake=(
+                "a division by sin θ or θ where it is zero: handle θ = 0 (a pure translation, "
+                "V = (0, p)) and θ = π (the axis from the symmetric part of R) separately"
+            ),
+        )
+    got = as_array(value, (6,), "twist_log(T)", inputs, _LOG_SHAPES)
+    return got
+
+
+def _log_matches(sub, rng):
+    for _ in range(10):
+        V, T = _log_inputs(rng)
+        compare(
+            _log_call(sub, T),
+            V,
+            what="V = (ωθ, θ G⁻¹(θ) p) with θ = |ωθ| in [0, π]",
+            inputs={"T": T},
+            hypotheses=_log_hypotheses(T),
+        )
+
+
+def _log_of_translations(sub, rng):
+    poses = [np.eye(4)] + [_transform(np.eye(3), rng.uniform(-0.8, 0.8, 3)) for _ in range(4)]
+    for T in poses:
+        compare(
+            _log_call(sub, T),
+            np.r_[np.zeros(3), T[:3, 3]],
+            what="a pure translation (R = I, θ = 0) has the twist V = (0, p)",
+            inputs={"T": T},
+            hypotheses={
+                "(v, ω) order: a twist is (ω, v), angular part first": lambda T=T: np.r_[
+                    T[:3, 3], np.zeros(3)
+                ]
+            },
+        )
+
+
+def _log_at_the_edges(sub, rng):
+    cases = []
+    for _ in range(2):  # exact half turns, R = 2 ω ωᵀ − I: symmetric, so sin θ · ω reads 0
+        w = _unit(rng)
+        cases.append((np.pi, _transform(2 * np.outer(w, w) - np.eye(3), rng.uniform(-0.6, 0.6, 3))))
+    for theta in (np.pi, np.pi - 1e-8, np.pi - 1e-4, 1e-3, 1e-6, 1e-9):
+        w = _unit(rng)
+        V = np.r_[w, rng.uniform(-0.6, 0.6, 3)] * theta
+        cases.append((theta, se3_exp(V)))
+    for theta, T in cases:
+        inputs = {"T": T, "θ (rad)": theta}
+        got = _log_call(sub, T, inputs)
+        angle = float(np.linalg.norm(got[:3]))
+        if angle <= np.pi + 1e-9 and close(se3_exp(got), T, 1e-8, like=got):
+            continue
+        near_pi = theta > 3.0
+        rotation_wrong = not close(se3_exp(got)[:3, :3], T[:3, :3], 1e-8, like=got)
+        if near_pi and rotation_wrong:
+            mistake = (
+                "the axis divided by sin θ next to a half turn: it is lost there; use the "
+                "symmetric part of R"
+            )
+        else:
+            mistake = identify_mistake(got, _log_hypotheses(T)) if theta < 3.0 else None
+        raise Mismatch(
+            "e^[V] must reproduce T, with θ = |ωθ| ≤ π, also "
+            + (
+                "at and next to a half turn (there sin θ ≈ 0: take the axis from the "
+                "symmetric part of R, R + Rᵀ − 2 cos θ I = 2(1 − cos θ) ω ωᵀ)"
+                if near_pi
+                else "for small turns (compute θ with atan2, not arccos, and keep "
+                "1/θ − cot(θ/2)/2 accurate)"
+            )
+            + " — checked to 1e-8",
+            inputs=inputs,
+            expected=T,
+            got=se3_exp(got),
+            mistake=mistake,
+        )
+
+
 LESSON = Lesson(
     number="03",
     title="The product of exponentials",
-    summary="product of exponentials: screw axes by hand and from DH tables, space and body forms",
+    summary=(
+        "product of exponentials: screw axes by hand and from DH tables, space and body forms, "
+        "the matrix log"
+    ),
     exercises=(
         Exercise(
             id="3.1",
@@ -684,5 +834,22 @@ LESSON = Lesson(
         ),
         _product_exercise("3.3", _SPACE),
         _product_exercise("3.4", _BODY),
+        Exercise(
+            id="3.5",
+            function="twist_log",
+            title="the matrix logarithm of a rigid motion",
+            checks=(
+                Check("matches the logarithm for random poses", 2, _log_matches),
+                Check(
+                    "gives (0, p) for pure translations and the identity", 1, _log_of_translations
+                ),
+                Check(
+                    "round-trips at and next to half turns, and for small turns",
+                    1,
+                    _log_at_the_edges,
+                ),
+            ),
+            answer=concepts.TWIST_LOG,
+        ),
     ),
 )

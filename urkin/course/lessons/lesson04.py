@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 
 import numpy as np
 
@@ -19,8 +20,15 @@ from urkin.course.compare import (
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import negated_a, random_arm, random_q
 from urkin.kinematics import SINGULARITIES, dh_transform, singularity_factors
-from urkin.poe import space_from_geometric
-from urkin.transforms import wrap_angles
+from urkin.poe import (
+    body_screws,
+    jacobian_body,
+    jacobian_space,
+    screw_axis,
+    space_from_geometric,
+    space_screws,
+)
+from urkin.transforms import adjoint, inv_transform, se3_exp, wrap_angles
 
 _fk, _fk_frames, _jacobian = urkin.fk, urkin.fk_frames, urkin.jacobian
 
@@ -465,7 +473,216 @@ def _on_the_arm(sub, rng):
     )
 
 
-# ----------------------------------------------------------------------- 4.3 singularities
+# ------------------------------------------------------ 4.3 jacobian_space, 4.4 jacobian_body
+
+
+def _random_screws(rng, n: int) -> np.ndarray:
+    """``n`` revolute screw axes (6, n): random unit axes through random points."""
+    columns = []
+    for _ in range(n):
+        w = rng.normal(size=3)
+        columns.append(screw_axis(w / np.linalg.norm(w), rng.uniform(-0.6, 0.6, 3)))
+    return np.column_stack(columns)
+
+
+def _twist_form_inputs(form: str, rng):
+    """Screw axes and angles: a UR arm's (space or body) half the time, else 2 to 7 joints."""
+    if rng.random() < 0.5:
+        arm = random_arm(rng)
+        axes = (space_screws if form == "space" else body_screws)(arm)[0]
+        return axes, random_q(rng)
+    n = int(rng.integers(2, 8))
+    return _random_screws(rng, n), rng.uniform(-np.pi, np.pi, n)
+
+
+def _exp(axis, angle) -> np.ndarray:
+    return se3_exp(np.asarray(axis) * angle)
+
+
+def _space_columns(S, q, right=False, transport=True) -> np.ndarray:
+    """J_s by the recipe, with its pieces swappable (the product on the wrong side, no
+    transport of the axes at all)."""
+    n = S.shape[1]
+    J, T = np.zeros((6, n)), np.eye(4)
+    for i in range(n):
+        J[:, i] = adjoint(T) @ S[:, i] if transport else S[:, i]
+        T = T @ _exp(S[:, i], q[i]) if not right else _exp(S[:, i], q[i]) @ T
+    return J
+
+
+def _body_columns(B, q, sign=-1.0, forward=False) -> np.ndarray:
+    """J_b by the recipe (exponentials of −B_k q_k after joint i), with the sign or the
+    direction of the product swappable."""
+    n = B.shape[1]
+    J, T = np.zeros((6, n)), np.eye(4)
+    order = range(n) if forward else range(n - 1, -1, -1)
+    for i in order:
+        J[:, i] = adjoint(T) @ B[:, i]
+        T = T @ _exp(B[:, i], sign * q[i])
+    return J
+
+
+_VW_ORDER = "rows in the order (v, ω): a twist is (ω, v), angular part first"
+
+
+def _twist_jacobian_hypotheses(form: str, axes, q) -> dict:
+    right = (jacobian_space if form == "space" else jacobian_body)(axes, q)
+    hypotheses = {
+        _VW_ORDER: lambda: np.r_[right[3:], right[:3]],
+        "each column is the home axis itself: the joints before it move it (the adjoint of "
+        "their product)"
+        if form == "space"
+        else "each column is the home body axis itself: "
+        "the joints after it move it, seen from the end effector": lambda: np.array(axes),
+        "angles in degrees": lambda: (jacobian_space if form == "space" else jacobian_body)(
+            axes, np.radians(q)
+        ),
+    }
+    if form == "space":
+        hypotheses[
+            "the product of exponentials multiplied on the left (e^[S_i]q_i T), not the "
+            "right: the joints are carried in order 1, 2, …"
+        ] = lambda: _space_columns(axes, q, right=True)
+        hypotheses["the body Jacobian: space columns are Ad(e^[S1]q1 ⋯ e^[S(i−1)]q(i−1)) S_i"] = (
+            lambda: jacobian_body(axes, q)
+        )
+    else:
+        hypotheses[
+            "exponentials of +B_k q_k: the body columns need e^(−[B_k] q_k), the "
+            "motion of the joints after i undone"
+        ] = lambda: _body_columns(axes, q, 1.0)
+        hypotheses[
+            "the product taken from joint 1 forwards: the body columns carry the joints "
+            "after i, from joint n backwards"
+        ] = lambda: _body_columns(axes, q, forward=True)
+        hypotheses["the space Jacobian: body columns are Ad(e^−[Bn]qn ⋯ e^−[B(i+1)]q(i+1)) B_i"] = (
+            lambda: jacobian_space(axes, q)
+        )
+    return unless_right(hypotheses, right)
+
+
+def _twist_jacobian_call(form: str, sub, axes, q, inputs) -> np.ndarray:
+    function = sub.jacobian_space if form == "space" else sub.jacobian_body
+    n = axes.shape[1]
+    shapes = {(n, 6): f"the transpose, ({n}, 6): one column per joint, shape (6, {n})"}
+    return as_array(function(axes, q), (6, n), f"jacobian_{form}", inputs, shapes)
+
+
+def _twist_jacobian_home(form: str, sub, rng):
+    letter = "S" if form == "space" else "B"
+    for _ in range(4):
+        axes, q = _twist_form_inputs(form, rng)
+        n = axes.shape[1]
+        inputs = {letter: axes, "q": np.zeros(n)}
+        compare(
+            _twist_jacobian_call(form, sub, axes, np.zeros(n), inputs),
+            axes,
+            what=f"at q = 0 every column is its home axis: J = {letter}",
+            inputs=inputs,
+            hypotheses=unless_right({_VW_ORDER: lambda a=axes: np.r_[a[3:], a[:3]]}, axes),
+        )
+        inputs = {letter: axes, "q": q}
+        got = _twist_jacobian_call(form, sub, axes, q, inputs)
+        index, what = (0, "the first") if form == "space" else (n - 1, "the last")
+        compare(
+            got[:, index],
+            axes[:, index],
+            what=f"{what} column is {letter}_{index + 1} at any q: no joint "
+            + ("before" if form == "space" else "after")
+            + " it moves its axis",
+            inputs=inputs,
+        )
+
+
+def _twist_jacobian_matches(form: str, sub, rng):
+    letter = "S" if form == "space" else "B"
+    for _ in range(8):
+        axes, q = _twist_form_inputs(form, rng)
+        inputs = {letter: axes, "q": q}
+        compare(
+            _twist_jacobian_call(form, sub, axes, q, inputs),
+            (jacobian_space if form == "space" else jacobian_body)(axes, q),
+            what=(
+                "J_s column i = Ad(e^[S1]q1 ⋯ e^[S(i−1)]q(i−1)) S_i"
+                if form == "space"
+                else "J_b column i = Ad(e^−[Bn]qn ⋯ e^−[B(i+1)]q(i+1)) B_i"
+            ),
+            inputs=inputs,
+            hypotheses=_twist_jacobian_hypotheses(form, axes, q),
+        )
+
+
+def _twist_of(T_dot: np.ndarray) -> np.ndarray:
+    """(ω, v) of a 4 × 4 twist matrix."""
+    return np.r_[T_dot[2, 1], T_dot[0, 2], T_dot[1, 0], T_dot[:3, 3]]
+
+
+def _twist_jacobian_differentiates(form: str, sub, rng):
+    """Each column is the twist of the pose's derivative: Ṫ T⁻¹ (space) or T⁻¹ Ṫ (body), by
+    central differences of the product of exponentials."""
+    letter = "S" if form == "space" else "B"
+    h = 1e-6
+    for _ in range(4):
+        axes, q = _twist_form_inputs(form, rng)
+        n = axes.shape[1]
+        inputs = {letter: axes, "q": q}
+        got = _twist_jacobian_call(form, sub, axes, q, inputs)
+
+        def product(angles, axes=axes):
+            T = np.eye(4)
+            for axis, angle in zip(axes.T, angles):
+                T = T @ _exp(axis, angle)
+            return T
+
+        T_inv = inv_transform(product(q))
+        expected = np.empty((6, n))
+        for i in range(n):
+            step = h * np.eye(n)[i]
+            T_dot = (product(q + step) - product(q - step)) / (2 * h)
+            expected[:, i] = _twist_of(T_dot @ T_inv if form == "space" else T_inv @ T_dot)
+        if not close(got, expected, 1e-7):
+            raise Mismatch(
+                "column i must be the "
+                + ("spatial twist Ṫ T⁻¹" if form == "space" else "body twist T⁻¹ Ṫ")
+                + " of the product of exponentials when joint i alone turns at 1 rad/s "
+                "(central differences, h = 1e-6, compared to 1e-7)",
+                inputs=inputs,
+                expected=expected,
+                got=got,
+                mistake=identify_mistake(got, _twist_jacobian_hypotheses(form, axes, q)),
+            )
+
+
+def _twist_jacobian_exercise(exercise_id: str, form: str) -> Exercise:
+    letter = "S" if form == "space" else "B"
+    return Exercise(
+        id=exercise_id,
+        function=f"jacobian_{form}",
+        title=f"the {form} Jacobian from screw axes",
+        checks=(
+            Check(
+                f"J = {letter} at q = 0, and the "
+                + ("first" if form == "space" else "last")
+                + " column never moves",
+                1,
+                partial(_twist_jacobian_home, form),
+            ),
+            Check(
+                "matches the Jacobian for UR arms and arms of 2 to 7 joints",
+                2,
+                partial(_twist_jacobian_matches, form),
+            ),
+            Check(
+                "its columns are the twists of the pose's derivative, joint by joint",
+                1,
+                partial(_twist_jacobian_differentiates, form),
+            ),
+        ),
+        answer=concepts.JACOBIAN,
+    )
+
+
+# ----------------------------------------------------------------------- 4.5 singularities
 
 _FAMILY_JOINT = {"elbow": 2, "wrist": 4}
 
@@ -905,8 +1122,10 @@ LESSON = Lesson(
                 ),
             ),
         ),
+        _twist_jacobian_exercise("4.3", "space"),
+        _twist_jacobian_exercise("4.4", "body"),
         Exercise(
-            id="4.3",
+            id="4.5",
             function="singularities",
             title="which singular families hold at q",
             checks=(

@@ -10,12 +10,27 @@ import numpy as np
 
 import urkin
 from urkin.course import concepts
-from urkin.course.compare import Mismatch, as_array, close, compare, tolerance
+from urkin.course.compare import (
+    Mismatch,
+    as_array,
+    close,
+    compare,
+    tolerance,
+    unless_right,
+)
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_arm, random_q, random_regular_q
 from urkin.course.submission import StudentRaised
 from urkin.numerical_ik import orientation_error
-from urkin.transforms import rotation_angle, wrap_angles
+from urkin.poe import fk_space, jacobian_body, jacobian_space, screw_axis, space_screws
+from urkin.transforms import (
+    adjoint,
+    inv_transform,
+    make_transform,
+    rotation_angle,
+    se3_log,
+    wrap_angles,
+)
 
 _fk, _ik, _jacobian = urkin.fk, urkin.ik, urkin.jacobian
 _orientation_error = orientation_error
@@ -777,6 +792,128 @@ def _restarts(sub, rng):
         )
 
 
+# --------------------------------------------------------------------------------- 6.4 ik_poe
+
+
+def _poe_problem(rng, n: int | None = None, away: float = 0.3):
+    """(M, S, T_target, q0): a UR arm's space screws (or, with ``n``, a random arm of n joints:
+    screws of random joints through random points), a target reached at random angles and a
+    start ``away`` rad from them on every joint — one that the plain iteration itself solves
+    within 50 steps (about 1 % of draws are not, and a correct answer must not lose points
+    on them)."""
+    while True:
+        if n is None:
+            arm = random_arm(rng)
+            S, M = space_screws(arm)
+            q_true = random_regular_q(rng)
+        else:
+            columns = []
+            for _ in range(n):
+                w = rng.normal(size=3)
+                columns.append(screw_axis(w / np.linalg.norm(w), rng.uniform(-0.5, 0.5, 3)))
+            S = np.column_stack(columns)
+            M = make_transform(p=rng.uniform(-0.5, 0.5, 3))
+            q_true = rng.uniform(-np.pi, np.pi, n)
+        q0 = q_true + away * rng.choice([-1.0, 1.0], len(q_true))
+        T_target = fk_space(M, S, q_true)
+        q = q0
+        for _ in range(50):
+            q = _poe_one_step(M, S, T_target, q)
+        if _poe_miss(M, S, T_target, q) < 1e-10:
+            return M, S, T_target, q0
+
+
+def _poe_miss(M, S, T_target, q) -> float:
+    """Position (m) or angle (rad) by which ``q`` misses the target, whichever is larger."""
+    T = fk_space(M, S, q)
+    return max(
+        float(np.linalg.norm(T[:3, 3] - T_target[:3, 3])),
+        float(rotation_angle(T[:3, :3], T_target[:3, :3])),
+    )
+
+
+def _poe_call(sub, M, S, T_target, q0, **kwargs) -> np.ndarray:
+    inputs = {"M": M, "S": S, "T_target": T_target, "q0": q0, **kwargs}
+    value = sub.ik_poe(M, S, T_target, q0, **kwargs)
+    if isinstance(value, tuple) and len(value) == 2 and np.ndim(value[1]) == 0:
+        value = value[0]  # Modern Robotics' (θ, success) is fine too
+    return as_array(value, (S.shape[1],), "ik_poe", inputs)
+
+
+def _poe_one_step(M, S, T_target, q0, twist="space", jacobian="space", swap=False):
+    """One Newton step on the log error twist, with its frame and Jacobian swappable."""
+    T = fk_space(M, S, q0)
+    if twist == "space":
+        V = se3_log(T_target @ inv_transform(T))
+    elif twist == "body":
+        V = se3_log(inv_transform(T) @ T_target)
+    else:  # the inverse motion, log(T T_target⁻¹)
+        V = se3_log(T @ inv_transform(T_target))
+    if swap:
+        V = np.r_[V[3:], V[:3]]
+    J = jacobian_space(S, q0) if jacobian == "space" else jacobian_body(_body_from_space(M, S), q0)
+    return q0 + np.linalg.pinv(J) @ V
+
+
+def _body_from_space(M, S) -> np.ndarray:
+    return adjoint(inv_transform(M)) @ S
+
+
+def _poe_step_hypotheses(M, S, T_target, q0) -> dict:
+    right = _poe_one_step(M, S, T_target, q0)
+    return unless_right(
+        {
+            "the body twist log(T⁻¹ T_target) with the space Jacobian: pair a space twist with "
+            "J_s, or a body twist with J_b": lambda: _poe_one_step(M, S, T_target, q0, "body"),
+            "the space twist with the body Jacobian: pair a space twist with J_s": lambda: (
+                _poe_one_step(M, S, T_target, q0, "space", "body")
+            ),
+            "the twist of the inverse motion, log(T T_target⁻¹): the error twist carries T to "
+            "the target, log(T_target T⁻¹)": lambda: _poe_one_step(M, S, T_target, q0, "back"),
+            "the twist read as (v, ω): se3_log returns (ω, v), the order the space Jacobian's "
+            "rows have": lambda: _poe_one_step(M, S, T_target, q0, swap=True),
+        },
+        right,
+    )
+
+
+def _poe_first_step(sub, rng):
+    for _ in range(4):
+        M, S, T_target, q0 = _poe_problem(rng, away=0.6)
+        compare(
+            _poe_call(sub, M, S, T_target, q0, max_iterations=1),
+            _poe_one_step(M, S, T_target, q0),
+            what="one iteration (max_iterations=1) is q0 + J_s⁺ V_s with "
+            "[V_s] = log(T_target T(q0)⁻¹) and J_s the space Jacobian at q0",
+            inputs={"M": M, "S": S, "T_target": T_target, "q0": q0, "max_iterations": 1},
+            hypotheses=_poe_step_hypotheses(M, S, T_target, q0),
+        )
+
+
+def _poe_reaches(sub, rng, any_arm: bool):
+    for _ in range(3 if any_arm else 5):
+        n = int(rng.integers(2, 8)) if any_arm else None
+        M, S, T_target, q0 = _poe_problem(rng, n=n)
+        got = _poe_call(sub, M, S, T_target, q0)
+        miss = _poe_miss(M, S, T_target, got.astype(float))
+        if not miss < tolerance(1e-8, got, 1.0):
+            raise Mismatch(
+                "the answer must reach the target: e^[S1]q1 ⋯ e^[Sn]qn M = T_target within "
+                f"1e-8 m and 1e-8 rad (it misses by {miss:.2g})",
+                inputs={"M": M, "S": S, "T_target": T_target, "q0": q0},
+                expected=T_target,
+                got=fk_space(M, S, got.astype(float)),
+            )
+
+
+def _poe_ur_arms(sub, rng):
+    _poe_reaches(sub, rng, any_arm=False)
+
+
+def _poe_any_arm(sub, rng):
+    _poe_reaches(sub, rng, any_arm=True)
+
+
 LESSON = Lesson(
     number="06",
     title="Damped least squares, Levenberg–Marquardt and the PoE solver",
@@ -834,6 +971,21 @@ LESSON = Lesson(
             answer=concepts.INVERSE_KINEMATICS,
             uses=("lm_step",),
             builds_on=("6.2",),
+        ),
+        Exercise(
+            id="6.4",
+            function="ik_poe",
+            title="matrix-log IK: the space twist with the space Jacobian",
+            checks=(
+                Check(
+                    "one iteration is q0 + J_s⁺ V_s, V_s = log(T_target T⁻¹)",
+                    2,
+                    _poe_first_step,
+                ),
+                Check("reaches targets on UR arms from 0.3 rad away", 1, _poe_ur_arms),
+                Check("works for arms of 2 to 7 joints", 1, _poe_any_arm),
+            ),
+            answer=concepts.INVERSE_KINEMATICS,
         ),
     ),
 )

@@ -11,16 +11,17 @@ from typing import Any
 import numpy as np
 
 from urkin.analytic_ik import ik_analytic
-from urkin.transforms import wrap_angles
 from urkin.course import concepts
 from urkin.course.compare import Mismatch, as_array, close, format_array, tolerance
 from urkin.course.exercise import Check, Exercise, Lesson
+from urkin.course.inputs import random_arm
 from urkin.course.lab import LAB_BASE_IN_WORLD, LAB_LINKS, LAB_OFFSET, fk_lab, ik_lab, lab_robot
 from urkin.course.submission import StudentRaised
-from urkin.transforms import make_transform, rot_x, rot_z
+from urkin.kinematics import fk
+from urkin.transforms import make_transform, rot_x, rot_z, rotation_angle, wrap_angles
 
 # bound here, in the lesson module, which the grading guard never touches
-_fk_lab, _ik_lab, _ik_analytic = fk_lab, ik_lab, ik_analytic
+_fk_lab, _ik_lab, _ik_analytic, _fk = fk_lab, ik_lab, ik_analytic, fk
 _LAB = lab_robot()
 
 _L1, _L2, _L3, _L4, _L5, _L6, _L7, _L8, _L9, _L10 = LAB_LINKS
@@ -872,6 +873,128 @@ def _lab_wrapped(sub, rng):
             )
 
 
+# ----------------------------------------------------------------------------- 7.4 wrist_angles
+
+
+def _wrist_reference(T, theta1) -> np.ndarray:
+    """Both (θ5, θ6) rows for a flange pose and θ1: θ5 ≥ 0 first."""
+    x, y, z = T[:3, 0], T[:3, 1], T[:3, 2]
+    z1 = np.array([np.sin(theta1), -np.cos(theta1), 0.0])
+    a, b = x @ z1, -(y @ z1)  # cos θ6 sin θ5 and sin θ6 sin θ5
+    theta5 = np.arctan2(np.hypot(a, b), z @ z1)
+    theta6 = np.arctan2(b, a)
+    return np.array([[theta5, theta6], [-theta5, float(wrap_angles(theta6 + np.pi))]])
+
+
+def _wrist_call(sub, T, theta1) -> np.ndarray:
+    inputs = {"T": T, "theta1": theta1}
+    shapes = {(4,): "four numbers in one row: return [[θ5, θ6], [−θ5, θ6 + π]], shape (2, 2)"}
+    return as_array(sub.wrist_angles(T, theta1), (2, 2), "wrist_angles(T, theta1)", inputs, shapes)
+
+
+def _wrist_mistake(got, T, theta1) -> str | None:
+    """Name the usual slips by comparing with their answers (angles modulo 2π)."""
+    right = _wrist_reference(T, theta1)
+    x, y, z = T[:3, 0], T[:3, 1], T[:3, 2]
+    z1 = np.array([np.sin(theta1), -np.cos(theta1), 0.0])
+    slips = {
+        "θ6 of the second branch not turned by π: flipping θ5 turns the wrist over, "
+        "θ6 → θ6 + π": np.array([right[0], [right[1, 0], right[0, 1]]]),
+        "θ5 from the wrong axis: cos θ5 = z · z1 with z1 = (sin θ1, −cos θ1, 0), the axis of "
+        "joints 2-4": np.array(
+            [
+                [np.arccos(np.clip(z @ [np.cos(theta1), np.sin(theta1), 0.0], -1, 1)), right[0, 1]],
+                [
+                    -np.arccos(np.clip(z @ [np.cos(theta1), np.sin(theta1), 0.0], -1, 1)),
+                    right[1, 1],
+                ],
+            ]
+        ),
+        "the sign of y · z1: sin θ6 sin θ5 = −y · z1": np.array(
+            [
+                [right[0, 0], np.arctan2(y @ z1, x @ z1)],
+                [right[1, 0], float(wrap_angles(np.arctan2(y @ z1, x @ z1) + np.pi))],
+            ]
+        ),
+    }
+    for name, candidate in slips.items():
+        if np.abs(wrap_angles(got.astype(float) - candidate)).max() < 1e-6 and not (
+            np.abs(wrap_angles(candidate - right)).max() < 1e-6
+        ):
+            return name
+    return None
+
+
+def _wrist_configurations(rng, q5_size: tuple[float, float] | None = None):
+    arm = random_arm(rng)
+    q = rng.uniform(-np.pi, np.pi, 6)
+    if q5_size is None:
+        while abs(np.sin(q[4])) < 0.1:
+            q[4] = rng.uniform(-np.pi, np.pi)
+    else:
+        q[4] = 10 ** rng.uniform(*q5_size) * rng.choice([-1.0, 1.0])
+    return arm, q
+
+
+def _wrist_rows_match(sub, rng, q5_size=None, atol5=1e-9, atol6=1e-9):
+    for _ in range(8 if q5_size is None else 4):
+        arm, q = _wrist_configurations(rng, q5_size)
+        T = _fk(arm, q)
+        got = _wrist_call(sub, T, q[0])
+        right = _wrist_reference(T, q[0])
+        gap = np.abs(wrap_angles(got.astype(float) - right))
+        if not (
+            gap[:, 0].max() <= tolerance(atol5, got) and gap[:, 1].max() <= tolerance(atol6, got)
+        ):
+            near = q5_size is not None
+            raise Mismatch(
+                "the rows must be [θ5, θ6] with θ5 ≥ 0 and then [−θ5, θ6 + π] (angles compared "
+                f"modulo 2π, θ5 to {atol5:g}, θ6 to {atol6:g})"
+                + (f"; here sin θ5 is only {np.sin(q[4]):.1e}" if near else ""),
+                inputs={"T": T, "theta1": q[0], "the configuration": q},
+                expected=right,
+                got=got,
+                mistake=(
+                    "θ5 from arccos(z · z1): next to the wrist singularity the cosine is 1 to "
+                    "within round-off and arccos loses the angle; use θ5 = atan2(|sin θ5|, "
+                    "cos θ5) with |sin θ5| = ‖(x · z1, y · z1)‖"
+                    if near and gap[:, 0].max() > tolerance(atol5, got)
+                    else _wrist_mistake(got, T, q[0])
+                ),
+            )
+
+
+def _wrist_generic(sub, rng):
+    _wrist_rows_match(sub, rng)
+
+
+def _wrist_near_singular(sub, rng):
+    _wrist_rows_match(sub, rng, q5_size=(-8.5, -7.5), atol6=1e-6)
+
+
+def _wrist_is_a_solution(sub, rng):
+    """Each row, with θ1 and the θ234 it implies (step 4), gives the flange's orientation: the
+    rotation of a UR arm depends on θ1, θ2 + θ3 + θ4, θ5 and θ6 only."""
+    for _ in range(4):
+        arm, q = _wrist_configurations(rng)
+        T = _fk(arm, q)
+        got = _wrist_call(sub, T, q[0]).astype(float)
+        x_z, y_z, z_z = T[2, :3]
+        for theta5, theta6 in got:
+            c5, s5, c6, s6 = np.cos(theta5), np.sin(theta5), np.cos(theta6), np.sin(theta6)
+            q234 = np.arctan2(c5 * (c6 * x_z - s6 * y_z) - s5 * z_z, s6 * x_z + c6 * y_z)
+            R = _fk(arm, np.array([q[0], q234, 0.0, 0.0, theta5, theta6]))[:3, :3]
+            if rotation_angle(R, T[:3, :3]) > 1e-8:
+                raise Mismatch(
+                    "every row (θ5, θ6), with θ1 and θ2 + θ3 + θ4 from step 4, must give the "
+                    "flange's orientation",
+                    inputs={"T": T, "theta1": q[0]},
+                    expected=_wrist_reference(T, q[0]),
+                    got=got,
+                    mistake=_wrist_mistake(got, T, q[0]),
+                )
+
+
 LESSON = Lesson(
     number="07",
     title="Closed-form (geometric) inverse kinematics",
@@ -941,6 +1064,23 @@ LESSON = Lesson(
             ),
             answer=concepts.LAB_IK,
             builds_on=("7.1", "7.2"),
+        ),
+        Exercise(
+            id="7.4",
+            function="wrist_angles",
+            title="θ5 and θ6 of the general closed form",
+            checks=(
+                Check("both (θ5, θ6) pairs for random poses", 2, _wrist_generic),
+                Check(
+                    "each pair gives the flange's orientation with that θ1", 1, _wrist_is_a_solution
+                ),
+                Check(
+                    "accurate next to the wrist singularity (|θ5| from 3e-9 to 3e-8)",
+                    1,
+                    _wrist_near_singular,
+                ),
+            ),
+            answer=concepts.INVERSE_KINEMATICS,
         ),
     ),
 )
