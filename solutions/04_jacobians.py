@@ -403,8 +403,8 @@ plt.show()
 # $$f(q + h e_j) = f(q) + h\,\frac{\partial f}{\partial q_j} + \frac{h^2}{2}\,f'' +
 # \frac{h^3}{6}\,f''' + \dots$$
 #
-# * **forward difference**: $\dfrac{f(q + h e_j) - f(q)}{h} = \dfrac{\partial f}{\partial q_j}
-#   + \dfrac{h}{2} f'' + \dots$ — its error shrinks like $h$ (first order);
+# * **forward difference**: $\dfrac{f(q + h e_j) - f(q)}{h} = \dfrac{\partial f}{\partial q_j} +
+#   \dfrac{h}{2} f'' + \dots$ — its error shrinks like $h$ (first order);
 # * **central difference**: $\dfrac{f(q + h e_j) - f(q - h e_j)}{2h} =
 #   \dfrac{\partial f}{\partial q_j} + \dfrac{h^2}{6} f''' + \dots$ — the even terms cancel, so
 #   its error shrinks like $h^2$ (second order), for $2n$ evaluations of $f$ instead of $n + 1$.
@@ -1091,6 +1091,48 @@ for k in shown:
 # radians when it uses the full $J$. Both are cheap, and both are worth logging along any
 # planned path.
 #
+# ### Exercise 4.6 — `manipulability` (4 points)
+#
+# Write `manipulability(J)`: Yoshikawa's $w = \sqrt{\det(J J^\mathsf{T})}$ of any Jacobian
+# `J` of shape `(m, n)` with $m \le n$ (the full 6 × 6 one, its 3 × 6 linear rows, or a
+# Jacobian of another arm), as a float. Be careful at singularities: there $\det(J
+# J^\mathsf{T})$ is zero on paper and may come out a hair *below* zero in floating point, and
+# the square root of a negative number is NaN. (The product of the singular values of $J$ is
+# the same number and avoids the issue.)
+#
+# *Checked* (to 1e-9, relative to $w$ when $w > 1$; a float32 answer to float32's precision):
+# (2 points) random matrices of shapes 6 × 6, 3 × 6, 2 × 5 and 6 × 7; (1 point) square
+# matrices with a negative determinant give $|\det J|$; (1 point) the 6 × 6 Jacobians of UR
+# arms at the elbow ($q_3 = 0$) and wrist ($q_5 = 0$) singularities give 0 (below 1e-6: the
+# square root of a round-off determinant can reach 1e-8), never NaN. The feedback recognises
+# a missing square root, $J^\mathsf{T}J$ in place of $JJ^\mathsf{T}$, $\det J$ without its
+# absolute value, the condition number, and NaN at a singularity. urkin's `manipulability`
+# (and the rest of its singularity measures) is hidden while it is graded.
+
+# %%
+def manipulability(J):
+    """Yoshikawa's manipulability w = √det(J Jᵀ) of a Jacobian.
+
+    Parameters
+    ----------
+    J : array_like, shape (m, n), m ≤ n
+        A Jacobian.
+
+    Returns
+    -------
+    float
+        w ≥ 0: the product of the singular values of J; 0 exactly at a singularity.
+    """
+    ### BEGIN SOLUTION
+    J = np.asarray(J, dtype=float)
+    return float(np.sqrt(max(np.linalg.det(J @ J.T), 0.0)))
+    ### END SOLUTION
+
+
+# %%
+check("4.6", manipulability)
+
+# %% [markdown]
 # ### Statics: the same Jacobian, transposed
 #
 # The Jacobian also says which joint torques hold a load. Let the flange push on the world (a
@@ -1198,5 +1240,5 @@ for k in shown[:-1]:
 # use the pseudo-inverse, **damped least squares** $J^\mathsf{T}(JJ^\mathsf{T} +
 # \lambda^2 I)^{-1}$ and Levenberg–Marquardt, and watch the condition number.
 #
-# Before you move on: restart the kernel and run the whole notebook. All three check cells
+# Before you move on: restart the kernel and run the whole notebook. All six check cells
 # should report full marks.

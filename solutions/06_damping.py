@@ -1099,5 +1099,5 @@ for method in ["nr", "poe"]:
 # inverse kinematics: all eight solutions, exactly, in microseconds, including at the singular
 # poses where iterative solvers struggle.
 #
-# Before you move on: restart the kernel and run the whole notebook. All three check cells
+# Before you move on: restart the kernel and run the whole notebook. All four check cells
 # should report full marks.

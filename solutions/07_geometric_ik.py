@@ -895,8 +895,7 @@ plt.show()
 #    $x_z = c_5 c_6 s_{234} + s_6 c_{234}$, $y_z = c_6 c_{234} - c_5 s_6 s_{234}$ and
 #    $z_z = -s_5 s_{234}$ (lesson 02's $T_{06}$). Combining them so that $c_5^2 + s_5^2 = 1$
 #    and $c_6^2 + s_6^2 = 1$ cancel out,
-#    $$\theta_{234} = \operatorname{atan2}\bigl(c_5 (c_6 x_z - s_6 y_z) - s_5 z_z,\;
-#      s_6 x_z + c_6 y_z\bigr),$$
+#    $$\theta_{234} = \mathrm{atan2}(c_5 (c_6 x_z - s_6 y_z) - s_5 z_z,\ s_6 x_z + c_6 y_z),$$
 #    with no division, so it holds at $s_5 = 0$ too. Stepping back $d_5$ from joint 5's
 #    centre $c$ along that link gives **wrist 1**, the tip of a planar two-link arm with links
 #    $a_2$ and $a_3$, at the signed distance and height (from the shoulder)

@@ -83,6 +83,23 @@ def jacobian_body(B, q):
 """
 
 CORRECT = [
+    # ------------------------------------------------------------------------------ 4.6
+    Variant(
+        "4.6",
+        "product of the singular values",
+        "def manipulability(J):\n    return np.prod(np.linalg.svd(J, compute_uv=False))\n",
+    ),
+    Variant(
+        "4.6",
+        "|det J| for square, clipped det otherwise",
+        """
+def manipulability(J):
+    J = np.asarray(J, dtype=float)
+    if J.shape[0] == J.shape[1]:
+        return abs(np.linalg.det(J))
+    return np.sqrt(np.clip(np.linalg.det(J @ J.T), 0, None))
+""",
+    ),
     # ------------------------------------------------------------------------------ 4.3
     Variant(
         "4.3",
@@ -396,6 +413,35 @@ def singularities(robot, q, tol=1e-9):
 ]
 
 WRONG = [
+    # ------------------------------------------------------------------------------ 4.6
+    Variant(
+        "4.6",
+        "no clip before the square root",
+        "def manipulability(J):\n    return np.sqrt(np.linalg.det(J @ J.T))\n",
+        points=3,
+        mistake="clip it at 0",
+    ),
+    Variant(
+        "4.6",
+        "JᵀJ",
+        "def manipulability(J):\n    return np.sqrt(max(np.linalg.det(J.T @ J), 0.0))\n",
+        points=None,
+        mistake="Jᵀ J",
+    ),
+    Variant(
+        "4.6",
+        "no square root",
+        "def manipulability(J):\n    return max(np.linalg.det(J @ J.T), 0.0)\n",
+        points=1,
+        mistake="without the square root",
+    ),
+    Variant(
+        "4.6",
+        "det J",
+        "def manipulability(J):\n    return np.linalg.det(J)\n",
+        points=1,
+        mistake="absolute value",
+    ),
     # ------------------------------------------------------------------------------ 4.3
     Variant(
         "4.3",

@@ -274,6 +274,56 @@ def _exercise_problems(path: Path, notebook: dict, lesson: str) -> list[str]:
     return problems
 
 
+def math_layout(markdown: str) -> list[str]:
+    """Places where a lesson's maths would not render as maths on the docs site (MyST).
+
+    Two layouts break: a line inside inline ``$…$`` that begins like a list item (``+ ``,
+    ``- ``, ``* ``), which Markdown turns into a bullet with raw TeX around it; and display
+    maths ``$$…$$`` spread over several lines inside a list item, which is not read as maths.
+
+    Examples
+    --------
+    >>> math_layout("a $x\\n+ y$ b")
+    ["line 2 starts with '+ ' inside $…$: Markdown reads it as a list item"]
+    >>> math_layout("* item\\n  $$x$$")
+    []
+    """
+    problems = []
+    inline = display = False
+    in_item = False
+    for number, line in enumerate(markdown.splitlines(), start=1):
+        stripped = line.strip()
+        if re.match(r"([-*+]|\d+\.) ", stripped) and not (inline or display):
+            in_item = True
+        elif not line.startswith(" ") and not (inline or display):
+            in_item = False
+        if inline and re.match(r"[-+*] ", stripped):
+            problems.append(
+                f"line {number} starts with '{stripped[:2]}' inside $…$: Markdown reads it as "
+                "a list item"
+            )
+        if not display and stripped.startswith("$$") and stripped.count("$$") == 1 and in_item:
+            problems.append(
+                f"line {number}: display maths $$…$$ over several lines inside a list item is "
+                "not read as maths; keep it on one line"
+            )
+        for token in re.findall(r"\$\$|\$", line):
+            if token == "$$":
+                display = not display
+            elif not display:
+                inline = not inline
+    return problems
+
+
+def _math_layout_problems(path: Path, notebook: dict) -> list[str]:
+    return [
+        f"{path}, cell {index + 1}: {problem}"
+        for index, cell in enumerate(notebook.get("cells", []))
+        if cell.get("cell_type") == "markdown"
+        for problem in math_layout(_source(cell))
+    ]
+
+
 def check(root: Path) -> list[str]:
     """Every problem with the course sources and student notebooks (empty when all is well)."""
     from urkin.course.lessons import lessons as declared_lessons
@@ -297,6 +347,7 @@ def check(root: Path) -> list[str]:
         notebook = json.loads(path.read_text(encoding="utf-8"))
         problems += _pair_problems(path, notebook)
         problems += _exercise_problems(path, notebook, lesson)
+        problems += _math_layout_problems(path, notebook)
         if notebook.get("metadata", {}).get("kernelspec") != KERNELSPEC:
             problems.append(f"{path}: kernelspec is not normalised to python3")
         solution_ids, removed_lines = [], []

@@ -1075,6 +1075,95 @@ def _respects_tol(sub, rng):
                 )
 
 
+# -------------------------------------------------------------------------- 4.6 manipulability
+
+
+def _man_call(sub, J) -> float:
+    inputs = {"J": J}
+    raw = sub.manipulability(J)
+    try:
+        finite = bool(np.isfinite(np.asarray(raw, dtype=float)).all())
+    except (TypeError, ValueError):
+        finite = True  # as_array says what is wrong with it
+    if not finite:
+        raise Mismatch(
+            "manipulability(J) returned NaN or infinity",
+            inputs=inputs,
+            got=raw,
+            mistake=(
+                "det(J Jᵀ) is a hair below 0 at a singularity (round-off): clip it at 0 before "
+                "the square root, or multiply the singular values"
+            ),
+        )
+    return float(as_array(raw, (), "manipulability(J)", inputs))
+
+
+def _man_hypotheses(J) -> dict:
+    right = float(np.prod(np.linalg.svd(J, compute_uv=False)))
+    m, n = J.shape
+    hypotheses = {
+        "det(J Jᵀ) without the square root: w = √det(J Jᵀ)": lambda: np.linalg.det(J @ J.T),
+        "√det(Jᵀ J): for a J with fewer rows than columns Jᵀ J is singular; use J Jᵀ": lambda: (
+            np.sqrt(max(np.linalg.det(J.T @ J), 0.0))
+        ),
+        "the condition number σ_max / σ_min instead of the product of the singular values": (
+            lambda: np.linalg.cond(J)
+        ),
+    }
+    if m == n:
+        hypotheses["det J without its absolute value: manipulability is never negative"] = lambda: (
+            np.linalg.det(J)
+        )
+    return unless_right(hypotheses, right)
+
+
+def _man_random(sub, rng):
+    for shape in ((6, 6), (3, 6), (2, 5), (6, 7), (6, 6), (3, 6)):
+        J = rng.normal(size=shape) * rng.uniform(0.2, 1.0)
+        expected = float(np.prod(np.linalg.svd(J, compute_uv=False)))
+        got = _man_call(sub, J)
+        compare(
+            np.asarray(got),
+            expected,
+            what="w = √det(J Jᵀ), the product of the singular values of J",
+            inputs={"J": J},
+            hypotheses=_man_hypotheses(J),
+            atol=1e-9 * max(1.0, expected),
+        )
+
+
+def _man_square_sign(sub, rng):
+    for _ in range(4):
+        J = rng.normal(size=(6, 6))
+        if np.linalg.det(J) > 0:
+            J[:, 0] = -J[:, 0]  # a negative determinant
+        compare(
+            np.asarray(_man_call(sub, J)),
+            abs(np.linalg.det(J)),
+            what="for a square J, w = |det J| ≥ 0 (here det J < 0)",
+            inputs={"J": J},
+            hypotheses=_man_hypotheses(J),
+            atol=1e-9 * max(1.0, abs(np.linalg.det(J))),
+        )
+
+
+def _man_singular(sub, rng):
+    for family in ("elbow", "wrist") * 4:
+        arm, q = random_arm(rng), random_q(rng)
+        q[2 if family == "elbow" else 4] = 0.0
+        J = _jacobian(arm, q)
+        got = _man_call(sub, J)
+        if not abs(got) < 1e-6:  # √det(J Jᵀ) of a round-off determinant: up to ~1e-8
+            raise Mismatch(
+                f"at a singular configuration ({family}: q{3 if family == 'elbow' else 5} = 0) "
+                "the manipulability is 0 (below 1e-6 in floating point)",
+                inputs={"J": J},
+                expected=0.0,
+                got=got,
+                mistake=identify_mistake(got, _man_hypotheses(J)),
+            )
+
+
 LESSON = Lesson(
     number="04",
     title="Jacobians and singularities",
@@ -1142,6 +1231,17 @@ LESSON = Lesson(
                     1,
                     _respects_tol,
                 ),
+            ),
+            answer=concepts.SINGULARITIES,
+        ),
+        Exercise(
+            id="4.6",
+            function="manipulability",
+            title="Yoshikawa's manipulability of any Jacobian",
+            checks=(
+                Check("√det(J Jᵀ) for matrices of several shapes", 2, _man_random),
+                Check("|det J| for a square J, whatever its sign", 1, _man_square_sign),
+                Check("0, not NaN, at the elbow and wrist singularities", 1, _man_singular),
             ),
             answer=concepts.SINGULARITIES,
         ),
