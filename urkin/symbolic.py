@@ -263,13 +263,10 @@ def _emit(name: str, doc: str, entries: dict[tuple[int, ...], sp.Expr], shape: t
     for i, e in zip(varying, reduced):
         final[i] = e
 
-    def pycode(e):
-        return sp.pycode(e, fully_qualified_modules=False)
-
     lengths = "d1, a2, a3, d4, d5, d6"
     sums = sorted({digits for _, digits in trig if len(digits) > 1}, key=lambda s: (len(s), s))
     used_q = sorted({d for _, digits in trig for d in digits if len(digits) == 1})
-    body = [f"    {t} = {pycode(e)}" for t, e in temps]
+    body = [f"    {t} = {_pycode(e)}" for t, e in temps]
 
     one = [
         f"def {name}_one(q1, q2, q3, q4, q5, q6, {lengths}, out=None, at=0):",
@@ -283,7 +280,7 @@ def _emit(name: str, doc: str, entries: dict[tuple[int, ...], sp.Expr], shape: t
         arg = f"q{digits}"
         one.append(f"    {sym} = {'cos' if sym[0] == 'c' else 'sin'}({arg})")
     one += body
-    flat = [pycode(final[keys.index(k)]) if k in entries else "0.0" for k in _all_indices(shape)]
+    flat = [_pycode(final[keys.index(k)]) if k in entries else "0.0" for k in _all_indices(shape)]
     one.append("    if out is None:")
     one.append(f"        out = np.empty({shape})")
     one.append(f"    _pack{math.prod(shape)}(out, at, {', '.join(flat)})")
@@ -319,12 +316,12 @@ class _ColumnCode:
     def into(self, expr: sp.Expr, dst: str) -> None:
         """Code that writes ``expr`` (a polynomial in cos/sin symbols, temporaries and link
         lengths) into the array ``dst``."""
-        if expr.is_Add:
+        if _is_scalar(expr):  # a number or lengths only (-d4 too): one value for the row
+            self._op(f"{dst}[...] = {_pycode(expr)}")
+        elif expr.is_Add:
             self._add(expr, dst)
         elif expr.is_Mul or expr.is_Pow or _is_column(expr):
             self._mul(expr, dst)
-        elif expr.free_symbols <= set(LENGTHS):
-            self._op(f"{dst}[...] = {_pycode(expr)}")
         else:  # pragma: no cover - the derivation produces polynomials only
             raise ValueError(f"cannot print {expr} as column code")
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 import urkin
+from urkin.poe import screw_axis
 from urkin.robots import Robot
 from urkin.transforms import make_transform, so3_exp
 
@@ -35,6 +36,15 @@ def random_regular_q(
         q = random_q(rng) if centre is None else centre + rng.uniform(-spread, spread, 6)
         if abs(np.sin(q[2])) >= 0.2 and abs(np.sin(q[4])) >= 0.2:
             return q
+
+
+def random_screw_axes(rng: np.random.Generator, n: int, reach: float = 0.5) -> np.ndarray:
+    """Screw axes (6, n) of ``n`` revolute joints: random unit axes through random points
+    within ±``reach`` metres (an arm of any number of joints, for product-of-exponentials
+    checks)."""
+    w = rng.normal(size=(n, 3))
+    w /= np.linalg.norm(w, axis=1, keepdims=True)
+    return screw_axis(w, rng.uniform(-reach, reach, (n, 3))).T
 
 
 def random_arm(rng: np.random.Generator) -> Robot:

@@ -18,13 +18,13 @@ from urkin.course.compare import (
     unless_right,
 )
 from urkin.course.exercise import Check, Exercise, Lesson
-from urkin.course.inputs import negated_a, random_arm, random_q
+from urkin.course.inputs import negated_a, random_arm, random_q, random_screw_axes
 from urkin.kinematics import SINGULARITIES, dh_transform, singularity_factors
 from urkin.poe import (
     body_screws,
+    fk_space,
     jacobian_body,
     jacobian_space,
-    screw_axis,
     space_from_geometric,
     space_screws,
 )
@@ -476,15 +476,6 @@ def _on_the_arm(sub, rng):
 # ------------------------------------------------------ 4.3 jacobian_space, 4.4 jacobian_body
 
 
-def _random_screws(rng, n: int) -> np.ndarray:
-    """``n`` revolute screw axes (6, n): random unit axes through random points."""
-    columns = []
-    for _ in range(n):
-        w = rng.normal(size=3)
-        columns.append(screw_axis(w / np.linalg.norm(w), rng.uniform(-0.6, 0.6, 3)))
-    return np.column_stack(columns)
-
-
 def _twist_form_inputs(form: str, rng):
     """Screw axes and angles: a UR arm's (space or body) half the time, else 2 to 7 joints."""
     if rng.random() < 0.5:
@@ -492,33 +483,21 @@ def _twist_form_inputs(form: str, rng):
         axes = (space_screws if form == "space" else body_screws)(arm)[0]
         return axes, random_q(rng)
     n = int(rng.integers(2, 8))
-    return _random_screws(rng, n), rng.uniform(-np.pi, np.pi, n)
+    return random_screw_axes(rng, n, 0.6), rng.uniform(-np.pi, np.pi, n)
 
 
 def _exp(axis, angle) -> np.ndarray:
     return se3_exp(np.asarray(axis) * angle)
 
 
-def _space_columns(S, q, right=False, transport=True) -> np.ndarray:
-    """J_s by the recipe, with its pieces swappable (the product on the wrong side, no
-    transport of the axes at all)."""
-    n = S.shape[1]
-    J, T = np.zeros((6, n)), np.eye(4)
-    for i in range(n):
-        J[:, i] = adjoint(T) @ S[:, i] if transport else S[:, i]
-        T = T @ _exp(S[:, i], q[i]) if not right else _exp(S[:, i], q[i]) @ T
-    return J
-
-
-def _body_columns(B, q, sign=-1.0, forward=False) -> np.ndarray:
-    """J_b by the recipe (exponentials of −B_k q_k after joint i), with the sign or the
-    direction of the product swappable."""
-    n = B.shape[1]
-    J, T = np.zeros((6, n)), np.eye(4)
-    order = range(n) if forward else range(n - 1, -1, -1)
-    for i in order:
-        J[:, i] = adjoint(T) @ B[:, i]
-        T = T @ _exp(B[:, i], sign * q[i])
+def _carried(axes, q, left=False) -> np.ndarray:
+    """Column i is ``Ad(e^[A1]q1 ⋯ e^[A(i−1)]q(i−1)) A_i``: the space recipe, the product of
+    exponentials multiplied on the right (or, wrongly, on the left).  The body recipe is
+    the same read from the last joint with the angles negated (see the hypotheses)."""
+    J, T = np.zeros(np.shape(axes)), np.eye(4)
+    for i in range(np.shape(axes)[1]):
+        J[:, i] = adjoint(T) @ axes[:, i]
+        T = _exp(axes[:, i], q[i]) @ T if left else T @ _exp(axes[:, i], q[i])
     return J
 
 
@@ -542,7 +521,7 @@ def _twist_jacobian_hypotheses(form: str, axes, q) -> dict:
         hypotheses[
             "the product of exponentials multiplied on the left (e^[S_i]q_i T), not the "
             "right: the joints are carried in order 1, 2, …"
-        ] = lambda: _space_columns(axes, q, right=True)
+        ] = lambda: _carried(axes, q, left=True)
         hypotheses["the body Jacobian: space columns are Ad(e^[S1]q1 ⋯ e^[S(i−1)]q(i−1)) S_i"] = (
             lambda: jacobian_body(axes, q)
         )
@@ -550,11 +529,11 @@ def _twist_jacobian_hypotheses(form: str, axes, q) -> dict:
         hypotheses[
             "exponentials of +B_k q_k: the body columns need e^(−[B_k] q_k), the "
             "motion of the joints after i undone"
-        ] = lambda: _body_columns(axes, q, 1.0)
+        ] = lambda: _carried(axes[:, ::-1], q[::-1])[:, ::-1]
         hypotheses[
             "the product taken from joint 1 forwards: the body columns carry the joints "
             "after i, from joint n backwards"
-        ] = lambda: _body_columns(axes, q, forward=True)
+        ] = lambda: _carried(axes, -q)
         hypotheses["the space Jacobian: body columns are Ad(e^−[Bn]qn ⋯ e^−[B(i+1)]q(i+1)) B_i"] = (
             lambda: jacobian_space(axes, q)
         )
@@ -629,10 +608,7 @@ def _twist_jacobian_differentiates(form: str, sub, rng):
         got = _twist_jacobian_call(form, sub, axes, q, inputs)
 
         def product(angles, axes=axes):
-            T = np.eye(4)
-            for axis, angle in zip(axes.T, angles):
-                T = T @ _exp(axis, angle)
-            return T
+            return fk_space(np.eye(4), axes, angles)  # e^[A1]q1 ⋯ e^[An]qn
 
         T_inv = inv_transform(product(q))
         expected = np.empty((6, n))

@@ -19,10 +19,10 @@ from urkin.course.compare import (
     unless_right,
 )
 from urkin.course.exercise import Check, Exercise, Lesson
-from urkin.course.inputs import random_arm, random_q, random_regular_q
+from urkin.course.inputs import random_arm, random_q, random_regular_q, random_screw_axes
 from urkin.course.submission import StudentRaised
 from urkin.numerical_ik import orientation_error
-from urkin.poe import fk_space, jacobian_body, jacobian_space, screw_axis, space_screws
+from urkin.poe import fk_space, jacobian_body, jacobian_space, space_screws
 from urkin.transforms import (
     adjoint,
     inv_transform,
@@ -807,11 +807,7 @@ def _poe_problem(rng, n: int | None = None, away: float = 0.3):
             S, M = space_screws(arm)
             q_true = random_regular_q(rng)
         else:
-            columns = []
-            for _ in range(n):
-                w = rng.normal(size=3)
-                columns.append(screw_axis(w / np.linalg.norm(w), rng.uniform(-0.5, 0.5, 3)))
-            S = np.column_stack(columns)
+            S = random_screw_axes(rng, n)
             M = make_transform(p=rng.uniform(-0.5, 0.5, 3))
             q_true = rng.uniform(-np.pi, np.pi, n)
         q0 = q_true + away * rng.choice([-1.0, 1.0], len(q_true))
