@@ -9,17 +9,22 @@
 # T_{5,6}(q_6).$$
 #
 # The Denavit–Hartenberg (DH) convention describes each of these link transforms with only four
-# numbers, so a whole arm fits in a small table. In this lesson you will
+# numbers, so a whole arm fits in a small table. Along the way you meet the two conventions that
+# share the name and see why a table means nothing without its convention, derive the UR3's
+# `T_0_6` in SymPy (first with numbers, then with symbolic lengths, which serves every UR arm at
+# once), and put a published UR5 formula to the test.
 #
-# * meet the four DH numbers, in the two conventions that share the name, and see why a table
-#   means nothing without its convention;
-# * derive the UR3's `T_0_6` with SymPy, then the same derivation with symbolic link lengths,
-#   which serves every UR arm at once;
-# * write the forward kinematics yourself, in numpy;
-# * put a published UR5 formula to the test, and find a mistake that its author's own check
-#   could not see.
+# **What you will be able to do**
 #
-# **Time:** about 90 minutes. **You need:** lesson 01 (rotations, homogeneous transforms and the
+# * write the link transform of one DH row, and the forward kinematics of any DH table, in
+#   numpy (exercises 2.1 and 2.2);
+# * tell a published formula that is right from one that is not, by testing it against an
+#   independent reference at random configurations (exercise 2.3);
+# * derive `T_0_n` of an arm you have never seen, from its DH table, in SymPy (exercise 2.4);
+# * predict where the flange is in a simple pose from the table alone, before any product
+#   of matrices, and check the prediction (exercise 2.5).
+#
+# **Time:** about 2 hours. **You need:** lesson 01 (rotations, homogeneous transforms and the
 # `T_a_b` naming).
 
 # %%
@@ -33,7 +38,7 @@ from IPython.display import display
 import urkin
 import urkin.plot
 import urkin.symbolic
-from urkin.course import check
+from urkin.course import below, check
 from urkin.course.seeds import (
     SEED002_ARM,
     SEED002_DH,
@@ -793,6 +798,153 @@ def ur5_position(q):
 
 # %%
 check("2.3", ur5_position)
+
+# %% [markdown]
+# ## Your turn: a new arm, derived in SymPy
+#
+# The derivation above was done for you. Now do one yourself, for an arm nobody has tabulated
+# here: any serial chain of revolute joints, given as its standard-DH table.
+#
+# ### Exercise 2.4 — `symbolic_fk` (5 points)
+#
+# Write `symbolic_fk(rows)`: the forward kinematics $T_{0,n}(q_1, \dots, q_n)$ of the arm
+# whose standard-DH table is `rows`, as a 4×4 SymPy `Matrix`. `rows` is a list of $n$ tuples
+# $(d_i, a_i, \alpha_i)$ of plain floats (metres and radians, $1 \le n \le 6$); the joint
+# angles are the SymPy symbols `q1`, …, `qn` (for instance `sp.symbols(f"q1:{n + 1}")`; the
+# lesson's `Q` holds the first six), and nothing else in the answer is symbolic.
+#
+# Build each link matrix $R_z(q_i)T_z(d_i)T_x(a_i)R_x(\alpha_i)$ yourself from `sp.cos` and
+# `sp.sin`, and multiply them base first. Two things decide whether the result is usable:
+#
+# * the twists arrive as floats. `sp.cos(np.pi / 2)` is $6 \cdot 10^{-17}$, not 0, and the
+#   terms it multiplies survive every later product. Turn a float that is a multiple of
+#   $\pi/2$ (to within $10^{-12}$) into the exact multiple of `sp.pi / 2` first; keep any other
+#   twist as it is;
+# * simplify after each product (`simplify_angles`, as `symbolic_chain` does), or the entries
+#   of a six-joint chain grow to thousands of terms.
+#
+# *Checked*: that the answer is a 4×4 SymPy matrix in `q1` … `qn` only (1 point); that it
+# equals the numeric DH chain at twelve random configurations, for the UR3's table and for new
+# arms of 2 to 6 joints with random lengths and twists (3 points); and that a table with twists
+# $\pm\pi/2$ gives a matrix without a floating-point $\cos(\pi/2)$ in it (1 point). The check
+# never runs your SymPy objects: it reads the printed structure of your matrix (`sp.srepr`) and
+# evaluates it with numpy. The feedback recognises numbers in place of the joint symbols,
+# symbols numbered from 0, lengths left symbolic, modified-DH link matrices, the links in
+# reverse order, twists of the wrong sign and $d$ and $a$ swapped. urkin's link transforms
+# (`urkin.symbolic.dh_transform`, and with it this lesson's `symbolic_chain`) and its forward
+# kinematics are hidden while this exercise is graded; `simplify_angles` is not.
+
+# %%
+def symbolic_fk(rows):
+    """Symbolic forward kinematics of any standard-DH chain of revolute joints.
+
+    Parameters
+    ----------
+    rows : list of (float, float, float)
+        The DH table, one row (d_i, a_i, alpha_i) per joint: metres, metres, radians.
+
+    Returns
+    -------
+    sympy.Matrix, shape (4, 4)
+        T_0_n as a function of the symbols q1, ..., qn (n = len(rows)).
+    """
+    ### BEGIN SOLUTION
+    q = sp.symbols(f"q1:{len(rows) + 1}")
+    T = sp.eye(4)
+    for q_i, (d_i, a_i, alpha_i) in zip(q, rows):
+        quarter_turns = alpha_i / (np.pi / 2)
+        if abs(quarter_turns - round(quarter_turns)) < 1e-12:
+            alpha_i = round(quarter_turns) * sp.pi / 2
+        ca, sa = sp.cos(alpha_i), sp.sin(alpha_i)
+        cq, sq = sp.cos(q_i), sp.sin(q_i)
+        link = sp.Matrix(
+            [
+                [cq, -sq * ca, sq * sa, a_i * cq],
+                [sq, cq * ca, -cq * sa, a_i * sq],
+                [0, sa, ca, d_i],
+                [0, 0, 0, 1],
+            ]
+        )
+        T = (T * link).applyfunc(simplify_angles)
+    return T
+    ### END SOLUTION
+
+
+# %%
+check("2.4", symbolic_fk)
+
+# %% [markdown]
+# Verify it the way the lesson verified its own derivation: the UR5's table through your
+# function, lambdified, against `urkin.fk` at a thousand random configurations. Then a new arm:
+# a three-joint "elbow" arm whose position you can read.
+
+# %%
+T_ur5_yours = sp.lambdify(Q, symbolic_fk(urkin.robot("UR5").dh_table().tolist()), "numpy")
+q_check = np.random.default_rng(1).uniform(-np.pi, np.pi, (1000, 6))
+gap = np.abs(np.array([T_ur5_yours(*q) for q in q_check], dtype=float)
+             - urkin.fk(urkin.robot("UR5"), q_check)).max()
+print(f"UR5, your symbolic T_0_6 against urkin.fk: largest difference {below(gap, 1e-12)}")
+elbow_arm = [(0.3, 0.0, np.pi / 2), (0.0, 0.4, 0.0), (0.0, 0.3, 0.0)]
+print("an elbow arm's flange position:")
+display(symbolic_fk(elbow_arm)[:3, 3])
+
+# %% [markdown]
+# ### Exercise 2.5 — `upright_flange` (3 points)
+#
+# *Predict, then verify.* Stand a UR arm straight up: $q = (0, -\pi/2, 0, -\pi/2, 0, 0)$.
+# Where is its flange? Answer from the picture of the frames in "Where the DH frames sit", not
+# from a matrix product: which of the six lengths point up at this pose, which point sideways,
+# and along which axis of the base frame? Remember that UR's $a_2$ and $a_3$ are negative and
+# what that meant for the arm at $q = 0$.
+#
+# Write `upright_flange(robot)`: the flange position $(x, y, z)$ in the base frame, metres,
+# shape `(3,)`, for a UR-type arm with lengths `robot.d1`, `robot.a2`, `robot.a3`,
+# `robot.d4`, `robot.d5`, `robot.d6` (the seven UR arms, and made-up ones with other lengths).
+# Only sums and differences of the lengths are needed.
+#
+# *Checked*: the position for the seven UR arms and five made-up arms (2 points), and that the
+# function predicts rather than computes: it may not call your `dh_transform`,
+# `forward_kinematics` or `ur5_position`, nor multiply matrices (1 point). The feedback
+# recognises $a_2 + a_3$ added with their signs, $d_5$ pointing the wrong way, the sideways
+# offsets on the wrong side, $d_6$ pointing up, and the pose at $q = 0$ instead.
+
+# %%
+def upright_flange(robot):
+    """Flange position of a UR-type arm standing straight up, predicted from its lengths.
+
+    Parameters
+    ----------
+    robot : urkin.Robot
+        The arm; its lengths d1, a2, a3, d4, d5, d6 are in metres (a2, a3 < 0 for UR arms).
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        The flange position in the base frame at q = (0, -pi/2, 0, -pi/2, 0, 0), metres.
+    """
+    ### BEGIN SOLUTION
+    # Upper arm, forearm and d5 point up (a2, a3 < 0 along x axes that point down);
+    # d4 and d6 point sideways along -y0, d6 because the flange faces -y0.
+    height = robot.d1 - robot.a2 - robot.a3 + robot.d5
+    return np.array([0.0, -(robot.d4 + robot.d6), height])
+    ### END SOLUTION
+
+
+# %%
+check("2.5", upright_flange)
+
+# %% [markdown]
+# Now verify the prediction with forward kinematics, for all seven arms, and look at the pose:
+# the flange faces sideways, along $-y_0$, so $d_6$ adds to the sideways offset $d_4$ rather
+# than to the height.
+
+# %%
+q_upright = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])
+for name in urkin.ROBOTS:
+    arm = urkin.robot(name)
+    miss = np.abs(urkin.fk(arm, q_upright)[:3, 3] - upright_flange(arm)).max()
+    height = upright_flange(arm)[2]
+    print(f"{name:6s} flange {height:.4f} m up, prediction off by {below(miss, 1e-12)}")
 
 # %% [markdown]
 # ## Summary

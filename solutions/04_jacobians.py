@@ -6,23 +6,23 @@
 # solving inverse kinematics one small step at a time. All of these rest on one matrix, the
 # **Jacobian**, which turns joint speeds into the velocity of the flange.
 #
-# In this lesson you will
+# This lesson builds the geometric Jacobian of a UR arm column by column from its DH frames,
+# derives its position part in SymPy, computes it numerically, connects it to the space and body
+# Jacobians of lesson 03, finds every **singularity** of a UR arm from one factorised
+# determinant, and uses the transposed Jacobian for statics, $\tau = J^\mathsf{T} F$.
 #
-# * build the geometric Jacobian of a UR arm column by column from its DH frames, and see why
-#   each column is what it is;
-# * derive the position part by differentiating $p(q)$ in SymPy, and use that to audit a
-#   hand-derived Jacobian from a published report;
-# * compute Jacobians numerically, and learn how to choose the step size;
-# * connect the geometric Jacobian to the space and body Jacobians of the product of
-#   exponentials (lesson 03);
-# * find every configuration where a UR arm loses a direction of motion — its
-#   **singularities** — from one factorised determinant;
-# * measure how far a configuration is from trouble: manipulability and the condition
-#   number;
-# * use the transposed Jacobian for statics, $\tau = J^\mathsf{T} F$, and compare the force
-#   ellipsoid with the velocity ellipsoid.
+# **What you will be able to do**
 #
-# **Time:** about 2 hours. **You need:** lesson 01 (rotations, the cross product as a matrix),
+# * compute the geometric Jacobian from DH frames, and a numeric one with a step size you can
+#   justify (exercises 4.1 and 4.2);
+# * compute the space and body Jacobians from screw axes, as *Modern Robotics* does
+#   (exercises 4.3 and 4.4);
+# * say which singular families a configuration is in, and which motion it loses there
+#   (exercises 4.5 and 4.7);
+# * measure how far a configuration is from trouble with manipulability and the condition
+#   number (exercise 4.6), and find the joint torques that hold a load (exercise 4.8).
+#
+# **Time:** about 3 hours. **You need:** lesson 01 (rotations, the cross product as a matrix),
 # lesson 02 (DH frames, the UR forward kinematics) and lesson 03 (screw axes $(\omega, v)$,
 # the home pose $M$, space and body forward kinematics).
 
@@ -1133,6 +1133,93 @@ def manipulability(J):
 check("4.6", manipulability)
 
 # %% [markdown]
+# ### Exercise 4.7 — `elbow_lost_direction` (4 points)
+#
+# **Predict, then verify.** At an elbow singularity, $\sin q_3 = 0$, the arm is stretched out
+# ($q_3 = 0$) or folded back ($q_3 = \pm\pi$) and $\det J = 0$: some motion is lost. Which
+# one? Take a point small enough to reason about by hand: **wrist 1**, the origin $o_3$ of
+# frame 3. It does not depend on $q_4, q_5, q_6$, so only joints 1–3 move it, with the
+# velocity $J_3\,(\dot q_1, \dot q_2, \dot q_3)$, where column $i$ of the 3 × 3 position
+# Jacobian $J_3$ is $z_{i-1} \times (o_3 - o_{i-1})$ — section 2's recipe with $o_3$ in place
+# of the flange. At an elbow singularity $J_3$ has rank 2: the velocities wrist 1 can have
+# fill a plane, and the direction perpendicular to that plane is lost.
+#
+# Predict it before computing anything. With the arm in line, in which direction does each
+# of the three joints move wrist 1? Which plane do those three directions span, and what is
+# perpendicular to it? Then write `elbow_lost_direction(robot, q)`: the lost direction as a
+# unit vector in the base frame, shape `(3,)`, for joint angles `q` (radians) with
+# $\sin q_3 = 0$ (`q[2]` is 0, ±π or ±2π; no other `q` is asked about). Either sign is right.
+# `urkin.fk_frames(robot, q)[k]` is DH frame $k$ (entry 0 is the base frame); its origins and
+# axes are all the answer needs — no derivatives, no SVD.
+#
+# *Checked* (up to sign, to 1e-9; a float32 answer to float32's precision): that it is a unit
+# vector along the direction in which $J_3$ has no reach — the left singular vector of its
+# smallest singular value, which the check computes — on random UR arms with wrist 1 at least
+# a few centimetres off the base axis: at stretched elbows, $q_3 = 0$ and $\pm 2\pi$ (3
+# points), and at folded ones, $q_3 = \pm\pi$ (1 point). The feedback recognises a vector
+# that is not normalised, the shoulder axis $z_1$ (and $z_0 \times o_3$, which is parallel to
+# it), the direction across the arm in its plane, a direction measured from the base origin
+# instead of the shoulder, the flange in place of wrist 1, frame indices off by one and the
+# base axis $z_0$.
+
+# %%
+def elbow_lost_direction(robot, q):
+    """The direction in which wrist 1 cannot move at an elbow singularity.
+
+    Parameters
+    ----------
+    robot : urkin.Robot
+        The arm.
+    q : array_like, shape (6,)
+        Joint angles in radians with sin q3 = 0: the elbow stretched (q3 = 0, ±2π) or
+        folded (q3 = ±π).
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        A unit vector in the base frame (either sign) along which no motion of joints 1-3
+        moves the origin of frame 3 (wrist 1).
+    """
+    ### BEGIN SOLUTION
+    frames = urkin.fk_frames(robot, np.asarray(q, dtype=float))
+    line = frames[3][:3, 3] - frames[1][:3, 3]  # shoulder to wrist 1: the arm's line
+    return line / np.linalg.norm(line)
+    ### END SOLUTION
+
+
+# %%
+check("4.7", elbow_lost_direction)
+
+# %% [markdown]
+# Now verify the prediction without any reasoning at all: differentiate wrist 1's position
+# numerically (central differences, as in exercise 4.2) on the stretched UR5 of section 6 and
+# take the SVD. The left singular vector of the zero singular value is the lost direction;
+# the cell compares it with yours.
+
+# %%
+def wrist_1(q):
+    """The origin of frame 3 (wrist 1) of the UR5, in the base frame (m)."""
+    return urkin.fk_frames(ur5, q)[3, :3, 3]
+
+
+q_stretched = np.array([0.3, -0.9, 0.0, -1.2, 1.1, 0.4])  # q3 = 0: the elbow straight
+h_fd = 1e-6
+J_wrist_1 = np.column_stack([(wrist_1(q_stretched + h_fd * unit_step)
+                              - wrist_1(q_stretched - h_fd * unit_step)) / (2 * h_fd)
+                             for unit_step in np.eye(6)[:3]])  # joints 1-3 only
+U_w, sigma_w, _ = np.linalg.svd(J_wrist_1)
+print(f"singular values of wrist 1's 3 × 3 position Jacobian: {sigma_w[0]:.4f}, "
+      f"{sigma_w[1]:.4f} and {below(sigma_w[2], 1e-8)} m/rad")
+try:
+    predicted = np.asarray(elbow_lost_direction(ur5, q_stretched), dtype=float)
+except NotImplementedError:
+    print("exercise 4.7 is not written yet: nothing to compare")
+else:
+    angle = np.arctan2(np.linalg.norm(np.cross(predicted, U_w[:, 2])),
+                       abs(predicted @ U_w[:, 2]))
+    print(f"angle between your prediction and the lost direction: {below(angle, 1e-6)} rad")
+
+# %% [markdown]
 # ### Statics: the same Jacobian, transposed
 #
 # The Jacobian also says which joint torques hold a load. Let the flange push on the world (a
@@ -1210,7 +1297,87 @@ for k in shown[:-1]:
 # semi-axis grows in step, along the same direction — along the arm. Near a singularity a
 # robot is slow in some direction and, by the same token, stiff in it: a stretched arm is
 # good for holding a push along itself and poor for moving along it.
+
+# %% [markdown]
+# ### Exercise 4.8 — `holding_torques` (4 points)
 #
+# A gripper holds a part of mass `mass` (kg) whose centre of mass is **not** at the flange
+# origin: it sits at `r_com` (m), given **in the flange frame** (frame 6), as a gripper's data
+# sheet gives it. Write `holding_torques(robot, q, mass, r_com)`: the joint torques (N·m,
+# shape `(6,)`) the motors must apply to hold the part still at joint angles `q` (radians).
+# Gravity is $g = 9.81$ m/s² along $-z_0$; leave out the weight of the links themselves.
+#
+# Think before you type: which force does the flange apply to the part, and which moment
+# *about the flange origin* — the point whose velocity $v$ the geometric Jacobian gives? In
+# which frame is $r_	ext{com}$, and in which must the wrench be?
+#
+# *Checked* (to 1e-9 N·m, against $J^\mathsf{T} F$ with `urkin.jacobian`) on random UR arms,
+# configurations and masses: a part with its centre of mass at the flange origin (2 points),
+# and one with its centre of mass offset (2 points). The feedback recognises the torques
+# that let the part fall (the sign of $F$), a wrench without its moment, an offset used as if
+# it were in the base frame, the moment with its lever reversed, the mass used as a force
+# (no $g$), and $J F$ in place of $J^\mathsf{T} F$.
+
+# %%
+def holding_torques(robot, q, mass, r_com):
+    """Joint torques that hold a part of mass ``mass`` against gravity.
+
+    Parameters
+    ----------
+    robot : urkin.Robot
+        The arm.
+    q : array_like, shape (6,)
+        Joint angles (rad).
+    mass : float
+        The part's mass (kg).
+    r_com : array_like, shape (3,)
+        The part's centre of mass relative to the flange origin, in the flange frame (m).
+
+    Returns
+    -------
+    ndarray, shape (6,)
+        τ = Jᵀ F (N·m), F the wrench the flange applies to the part, about the flange origin,
+        in the base frame; g = 9.81 m/s² along −z0.
+    """
+    ### BEGIN SOLUTION
+    q = np.asarray(q, dtype=float)
+    T_base_flange = urkin.fk(robot, q)
+    f = np.array([0.0, 0.0, mass * 9.81])  # the flange holds the part up
+    lever = T_base_flange[:3, :3] @ np.asarray(r_com, dtype=float)  # flange origin → COM, base
+    return urkin.jacobian(robot, q).T @ np.r_[f, np.cross(lever, f)]
+    ### END SOLUTION
+
+
+# %%
+check("4.8", holding_torques)
+
+# %% [markdown]
+# Verify it without any Jacobian. Holding the part still, the motors do work only against
+# gravity, so the torques are the slope of the part's potential energy $V(q) = m g\,
+# z_\text{com}(q)$: $\tau_i = \partial V/\partial q_i$. The cell differentiates $V$ numerically
+# through `urkin.fk` and compares.
+
+# %%
+q_hold, r_part, m_part = path[40], np.array([0.03, -0.02, 0.12]), 1.5  # rad, m (flange), kg
+
+
+def potential_energy(q):
+    """m g z of the part's centre of mass (J)."""
+    return m_part * 9.81 * (urkin.fk(ur5, q) @ np.r_[r_part, 1.0])[2]
+
+
+tau_energy = np.array([(potential_energy(q_hold + 1e-6 * e) - potential_energy(q_hold - 1e-6 * e))
+                       / 2e-6 for e in np.eye(6)])
+print("∂V/∂q (N·m):", "  ".join(f"{t:6.2f}" for t in tau_energy.round(2) + 0.0))
+try:
+    tau_yours = np.asarray(holding_torques(ur5, q_hold, m_part, r_part), dtype=float)
+except NotImplementedError:
+    print("exercise 4.8 is not written yet: nothing to compare")
+else:
+    gap = np.abs(tau_yours - tau_energy).max()
+    print(f"largest difference from your holding_torques: {below(gap, 1e-6)} N·m")
+
+# %% [markdown]
 # ## Summary
 #
 # * The geometric Jacobian maps joint rates to the flange's $[v;\ \omega]$ in the base frame,
@@ -1240,5 +1407,5 @@ for k in shown[:-1]:
 # use the pseudo-inverse, **damped least squares** $J^\mathsf{T}(JJ^\mathsf{T} +
 # \lambda^2 I)^{-1}$ and Levenberg–Marquardt, and watch the condition number.
 #
-# Before you move on: restart the kernel and run the whole notebook. All six check cells
+# Before you move on: restart the kernel and run the whole notebook. All eight check cells
 # should report full marks.

@@ -135,6 +135,35 @@ def ur5_position(q):
     return (x, y, z)
 """,
     ),
+    Variant(
+        "2.4",
+        "sp.rot_axis-free product with nsimplify, simplified once at the end",
+        """
+def symbolic_fk(rows):
+    q = sp.symbols(" ".join(f"q{i + 1}" for i in range(len(rows))), real=True)
+    if len(rows) == 1:
+        q = (q,)
+    T = sp.eye(4)
+    for qi, (d, a, alpha) in zip(q, rows):
+        k = sp.nsimplify(alpha / (np.pi / 2), tolerance=1e-12, rational=True)
+        alpha = k * sp.pi / 2 if k.is_Integer else sp.Float(alpha)
+        Rz = sp.Matrix([[sp.cos(qi), -sp.sin(qi), 0, 0], [sp.sin(qi), sp.cos(qi), 0, 0],
+                        [0, 0, 1, d], [0, 0, 0, 1]])
+        Rx = sp.Matrix([[1, 0, 0, a], [0, sp.cos(alpha), -sp.sin(alpha), 0],
+                        [0, sp.sin(alpha), sp.cos(alpha), 0], [0, 0, 0, 1]])
+        T = T * Rz * Rx
+    return sp.simplify(T) if len(rows) < 4 else T
+""",
+    ),
+    Variant(
+        "2.5",
+        "read off the closed form with the signs of a2, a3 taken as abs",
+        """
+def upright_flange(robot):
+    up = robot.d1 + abs(robot.a2) + abs(robot.a3) + robot.d5
+    return [0, -robot.d4 - robot.d6, up]
+""",
+    ),
 ]
 
 WRONG = [
@@ -269,5 +298,104 @@ def ur5_position(q):
     return np.asarray(f(q, urkin.robot("UR5").lengths), dtype=float).reshape(3)
 """,
         points=0,
+    ),
+    Variant(
+        "2.4",
+        "float twists: cos(pi/2) = 6e-17 left in",
+        """
+def symbolic_fk(rows):
+    q = sp.symbols(f"q1:{len(rows) + 1}")
+    T = sp.eye(4)
+    for qi, (d, a, alpha) in zip(q, rows):
+        ca, sa, cq, sq = sp.cos(alpha), sp.sin(alpha), sp.cos(qi), sp.sin(qi)
+        T = T * sp.Matrix([[cq, -sq * ca, sq * sa, a * cq], [sq, cq * ca, -cq * sa, a * sq],
+                           [0, sa, ca, d], [0, 0, 0, 1]])
+    return T
+""",
+        points=4,
+        mistake="twists typed as floats",
+    ),
+    Variant(
+        "2.4",
+        "modified-DH link matrices",
+        """
+def symbolic_fk(rows):
+    q = sp.symbols(f"q1:{len(rows) + 1}")
+    T = sp.eye(4)
+    for qi, (d, a, alpha) in zip(q, rows):
+        k = round(alpha / (np.pi / 2))
+        if abs(alpha / (np.pi / 2) - k) < 1e-12:
+            alpha = k * sp.pi / 2
+        ca, sa, cq, sq = sp.cos(alpha), sp.sin(alpha), sp.cos(qi), sp.sin(qi)
+        T = (T * sp.Matrix([[cq, -sq, 0, a], [sq * ca, cq * ca, -sa, -sa * d],
+                            [sq * sa, cq * sa, ca, ca * d], [0, 0, 0, 1]])).applyfunc(
+            simplify_angles)
+    return T
+""",
+        points=2,
+        mistake="modified (Craig) DH",
+    ),
+    Variant(
+        "2.4",
+        "joint symbols numbered from 0",
+        """
+def symbolic_fk(rows):
+    q = sp.symbols(f"q0:{len(rows)}")
+    T = sp.eye(4)
+    for qi, (d, a, alpha) in zip(q, rows):
+        k = round(alpha / (np.pi / 2))
+        if abs(alpha / (np.pi / 2) - k) < 1e-12:
+            alpha = k * sp.pi / 2
+        ca, sa, cq, sq = sp.cos(alpha), sp.sin(alpha), sp.cos(qi), sp.sin(qi)
+        T = T * sp.Matrix([[cq, -sq * ca, sq * sa, a * cq], [sq, cq * ca, -cq * sa, a * sq],
+                           [0, sa, ca, d], [0, 0, 0, 1]])
+    return T
+""",
+        points=0,
+        mistake="numbered from 1",
+    ),
+    Variant(
+        "2.4",
+        "numbers substituted for the joint angles",
+        """
+def symbolic_fk(rows):
+    T = sp.eye(4)
+    for d, a, alpha in rows:  # every joint at zero: a number, not a function of q
+        T = T * sp.Matrix([[1, 0, 0, a], [0, np.cos(alpha), -np.sin(alpha), 0],
+                           [0, np.sin(alpha), np.cos(alpha), d], [0, 0, 0, 1]])
+    return T
+""",
+        points=0,
+        mistake="replaced by numbers",
+    ),
+    Variant(
+        "2.5",
+        "a2 and a3 added with their signs",
+        """
+def upright_flange(robot):
+    return np.array([0.0, -(robot.d4 + robot.d6), robot.d1 + robot.a2 + robot.a3 + robot.d5])
+""",
+        points=0,
+        mistake="added with their signs",
+    ),
+    Variant(
+        "2.5",
+        "d6 counted as height",
+        """
+def upright_flange(robot):
+    return np.array([0.0, -robot.d4, robot.d1 - robot.a2 - robot.a3 + robot.d5 + robot.d6])
+""",
+        points=0,
+        mistake="d6 along z",
+    ),
+    Variant(
+        "2.5",
+        "computed with the student's forward kinematics",
+        """
+def upright_flange(robot):
+    return forward_kinematics(robot, [0, -np.pi / 2, 0, -np.pi / 2, 0, 0])[:3, 3]
+""",
+        points=2,
+        mistake="instead of predicted",
     ),
 ]

@@ -410,6 +410,58 @@ def singularities(robot, q, tol=1e-9):
     return found
 """,
     ),
+    # ------------------------------------------------------------------------------ 4.7
+    Variant(
+        "4.7",
+        "the arm's line, made perpendicular to the shoulder axis",
+        """
+def elbow_lost_direction(robot, q):
+    frames = urkin.fk_frames(robot, np.asarray(q, dtype=float))
+    z1 = frames[1][:3, 2]
+    line = np.cross(z1, np.cross(frames[3][:3, 3] - frames[1][:3, 3], z1))
+    return line / np.linalg.norm(line)
+""",
+    ),
+    Variant(
+        "4.7",
+        "SVD of wrist 1's central-difference Jacobian",
+        """
+def elbow_lost_direction(robot, q):
+    q = np.asarray(q, dtype=float)
+    def wrist_1(x):
+        return urkin.fk_frames(robot, x)[3][:3, 3]
+    h = 1e-6
+    steps = np.eye(6)[:3]
+    J = np.column_stack([(wrist_1(q + h * e) - wrist_1(q - h * e)) / (2 * h) for e in steps])
+    return np.linalg.svd(J)[0][:, 2]
+""",
+    ),
+    # ------------------------------------------------------------------------------ 4.8
+    Variant(
+        "4.8",
+        "the gradient of the potential energy, by the complex step",
+        """
+def holding_torques(robot, q, mass, r_com):
+    q = np.asarray(q, dtype=float)
+    point = np.r_[np.asarray(r_com, dtype=float), 1.0]
+    def V(x):
+        return mass * 9.81 * (urkin.fk(robot, x) @ point)[2]
+    return np.array([V(q + 1e-30j * e).imag / 1e-30 for e in np.eye(6)])
+""",
+    ),
+    Variant(
+        "4.8",
+        "the Jacobian of the centre of mass, shifted by the lever",
+        """
+def holding_torques(robot, q, mass, r_com):
+    q = np.asarray(q, dtype=float)
+    T = urkin.fk(robot, q)
+    J = urkin.jacobian(robot, q)
+    r = T[:3, :3] @ np.asarray(r_com, dtype=float)
+    Jc = J[:3] - np.cross(r, J[3:].T).T  # velocity of the centre of mass: v + ω × r
+    return Jc.T @ np.array([0.0, 0.0, 9.81 * mass])
+""",
+    ),
 ]
 
 WRONG = [
@@ -892,7 +944,7 @@ def singularities(robot, q, tol=1e-9):
         "joint numbers off by one",
         _singularities_with(angles="q[2], q[3], q[4], q[5]"),
         points=0,
-        mistake="off by one",
+        mistake="(this is o4 − o2)",
     ),
     Variant(
         "4.5",
@@ -941,5 +993,105 @@ def singularities(robot, q, tol=1e-9):
         "def singularities(robot, q, tol=1e-9):\n"
         "    return set(urkin.kinematics.singularities(robot, q, tol))\n",
         points=0,
+    ),
+    # ------------------------------------------------------------------------------ 4.7
+    Variant(
+        "4.7",
+        "not normalised",
+        """
+def elbow_lost_direction(robot, q):
+    frames = urkin.fk_frames(robot, np.asarray(q, dtype=float))
+    return frames[3][:3, 3] - frames[1][:3, 3]
+""",
+        points=0,
+        mistake="not normalised",
+    ),
+    Variant(
+        "4.7",
+        "the shoulder axis",
+        """
+def elbow_lost_direction(robot, q):
+    return urkin.fk_frames(robot, np.asarray(q, dtype=float))[1][:3, 2]
+""",
+        points=0,
+        mistake="the shoulder axis z1",
+    ),
+    Variant(
+        "4.7",
+        "measured from the base origin",
+        """
+def elbow_lost_direction(robot, q):
+    o3 = urkin.fk_frames(robot, np.asarray(q, dtype=float))[3][:3, 3]
+    return o3 / np.linalg.norm(o3)
+""",
+        points=0,
+        mistake="measured from the base origin",
+    ),
+    Variant(
+        "4.7",
+        "frames off by one",
+        """
+def elbow_lost_direction(robot, q):
+    frames = urkin.fk_frames(robot, np.asarray(q, dtype=float))
+    line = frames[4][:3, 3] - frames[2][:3, 3]
+    return line / np.linalg.norm(line)
+""",
+        points=None,
+        mistake="(this is o4 − o2)",
+    ),
+    # ------------------------------------------------------------------------------ 4.8
+    Variant(
+        "4.8",
+        "the weight, not the holding force",
+        """
+def holding_torques(robot, q, mass, r_com):
+    q = np.asarray(q, dtype=float)
+    T = urkin.fk(robot, q)
+    f = np.array([0.0, 0.0, -9.81 * mass])
+    r = T[:3, :3] @ r_com
+    return urkin.jacobian(robot, q).T @ np.r_[f, np.cross(r, f)]
+""",
+        points=0,
+        mistake="let the part fall",
+    ),
+    Variant(
+        "4.8",
+        "no moment",
+        """
+def holding_torques(robot, q, mass, r_com):
+    q = np.asarray(q, dtype=float)
+    T = urkin.fk(robot, q)
+    f = np.array([0.0, 0.0, 9.81 * mass])
+    return urkin.jacobian(robot, q).T @ np.r_[f, 0.0, 0.0, 0.0]
+""",
+        points=2,
+        mistake="has no moment",
+    ),
+    Variant(
+        "4.8",
+        "offset in the base frame",
+        """
+def holding_torques(robot, q, mass, r_com):
+    q = np.asarray(q, dtype=float)
+    T = urkin.fk(robot, q)
+    f = np.array([0.0, 0.0, 9.81 * mass])
+    return urkin.jacobian(robot, q).T @ np.r_[f, np.cross(r_com, f)]
+""",
+        points=2,
+        mistake="as if it were in the base frame",
+    ),
+    Variant(
+        "4.8",
+        "J F",
+        """
+def holding_torques(robot, q, mass, r_com):
+    q = np.asarray(q, dtype=float)
+    T = urkin.fk(robot, q)
+    f = np.array([0.0, 0.0, 9.81 * mass])
+    r = T[:3, :3] @ r_com
+    return urkin.jacobian(robot, q) @ np.r_[f, np.cross(r, f)]
+""",
+        points=0,
+        mistake="TRANSPOSED",
     ),
 ]

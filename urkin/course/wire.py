@@ -11,7 +11,9 @@ graded.
 Two kinds of argument are rebuilt from a description rather than copied: a UR arm
 (:class:`urkin.Robot`, by its DH lengths) and an input function (:class:`Function`, by a kind
 and its parameters, for exercises that take a function such as ``numeric_jacobian(f, q)``).
-Anything else a student's function returns that is not plain data arrives as :class:`Opaque`.
+A SymPy expression or matrix with symbols in it arrives as a
+:class:`urkin.course.symbolic_answer.Symbolic` (read from its ``srepr`` text without running it);
+anything else a student's function returns that is not plain data arrives as :class:`Opaque`.
 """
 
 from __future__ import annotations
@@ -23,6 +25,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+
+from urkin.course import symbolic_answer
 
 __all__ = [
     "MAX_MESSAGE_BYTES",
@@ -207,7 +211,23 @@ def encode(value: Any, lenient: bool = False, _depth: int = 0) -> Any:
             return _array(np.asarray(value, dtype=float))
         except (TypeError, ValueError):
             pass
+    if type(value).__module__.startswith("sympy"):
+        return _sympy(value)
     return _opaque(value)
+
+
+def _sympy(value: Any) -> dict:
+    """A SymPy expression or matrix with symbols in it, as its ``srepr`` text (read on the
+    other side by :func:`urkin.course.symbolic_answer.read`, never evaluated as code)."""
+    from sympy import srepr
+
+    try:
+        text = srepr(value)
+    except Exception:
+        return _opaque(value)
+    if len(text) > symbolic_answer.MAX_TEXT:
+        return _opaque(value)
+    return {"$sym": text}
 
 
 def _opaque(value: Any) -> dict:
@@ -290,6 +310,11 @@ def decode(data: Any, trusted: bool = False, _depth: int = 0) -> Any:
             except TypeError:
                 raise WireError("a dict key that is not hashable") from None
         return out
+    if tag == "$sym" and isinstance(body, str):
+        try:
+            return symbolic_answer.read(body)
+        except ValueError as exc:
+            return Opaque("SymPy expression", f"unreadable: {exc}"[:200])
     if tag == "$o" and isinstance(body, list) and len(body) == 2:
         return Opaque(str(body[0])[:80], str(body[1])[:200])
     if tag == "$robot":

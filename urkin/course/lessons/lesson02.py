@@ -18,6 +18,8 @@ from urkin.course.compare import (
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import negated_a, random_arm, random_q
 from urkin.course.seeds import seed002_position
+from urkin.course.symbolic_answer import Symbolic
+from urkin.course.wire import Opaque
 from urkin.kinematics import dh_chain, dh_transform
 
 _fk = urkin.fk
@@ -259,6 +261,211 @@ def _position_is_closed_form(sub, rng):
             )
 
 
+# ---------------------------------------------------------------------------- 2.4 symbolic_fk
+
+_QUARTER_TURNS = (np.pi / 2, 0.0, -np.pi / 2, np.pi)
+
+
+def _random_rows(rng, n):
+    """A new arm: n rows (d, a, α) of metres and radians, most twists multiples of π/2."""
+    return [
+        (
+            round(float(rng.uniform(-0.3, 0.3)), 4),
+            round(float(rng.uniform(-0.5, 0.5)), 4),
+            float(rng.choice([*_QUARTER_TURNS, round(float(rng.uniform(-3.0, 3.0)), 3)])),
+        )
+        for _ in range(n)
+    ]
+
+
+def _symbolic_answer(sub, rows, inputs) -> Symbolic:
+    """The student's T_0_n as a symbolic 4×4 matrix in q1 … qn, or a Mismatch saying why not."""
+    what = "symbolic_fk(rows)"
+    got = sub.symbolic_fk([tuple(row) for row in rows])
+    if isinstance(got, np.ndarray) or isinstance(got, (int, float)):
+        raise Mismatch(
+            f"{what} returned numbers ({np.shape(got)}), not a SymPy matrix in q1 … q{len(rows)}",
+            inputs=inputs,
+            mistake="the joint angles were replaced by numbers: keep them as SymPy symbols",
+        )
+    if not isinstance(got, Symbolic):
+        shown = got if isinstance(got, Opaque) else type(got).__name__
+        raise Mismatch(f"{what} returned {shown}, not a SymPy Matrix", inputs=inputs)
+    if got.shape != (4, 4):
+        raise Mismatch(
+            f"{what} returned a SymPy {got!r}, not a 4×4 matrix",
+            inputs=inputs,
+            mistake=None if got.shape == () else "T_0_n is the whole 4×4 homogeneous transform",
+        )
+    names = [f"q{i}" for i in range(1, len(rows) + 1)]
+    extra = sorted(got.symbols - set(names))
+    if extra:
+        zero_based = {f"q{i}" for i in range(len(rows))}
+        raise Mismatch(
+            f"{what} contains the symbol(s) {', '.join(extra)}; the joint angles are "
+            f"{', '.join(names)} and nothing else is symbolic",
+            inputs=inputs,
+            mistake=(
+                "joints are numbered from 1: q1 … qn, not q0 … q(n−1)"
+                if set(extra) <= zero_based
+                else "lengths or twists left as symbols: put the table's numbers in"
+                if not any(e.startswith("q") for e in extra)
+                else None
+            ),
+        )
+    return got
+
+
+def _evaluated(answer: Symbolic, q: np.ndarray) -> np.ndarray:
+    """T(q) for each row of q, shape (K, 4, 4)."""
+    values = {f"q{i + 1}": q[:, i] for i in range(q.shape[1])}
+    return np.moveaxis(answer.evaluate(values), -1, 0)
+
+
+def _symbolic_fk_hypotheses(rows, q):
+    table = np.asarray(rows, dtype=float)
+    flipped = table * np.array([1.0, 1.0, -1.0])
+    return {
+        "modified (Craig) DH link matrices with a standard-DH table": lambda: dh_chain(
+            table, q, convention="modified"
+        ),
+        "the links multiplied in reverse order (T_(n−1)_n … T_0_1)": lambda: np.array(
+            [_reverse_product(table, qk) for qk in q]
+        ),
+        "the twists α with the wrong sign (Rx(−α))": lambda: dh_chain(flipped, q),
+        "d and a swapped in each row": lambda: dh_chain(table[:, [1, 0, 2]], q),
+    }
+
+
+def _reverse_product(table, q):
+    T = np.eye(4)
+    for link in dh_transform(q, table[:, 0], table[:, 1], table[:, 2])[::-1]:
+        T = T @ link
+    return T
+
+
+def _symbolic_fk_tables(rng):
+    yield [tuple(row) for row in urkin.robot("ur3").dh_table().tolist()]
+    for n in (2, 3, int(rng.integers(4, 7))):
+        yield _random_rows(rng, n)
+
+
+def _symbolic_is_matrix(sub, rng):
+    rows = [tuple(row) for row in urkin.robot("ur3").dh_table().tolist()]
+    answer = _symbolic_answer(sub, rows, {"rows": "the UR3's table"})
+    if not answer.symbols:
+        raise Mismatch(
+            "symbolic_fk(rows) for the UR3 does not depend on any joint angle",
+            inputs={"rows": "the UR3's table"},
+            mistake="the joint angles were replaced by numbers: keep them as SymPy symbols",
+        )
+
+
+def _symbolic_matches(sub, rng):
+    for rows in _symbolic_fk_tables(rng):
+        inputs = {"rows": np.asarray(rows)}
+        answer = _symbolic_answer(sub, rows, inputs)
+        q = rng.uniform(-np.pi, np.pi, (12, len(rows)))
+        got = _evaluated(answer, q)
+        inputs["q (12 random configurations, one per row)"] = q
+        if np.iscomplexobj(got):
+            raise Mismatch("symbolic_fk(rows) is complex at real joint angles", inputs=inputs)
+        compare(
+            got,
+            dh_chain(np.asarray(rows), q),
+            what="T_0_n(q) = T_0_1(q1) T_1_2(q2) … with Rz(q_i) Tz(d_i) Tx(a_i) Rx(α_i)",
+            inputs=inputs,
+            hypotheses=_symbolic_fk_hypotheses(rows, q),
+        )
+
+
+def _symbolic_exact_twists(sub, rng):
+    rows = [(0.2, 0.0, np.pi / 2), (0.0, -0.4, 0.0), (0.1, 0.0, -np.pi / 2)]
+    inputs = {"rows": np.asarray(rows)}
+    answer = _symbolic_answer(sub, rows, inputs)
+    residues = [x for x in answer.floats if 0.0 < abs(x) < 1e-12]
+    if residues:
+        raise Mismatch(
+            f"the matrix for twists ±π/2 contains the number {residues[0]:.3g}, a "
+            "floating-point cos(π/2): every term multiplied by it should not exist",
+            inputs=inputs,
+            mistake="twists typed as floats: turn a float multiple of π/2 into an exact one "
+            "(sp.pi/2) before taking its cosine",
+        )
+
+
+# ------------------------------------------------------------------------- 2.5 upright_flange
+
+_UPRIGHT = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])
+
+
+def _lengths(robot):
+    return {
+        "d1": robot.d1,
+        "a2": robot.a2,
+        "a3": robot.a3,
+        "d4": robot.d4,
+        "d5": robot.d5,
+        "d6": robot.d6,
+    }
+
+
+def _upright_hypotheses(robot):
+    d1, a2, a3, d4, d5, d6 = robot.lengths
+    return {
+        "a2 and a3 added with their signs: UR's are negative, and the arm points up": lambda: (
+            np.array([0.0, -(d4 + d6), d1 + a2 + a3 + d5])
+        ),
+        "d5 subtracted: at this pose z4 points up, so d5 lifts the flange": lambda: np.array(
+            [0.0, -(d4 + d6), d1 - a2 - a3 - d5]
+        ),
+        "the sideways offsets d4 and d6 along +y: at q1 = 0 they point along −y0": lambda: np.array(
+            [0.0, d4 + d6, d1 - a2 - a3 + d5]
+        ),
+        "d6 along z: the flange faces sideways (along −y0) at this pose": lambda: np.array(
+            [0.0, -d4, d1 - a2 - a3 + d5 + d6]
+        ),
+        "the position at q = 0 (the arm lying along −x), not standing up": lambda: np.array(
+            [a2 + a3, -(d4 + d6), d1 - d5]
+        ),
+    }
+
+
+def _upright_arms(rng):
+    yield from (urkin.robot(name) for name in urkin.ROBOTS)
+    for k in range(5):
+        lengths = rng.uniform(
+            [0.05, -0.7, -0.6, 0.05, 0.05, 0.04], [0.3, -0.1, -0.1, 0.2, 0.15, 0.12]
+        )
+        yield urkin.Robot(f"a new arm ({k + 1})", *np.round(lengths, 4))
+
+
+def _upright_matches(sub, rng):
+    for robot in _upright_arms(rng):
+        inputs = {"robot": robot.name, **_lengths(robot)}
+        got = as_array(sub.upright_flange(robot), (3,), "upright_flange(robot)", inputs)
+        compare(
+            got,
+            _fk(robot, _UPRIGHT)[:3, 3],
+            what="the flange of the arm standing straight up, q = (0, −π/2, 0, −π/2, 0, 0)",
+            inputs=inputs,
+            hypotheses=_upright_hypotheses(robot),
+        )
+
+
+def _upright_is_predicted(sub, rng):
+    code = sub.code("upright_flange")
+    chained = sorted({"dh_transform", "forward_kinematics", "ur5_position"} & set(code))
+    products = sorted({p for source in code.values() for p in _products_in(source)})
+    if chained or products:
+        used = ", ".join([*(f"your {c}" for c in chained), *products])
+        raise Mismatch(
+            f"upright_flange uses {used}: the exercise asks you to predict the position from "
+            "the lengths (sums of d's and a's), then verify it with forward kinematics",
+            mistake="computed with forward kinematics instead of predicted from the lengths",
+        )
+
+
 LESSON = Lesson(
     number="02",
     title="Denavit–Hartenberg forward kinematics",
@@ -311,6 +518,45 @@ LESSON = Lesson(
                 ),
             ),
             answer=(*concepts.FORWARD_KINEMATICS, dh_transform),
+        ),
+        Exercise(
+            id="2.4",
+            function="symbolic_fk",
+            title="T_0_n of a new arm, derived in SymPy",
+            checks=(
+                Check(
+                    "returns a 4×4 SymPy matrix in the joint angles q1 … qn",
+                    1,
+                    _symbolic_is_matrix,
+                ),
+                Check(
+                    "equals the DH chain for the UR3 and new arms of 2 to 6 joints",
+                    3,
+                    _symbolic_matches,
+                ),
+                Check("twists that are multiples of π/2 are exact", 1, _symbolic_exact_twists),
+            ),
+            answer=(*concepts.DH_LINK, *concepts.FORWARD_KINEMATICS),
+        ),
+        Exercise(
+            id="2.5",
+            function="upright_flange",
+            title="predict where the flange is with the arm standing up",
+            checks=(
+                Check(
+                    "the flange position at q = (0, −π/2, 0, −π/2, 0, 0) for the seven UR arms "
+                    "and new ones",
+                    2,
+                    _upright_matches,
+                ),
+                Check(
+                    "predicted from the lengths: no forward kinematics, no matrix products",
+                    1,
+                    _upright_is_predicted,
+                    reads_code=True,
+                ),
+            ),
+            answer=concepts.FORWARD_KINEMATICS,
         ),
     ),
 )

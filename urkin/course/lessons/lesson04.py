@@ -15,6 +15,7 @@ from urkin.course.compare import (
     close,
     compare,
     identify_mistake,
+    tolerance,
     unless_right,
 )
 from urkin.course.exercise import Check, Exercise, Lesson
@@ -1140,6 +1141,175 @@ def _man_singular(sub, rng):
             )
 
 
+# -------------------------------------------------------------------- 4.7 elbow_lost_direction
+
+
+def _wrist1_jacobian(arm, q) -> np.ndarray:
+    """The 3 × 3 position Jacobian of frame 3's origin (wrist 1) with respect to q1, q2, q3:
+    column i is z_(i−1) × (o3 − o_(i−1))."""
+    frames = _fk_frames(arm, q)
+    o3 = frames[3][:3, 3]
+    return np.column_stack([np.cross(frames[i][:3, 2], o3 - frames[i][:3, 3]) for i in range(3)])
+
+
+def _lost_direction(arm, q) -> np.ndarray:
+    """The left singular vector of the smallest singular value of wrist 1's Jacobian."""
+    return np.linalg.svd(_wrist1_jacobian(arm, q))[0][:, 2]
+
+
+def _elbow_singular(rng, q3: float):
+    """A random UR arm at a configuration with the elbow angle ``q3`` (0, ±π, ±2π) and wrist 1
+    at least ~5 cm off the base axis, so that joints 1-3 still move it in two directions."""
+    while True:
+        arm, q = random_arm(rng), random_q(rng)
+        q[2] = q3
+        if np.linalg.svd(_wrist1_jacobian(arm, q), compute_uv=False)[1] > 0.05:
+            return arm, q
+
+
+def _unit(v) -> np.ndarray:
+    v = np.asarray(v, dtype=float)
+    return v / np.linalg.norm(v)
+
+
+def _same_line(a, b, atol: float) -> bool:
+    """Whether unit vectors ``a`` and ``b`` are equal up to sign."""
+    return bool(min(np.abs(a - b).max(), np.abs(a + b).max()) <= atol)
+
+
+_FRAME_INDEX = (
+    "fk_frames(robot, q)[k] is DH frame k (index 0 is the base frame): wrist 1 is frame 3's "
+    "origin, [3], and the shoulder frame 1's, [1]"
+)
+
+
+def _lost_hypotheses(arm, q) -> dict[str, np.ndarray]:
+    """Unit directions students give instead of the lost one (compared up to sign)."""
+    frames = _fk_frames(arm, q)
+    o, z = frames[:, :3, 3], frames[:, :3, 2]
+    line = o[3] - o[1]
+    return {
+        "the shoulder axis z1 (joints 2 and 3 turn about it): joint 1 moves wrist 1 along it, "
+        "z0 × o3 is parallel to z1": z[1],
+        "across the arm in its plane (z1 × the arm's line): joints 2 and 3 both move wrist 1 "
+        "that way": np.cross(z[1], line),
+        "measured from the base origin (o3 − o0): the arm's line runs through the shoulder, "
+        "frame 1's origin, d1 above the base origin": o[3],
+        "the flange (frame 6) instead of wrist 1, frame 3's origin": o[6] - o[1],
+        _FRAME_INDEX + " (this is o4 − o2)": o[4] - o[2],
+        _FRAME_INDEX + " (this is o2 − o0)": o[2] - o[0],
+        "the base axis z0: joints 1-3 can move wrist 1 up and down": z[0],
+    }
+
+
+def _lost_mistake(got, arm, q) -> str | None:
+    lost = _lost_direction(arm, q)
+    for name, candidate in _lost_hypotheses(arm, q).items():
+        candidate = _unit(candidate)
+        if _same_line(got, candidate, 1e-6) and not _same_line(candidate, lost, 1e-6):
+            return name
+    return None
+
+
+def _lost_matches(sub, rng, angles: tuple[float, ...]):
+    for q3 in angles:
+        arm, q = _elbow_singular(rng, q3)
+        inputs = {"robot": arm.name, "q": q}
+        got = as_array(
+            sub.elbow_lost_direction(arm, q.copy()), (3,), "elbow_lost_direction(robot, q)", inputs
+        )
+        lost = _lost_direction(arm, q)
+        length = float(np.linalg.norm(got.astype(float)))
+        if not abs(length - 1.0) <= tolerance(1e-9, got):
+            direction = got / length if length > 0 else got
+            along = length > 0 and _same_line(direction, lost, 1e-6)
+            raise Mismatch(
+                f"the lost direction must be a unit vector; this one has length {length:.6g}",
+                inputs=inputs,
+                got=got,
+                mistake=(
+                    "not normalised: the direction is right, divide it by its length"
+                    if along
+                    else _lost_mistake(direction, arm, q)
+                ),
+            )
+        if not _same_line(got, lost, tolerance(1e-9, got)):
+            kind = "stretched" if np.cos(q3) > 0 else "folded"
+            raise Mismatch(
+                f"at this {kind} elbow (q3 = {q3:.4f}) joints 1-3 cannot move wrist 1 along the "
+                "expected direction (either sign), the left singular vector of the smallest "
+                "singular value of its 3 × 3 position Jacobian; they can move it along yours",
+                inputs=inputs,
+                expected=lost if got @ lost >= 0 else -lost,
+                got=got,
+                mistake=_lost_mistake(got, arm, q),
+            )
+
+
+def _lost_stretched(sub, rng):
+    _lost_matches(sub, rng, (0.0, 0.0, 0.0, 2 * np.pi, 0.0, -2 * np.pi, 0.0, 0.0))
+
+
+def _lost_folded(sub, rng):
+    _lost_matches(sub, rng, (np.pi, -np.pi, np.pi, -np.pi))
+
+
+# ------------------------------------------------------------------------ 4.8 holding_torques
+
+_G = 9.81
+
+
+def _hold_wrench(arm, q, mass, r_com, *, frame="flange", sign=1.0, lever=1.0, g=_G, moment=True):
+    """The wrench the flange applies to the part, with one piece swappable for a wrong one."""
+    T = _fk(arm, q)
+    f = np.array([0.0, 0.0, sign * mass * g])
+    r = T[:3, :3] @ r_com if frame == "flange" else np.asarray(r_com, dtype=float)
+    return np.r_[f, lever * np.cross(r, f) if moment else np.zeros(3)]
+
+
+def _hold_hypotheses(arm, q, mass, r_com) -> dict:
+    J = _jacobian(arm, q)
+
+    def torques(**wrong):
+        return lambda: J.T @ _hold_wrench(arm, q, mass, r_com, **wrong)
+
+    return {
+        "the sign of F: these torques let the part fall; the flange pushes the part UP with "
+        "m g": torques(sign=-1.0),
+        "the wrench has no moment: with the centre of mass off the flange origin, the weight "
+        "also twists the flange, r × f": torques(moment=False),
+        "r_com used as if it were in the base frame: it is given in the flange frame, rotate "
+        "it by the flange's R first": torques(frame="base"),
+        "the lever reversed (f × r instead of r × f)": torques(lever=-1.0),
+        "the mass used as a force: the weight is m g, g = 9.81 m/s²": torques(g=1.0),
+        "J F instead of Jᵀ F: torques come from the TRANSPOSED Jacobian": lambda: (
+            J @ _hold_wrench(arm, q, mass, r_com)
+        ),
+    }
+
+
+def _hold_cases(sub, rng, offset: bool):
+    for _ in range(5):
+        arm, q = random_arm(rng), random_q(rng)
+        mass = float(rng.uniform(0.2, 5.0))
+        r_com = rng.uniform(-0.15, 0.15, 3) if offset else np.zeros(3)
+        inputs = {"robot": arm.name, "q": q, "mass": mass, "r_com": r_com}
+        got = as_array(
+            sub.holding_torques(arm, q.copy(), mass, r_com.copy()),
+            (6,),
+            "holding_torques(robot, q, mass, r_com)",
+            inputs,
+        )
+        expected = _jacobian(arm, q).T @ _hold_wrench(arm, q, mass, r_com)
+        compare(
+            got,
+            expected,
+            what="τ = Jᵀ F, F = [f; r × f] the wrench the flange holds the part with (N·m)",
+            inputs=inputs,
+            hypotheses=unless_right(_hold_hypotheses(arm, q, mass, r_com), expected),
+        )
+
+
 LESSON = Lesson(
     number="04",
     title="Jacobians and singularities",
@@ -1220,6 +1390,36 @@ LESSON = Lesson(
                 Check("0, not NaN, at the elbow and wrist singularities", 1, _man_singular),
             ),
             answer=concepts.SINGULARITIES,
+        ),
+        Exercise(
+            id="4.7",
+            function="elbow_lost_direction",
+            title="the direction wrist 1 cannot move in at an elbow singularity",
+            checks=(
+                Check(
+                    "a unit vector along the lost direction at stretched elbows (q3 = 0, ±2π)",
+                    3,
+                    _lost_stretched,
+                ),
+                Check("also at folded elbows (q3 = ±π)", 1, _lost_folded),
+            ),
+        ),
+        Exercise(
+            id="4.8",
+            function="holding_torques",
+            title="the joint torques that hold a part against gravity",
+            checks=(
+                Check(
+                    "a part with its centre of mass at the flange origin",
+                    2,
+                    partial(_hold_cases, offset=False),
+                ),
+                Check(
+                    "a part with its centre of mass offset, given in the flange frame",
+                    2,
+                    partial(_hold_cases, offset=True),
+                ),
+            ),
         ),
     ),
 )
