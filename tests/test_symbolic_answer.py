@@ -121,3 +121,7 @@ def test_unreadable_symbolic_text_becomes_an_opaque_answer_not_an_error():
     back = wire.decode({"$sym": "__import__('os')"})
     assert isinstance(back, wire.Opaque)
     assert "unreadable" in back.text
+
+
+def test_the_sender_and_the_reader_agree_on_the_longest_text():
+    assert wire.MAX_SYMBOLIC_TEXT == symbolic_answer.MAX_TEXT
