@@ -1253,8 +1253,8 @@ plt.show()
 # crosses π halfway: the wrapped solution jumps from +π to −π — a full turn the robot would
 # actually perform between two neighbouring poses — while `ik_closest` simply continues past
 # π (UR joints can turn to ±2π). On a path that passes through a singular pose, where two
-# branches meet, the nearest solution also decides which branch the arm continues on; lesson
-# 08 comes back to this when it tracks paths.
+# branches meet, the nearest solution also decides which branch the arm continues on: there
+# two solutions are equally near, and the choice between them is the path's, not the pose's.
 #
 # ## Summary
 #

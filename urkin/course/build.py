@@ -315,6 +315,33 @@ def math_layout(markdown: str) -> list[str]:
     return problems
 
 
+def lessons_mentioned(text: str) -> set[str]:
+    """The two-digit lesson numbers a text refers to ("lesson 03", "lessons 05–07").
+
+    Examples
+    --------
+    >>> sorted(lessons_mentioned("see lesson\\n03 and lessons 05–07; lesson 2 is not a number"))
+    ['03', '05', '06', '07']
+    """
+    found = set()
+    for first, last in re.findall(r"[Ll]essons?\s+(\d{2})\b(?:\s*[–-]\s*(\d{2})\b)?", text):
+        end = int(last or first)
+        found |= {f"{n:02d}" for n in range(int(first), max(end, int(first)) + 1)}
+    return found
+
+
+def _mention_problems(path: Path, notebook: dict, numbers: set[str]) -> list[str]:
+    """A lesson may only send its reader to lessons that exist (no promises of future ones)."""
+    problems = []
+    for index, cell in enumerate(notebook.get("cells", [])):
+        text = re.sub(r"\n#? ?", " ", _source(cell))  # a mention broken over comment lines
+        for number in sorted(lessons_mentioned(text) - numbers):
+            problems.append(
+                f"{path}, cell {index + 1}: mentions lesson {number}, which does not exist"
+            )
+    return problems
+
+
 def _math_layout_problems(path: Path, notebook: dict) -> list[str]:
     return [
         f"{path}, cell {index + 1}: {problem}"
@@ -348,6 +375,7 @@ def check(root: Path) -> list[str]:
         problems += _pair_problems(path, notebook)
         problems += _exercise_problems(path, notebook, lesson)
         problems += _math_layout_problems(path, notebook)
+        problems += _mention_problems(path, notebook, numbers)
         if notebook.get("metadata", {}).get("kernelspec") != KERNELSPEC:
             problems.append(f"{path}: kernelspec is not normalised to python3")
         solution_ids, removed_lines = [], []
