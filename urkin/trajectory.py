@@ -1,0 +1,569 @@
+"""Task-space paths sampled by arc length, orientation along them, and time scaling.
+
+Paths
+    :func:`line`, :func:`polyline`, :func:`square` and :func:`circle` build a :class:`Path`:
+    its :attr:`~Path.length` is exact, :meth:`Path.at` gives the point at any arc length, and
+    :meth:`Path.points` samples it so that every spacing is at most ``step`` and equal along
+    each segment, every corner appears exactly once, and an open path's end point is included
+    (a closed path's end is its start, sampled once).
+Orientation
+    :func:`pose_path` turns points into poses ``(M, 4, 4)`` with a constant orientation or one
+    interpolated along the arc length (slerp: a constant angular rate about one axis).
+Time scaling
+    :func:`time_scaling` gives ``s(t)``, ``ṡ(t)`` and ``s̈(t)`` of a rest-to-rest motion (cubic,
+    quintic or trapezoidal velocity) and :func:`minimum_time` the shortest duration under
+    per-joint velocity and acceleration limits when every joint follows the same ``s(t)``;
+    :func:`joint_trajectory` samples such a joint-space move as a :class:`Trajectory`.
+
+Units are metres, radians and seconds; every function is batched over samples (no Python loop
+over them).
+
+Examples
+--------
+>>> import numpy as np
+>>> square_path = square(center=(0.25, 0.1, 0.3), side=0.15, plane="yz")
+>>> round(square_path.length, 12)
+0.6
+>>> pts = square_path.points(step=1e-3)
+>>> pts.shape
+(604, 3)
+>>> gaps = np.linalg.norm(np.diff(pts, axis=0, append=pts[:1]), axis=1)
+>>> bool(gaps.max() <= 1e-3), round(float(gaps.min() * 1e3), 4)
+(True, 0.9934)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from urkin._inputs import real
+from urkin.transforms import check_rotation, so3_exp, so3_log
+
+__all__ = [
+    "Path",
+    "TimeScaling",
+    "Trajectory",
+    "circle",
+    "joint_trajectory",
+    "line",
+    "minimum_time",
+    "polyline",
+    "pose_path",
+    "square",
+    "time_scaling",
+]
+
+#: The coordinate planes a square or circle may lie in, as (first in-plane axis, second); the
+#: normal is their cross product (``"yz"``: normal +x, as seed 000's paths).
+PLANES = {"xy": (0, 1), "yz": (1, 2), "zx": (2, 0)}
+
+
+def _point(x: ArrayLike, name: str) -> np.ndarray:
+    array = real(x, name)
+    if array.shape != (3,):
+        raise ValueError(
+            f"{name} must be a point (x, y, z) in metres, shape (3,); got {array.shape}"
+        )
+    return array
+
+
+def _positive(x: float, name: str) -> float:
+    value = real(x, name)
+    if value.ndim != 0 or not value > 0:
+        raise ValueError(f"{name} must be one number > 0; got {x!r}")
+    return float(value)
+
+
+def _plane_axes(plane: str | None, normal: ArrayLike | None) -> tuple[np.ndarray, np.ndarray]:
+    """Two orthonormal in-plane axes (u, v) with u × v along the plane's normal."""
+    if (plane is None) == (normal is None):
+        raise ValueError("give the plane either by name (plane='xy', 'yz' or 'zx') or as normal")
+    if plane is not None:
+        if plane not in PLANES:
+            raise ValueError(f"plane must be one of {', '.join(PLANES)}; got {plane!r}")
+        eye = np.eye(3)
+        return eye[PLANES[plane][0]], eye[PLANES[plane][1]]
+    n = _point(normal, "normal")
+    size = float(np.linalg.norm(n))
+    if size == 0.0:
+        raise ValueError("normal must not be the zero vector")
+    n = n / size
+    # u: the base axis least aligned with n, made perpendicular to it (deterministic)
+    axis = np.eye(3)[int(np.argmin(np.abs(n)))]
+    u = axis - (axis @ n) * n
+    u /= np.linalg.norm(u)
+    return u, np.cross(n, u)
+
+
+def _step(step: float) -> float:
+    return _positive(step, "step")
+
+
+@dataclass(frozen=True)
+class Path:
+    """A path in space, parametrised by arc length.
+
+    Build one with :func:`line`, :func:`polyline`, :func:`square` or :func:`circle`.
+
+    Attributes
+    ----------
+    vertices : ndarray, shape (K, 3)
+        The corners of a polyline (the first again at the end of a closed one); for a circle,
+        its start point.
+    closed : bool
+        Whether the path ends where it starts.
+    center, radius, axes :
+        For a circle: its centre (m), radius (m) and in-plane axes ``(u, v)`` (the path is
+        ``center + radius (cos φ u + sin φ v)`` for φ from ``start`` to ``start + 2π``);
+        ``None`` for a polyline.
+    start : float
+        A circle's starting angle φ (rad).
+    """
+
+    vertices: np.ndarray
+    closed: bool
+    center: np.ndarray | None = None
+    radius: float | None = None
+    axes: tuple[np.ndarray, np.ndarray] | None = None
+    start: float = 0.0
+
+    @property
+    def is_circle(self) -> bool:
+        """Whether this is a circle (else a polyline)."""
+        return self.radius is not None
+
+    @property
+    def segment_lengths(self) -> np.ndarray:
+        """Length of each straight segment (m); a circle is one segment of length 2πr."""
+        if self.is_circle:
+            return np.array([2 * math.pi * self.radius])
+        return np.linalg.norm(np.diff(self.vertices, axis=0), axis=1)
+
+    @property
+    def length(self) -> float:
+        """Total arc length (m), exact."""
+        return float(self.segment_lengths.sum())
+
+    def at(self, s: ArrayLike) -> np.ndarray:
+        """The point(s) at arc length ``s`` from the start (m), ``0 ≤ s ≤ length``.
+
+        Returns shape ``s.shape + (3,)``.
+        """
+        s = real(s, "s")
+        if np.any(s < -1e-12 * max(1.0, self.length)) or np.any(s > self.length * (1 + 1e-12)):
+            raise ValueError(f"s must lie in [0, {self.length:.6g}] m, the path's length")
+        s = np.clip(s, 0.0, self.length)
+        if self.is_circle:
+            phi = self.start + s / self.radius
+            u, v = self.axes
+            return self.center + self.radius * (
+                np.cos(phi)[..., None] * u + np.sin(phi)[..., None] * v
+            )
+        ends = np.cumsum(self.segment_lengths)
+        k = np.minimum(np.searchsorted(ends, s, side="right"), len(ends) - 1)
+        begin = ends[k] - self.segment_lengths[k]
+        fraction = (s - begin) / self.segment_lengths[k]
+        a, b = self.vertices[k], self.vertices[k + 1]
+        return a + fraction[..., None] * (b - a)
+
+    def points(self, step: float = 1e-3) -> np.ndarray:
+        """Samples ``(M, 3)``: every spacing ≤ ``step`` (m) and equal along each segment.
+
+        A segment of length ``L`` is cut into the fewest equal pieces no longer than ``step``,
+        with a margin of 1e-9 so that round-off can never make a spacing exceed ``step``: a
+        segment whose length is a whole number of steps gets one piece more (a 0.15 m side at
+        1 mm: 151 pieces of 0.993 mm).  Every corner appears once; an open path ends with its
+        end point, a closed one with the sample before its start (the spacing from the last
+        sample back to the first is ≤ ``step`` too).  A circle's samples are equally spaced in
+        angle; their spacing is the chord, shorter than the arc (see :meth:`chord_error`).
+        """
+        lengths, pieces = self.segment_lengths, self._pieces(step)
+        if self.is_circle:
+            phi = self.start + np.arange(pieces[0]) * (2 * math.pi / pieces[0])
+            u, v = self.axes
+            return self.center + self.radius * (np.cos(phi)[:, None] * u + np.sin(phi)[:, None] * v)
+        segment = np.repeat(np.arange(len(lengths)), pieces)
+        first = np.repeat(np.cumsum(pieces) - pieces, pieces)
+        fraction = (np.arange(pieces.sum()) - first) / np.repeat(pieces, pieces)
+        a, b = self.vertices[segment], self.vertices[segment + 1]
+        samples = a + fraction[:, None] * (b - a)
+        return samples if self.closed else np.concatenate([samples, self.vertices[-1:]])
+
+    def _pieces(self, step: float) -> np.ndarray:
+        """How many equal pieces each segment is cut into for ``step``."""
+        step = _step(step)
+        return np.floor(self.segment_lengths / (step * (1 - 1e-9))).astype(int) + 1
+
+    def chord_error(self, step: float = 1e-3) -> float:
+        """Largest distance (m) between the path and the straight lines joining its samples:
+        0 for a polyline, ``r (1 − cos(Δφ/2))`` for a circle sampled every ``Δφ``."""
+        if not self.is_circle:
+            return 0.0
+        return float(self.radius * (1 - math.cos(math.pi / self._pieces(step)[0])))
+
+
+def polyline(points: ArrayLike, closed: bool = False) -> Path:
+    """The path through ``points`` (K, 3) in order, straight between them (m).
+
+    With ``closed=True`` it returns from the last point to the first.  Two consecutive points
+    that coincide are an error (a repeated corner is sampled twice by seed 000's square).
+
+    Examples
+    --------
+    >>> polyline([[0, 0, 0], [0.3, 0, 0], [0.3, 0.4, 0]]).length
+    0.7
+    """
+    vertices = real(points, "points")
+    if vertices.ndim != 2 or vertices.shape[1] != 3 or len(vertices) < 2:
+        raise ValueError(f"points must have shape (K, 3) with K ≥ 2; got {vertices.shape}")
+    if closed and np.array_equal(vertices[0], vertices[-1]):
+        vertices = vertices[:-1]  # closing is what closed=True does
+    if closed:
+        vertices = np.concatenate([vertices, vertices[:1]])
+    lengths = np.linalg.norm(np.diff(vertices, axis=0), axis=1)
+    if np.any(lengths == 0.0):
+        k = int(np.argmin(lengths))
+        raise ValueError(
+            f"points {k} and {(k + 1) % (len(vertices) - closed)} coincide: a "
+            "path needs distinct consecutive points"
+        )
+    return Path(vertices=vertices, closed=closed)
+
+
+def line(start: ArrayLike, end: ArrayLike) -> Path:
+    """The straight path from ``start`` to ``end`` (m).
+
+    Examples
+    --------
+    >>> line((0, 0, 0), (0.003, 0.004, 0)).points(step=1e-3).shape  # 5 mm: 6 pieces
+    (7, 3)
+    """
+    return polyline(np.stack([_point(start, "start"), _point(end, "end")]))
+
+
+def square(
+    center: ArrayLike,
+    side: float,
+    plane: str | None = None,
+    normal: ArrayLike | None = None,
+) -> Path:
+    """The closed square of side ``side`` (m) centred at ``center`` in a plane.
+
+    The plane is named (``"xy"``, ``"yz"``, ``"zx"``: in-plane axes ``(u, v)`` in that order)
+    or given by its ``normal`` (then ``u`` is the base axis least aligned with it, made
+    perpendicular, and ``v = n × u``).  The corners are visited counter-clockwise about the
+    normal, from ``center − side/2 (u + v)``: for ``plane="yz"`` the order of seed 000.
+
+    Examples
+    --------
+    >>> square((0, 0, 0), 2.0, plane="xy").vertices[:, :2]
+    array([[-1., -1.],
+           [ 1., -1.],
+           [ 1.,  1.],
+           [-1.,  1.],
+           [-1., -1.]])
+    """
+    c, half = _point(center, "center"), _positive(side, "side") / 2
+    u, v = _plane_axes(plane, normal)
+    corners = c + half * np.array([-u - v, u - v, u + v, -u + v])
+    return polyline(corners, closed=True)
+
+
+def circle(
+    center: ArrayLike,
+    radius: float,
+    plane: str | None = None,
+    normal: ArrayLike | None = None,
+    start: float = 0.0,
+) -> Path:
+    """The full circle of ``radius`` (m) about ``center``, counter-clockwise about the normal.
+
+    The plane is given as for :func:`square`; the circle starts at angle ``start`` (rad) from
+    the in-plane axis ``u`` (for ``plane="yz"``, ``start=0``: seed 000's circle, from
+    ``center + radius ŷ`` towards ``+z``).
+
+    Examples
+    --------
+    >>> path = circle((0.25, 0.1, 0.3), 0.1, plane="yz")
+    >>> round(path.length, 12) == round(2 * np.pi * 0.1, 12)
+    True
+    >>> len(path.points(1e-3)), path.chord_error(1e-3) < 1.3e-6
+    (629, True)
+    """
+    c, r = _point(center, "center"), _positive(radius, "radius")
+    u, v = _plane_axes(plane, normal)
+    start = float(real(start, "start"))
+    first = c + r * (math.cos(start) * u + math.sin(start) * v)
+    return Path(vertices=first[None], closed=True, center=c, radius=r, axes=(u, v), start=start)
+
+
+def pose_path(
+    points: Path | ArrayLike,
+    R_start: ArrayLike | None = None,
+    R_end: ArrayLike | None = None,
+    step: float = 1e-3,
+) -> np.ndarray:
+    """Poses ``(M, 4, 4)`` at the path's samples: a constant orientation or one interpolated.
+
+    Parameters
+    ----------
+    points : Path or array_like, shape (M, 3)
+        A path (sampled with ``step``) or its samples (m).
+    R_start : array_like, shape (3, 3), optional
+        The orientation at the start (default: the identity, as seed 000).
+    R_end : array_like, shape (3, 3), optional
+        The orientation at the end.  Between the two the orientation turns about one fixed axis
+        at a rate proportional to arc length (slerp): ``R_start exp(λ log(R_startᵀ R_end))``,
+        ``λ`` the fraction of the length travelled (of a closed path's whole length, which ends
+        back at its start).  The shorter way round is taken; a turn of
+        exactly π has no unique shorter way and is refused.
+    step : float
+        Sampling step (m) when ``points`` is a :class:`Path`.
+
+    Examples
+    --------
+    >>> from urkin.transforms import rot_z
+    >>> poses = pose_path(line((0, 0, 0), (0.1, 0, 0)), rot_z(0.0), rot_z(1.0), step=0.06)
+    >>> poses.shape, round(float(np.arctan2(poses[1, 1, 0], poses[1, 0, 0])), 12)
+    ((3, 4, 4), 0.5)
+    """
+    if isinstance(points, Path):
+        samples = points.points(step)
+    else:
+        samples = real(points, "points")
+        if samples.ndim != 2 or samples.shape[1] != 3 or len(samples) < 1:
+            raise ValueError(f"points must have shape (M, 3); got {samples.shape}")
+    R0 = np.eye(3) if R_start is None else check_rotation(R_start, name="R_start")
+    if R0.shape != (3, 3):
+        raise ValueError(f"R_start must be one rotation, shape (3, 3); got {R0.shape}")
+    poses = np.zeros((len(samples), 4, 4))
+    poses[:, :3, 3] = samples
+    poses[:, 3, 3] = 1.0
+    if R_end is None:
+        poses[:, :3, :3] = R0
+        return poses
+    R1 = check_rotation(R_end, name="R_end")
+    if R1.shape != (3, 3):
+        raise ValueError(f"R_end must be one rotation, shape (3, 3); got {R1.shape}")
+    turn = so3_log(R0.T @ R1)
+    if np.linalg.norm(turn) > math.pi - 1e-9:
+        raise ValueError(
+            "R_end is turned by π from R_start: the shorter way round is not unique; add an "
+            "intermediate orientation"
+        )
+    travelled = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(samples, axis=0), axis=1))]
+    total = points.length if isinstance(points, Path) else travelled[-1]  # closed: back to start
+    fraction = travelled / total if total > 0 else np.zeros(len(samples))
+    poses[:, :3, :3] = R0 @ so3_exp(fraction[:, None] * turn)
+    return poses
+
+
+# ------------------------------------------------------------------------------- time scaling
+
+#: Peak ṡ·T and peak s̈·T² of each rest-to-rest profile (the trapezoid's with its default
+#: cruise speed 1.5/T, accelerating for the first and last third of the motion).
+_PEAKS = {
+    "cubic": (1.5, 6.0),
+    "quintic": (1.875, 10.0 / math.sqrt(3.0)),
+}
+
+
+@dataclass(frozen=True)
+class TimeScaling:
+    """A rest-to-rest time scaling ``s(t)`` from 0 to 1 over ``0 ≤ t ≤ T``.
+
+    Call it with times ``t`` (s, any shape) to get ``(s, ṡ, s̈)``, each of ``t``'s shape;
+    before 0 it rests at ``s = 0`` and after ``T`` at ``s = 1``.  At ``t = 0`` and ``t = T``
+    it gives the motion's one-sided values (a cubic starts with ``s̈ = 6/T²``).
+
+    Attributes
+    ----------
+    kind : str
+        ``"cubic"``, ``"quintic"`` or ``"trapezoid"``.
+    T : float
+        Duration (s).
+    peak_speed : float
+        The largest ``ṡ`` (1/s).
+    peak_acceleration : float
+        The largest ``|s̈|`` (1/s²).
+    """
+
+    kind: str
+    T: float
+    peak_speed: float
+    peak_acceleration: float
+
+    def __call__(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        t = real(t, "t")
+        tau = np.clip(t / self.T, 0.0, 1.0)
+        moving = (t >= 0) & (t <= self.T)  # at 0 and T: the motion's own one-sided values
+        T = self.T
+        if self.kind == "cubic":
+            s = tau * tau * (3 - 2 * tau)
+            sd = 6 * tau * (1 - tau) / T
+            sdd = (6 - 12 * tau) / T**2
+        elif self.kind == "quintic":
+            s = tau**3 * (10 - 15 * tau + 6 * tau * tau)
+            sd = 30 * tau**2 * (1 - tau) ** 2 / T
+            sdd = 60 * tau * (1 - tau) * (1 - 2 * tau) / T**2
+        else:
+            v, a = self.peak_speed, self.peak_acceleration
+            ta = v / a
+            tt = np.clip(t, 0.0, T)
+            rising, falling = tt < ta, tt > T - ta
+            back = T - tt
+            s = np.where(
+                rising, 0.5 * a * tt**2, np.where(falling, 1 - 0.5 * a * back**2, v * (tt - ta / 2))
+            )
+            sd = np.where(rising, a * tt, np.where(falling, a * back, v))
+            sdd = np.where(rising, a, np.where(falling, -a, 0.0))
+        return s, np.where(moving, sd, 0.0), np.where(moving, sdd, 0.0)
+
+
+def time_scaling(kind: str, T: float, peak_speed: float | None = None) -> TimeScaling:
+    """The rest-to-rest time scaling of ``kind`` lasting ``T`` seconds.
+
+    Parameters
+    ----------
+    kind : {"cubic", "quintic", "trapezoid"}
+        Cubic: ``s = 3τ² − 2τ³`` (``τ = t/T``), zero speed at both ends. Quintic:
+        ``s = 10τ³ − 15τ⁴ + 6τ⁵``, zero speed and acceleration at both ends.  Trapezoid:
+        constant acceleration, cruise, constant deceleration.
+    T : float
+        Duration (s), > 0.
+    peak_speed : float, optional
+        The trapezoid's cruise speed ``ṡ`` (1/s), between ``1/T`` (exclusive: all cruise)
+        and ``2/T`` (a triangle: no cruise).  Default ``1.5/T``.
+
+    Examples
+    --------
+    >>> ts = time_scaling("quintic", 2.0)
+    >>> s, sd, sdd = ts(np.array([0.0, 1.0, 2.0]))
+    >>> s.tolist(), sd.tolist(), ts.peak_speed
+    ([0.0, 0.5, 1.0], [0.0, 0.9375, 0.0], 0.9375)
+    """
+    T = _positive(T, "T")
+    if kind in _PEAKS:
+        if peak_speed is not None:
+            raise ValueError(f"peak_speed is the trapezoid's; a {kind} time scaling has none")
+        speed, acceleration = _PEAKS[kind]
+        return TimeScaling(kind, T, speed / T, acceleration / T**2)
+    if kind != "trapezoid":
+        raise ValueError(f"kind must be 'cubic', 'quintic' or 'trapezoid'; got {kind!r}")
+    v = 1.5 / T if peak_speed is None else _positive(peak_speed, "peak_speed")
+    if not 1.0 < v * T <= 2.0:
+        raise ValueError(
+            f"peak_speed must lie in (1/T, 2/T] = ({1 / T:.6g}, {2 / T:.6g}] 1/s for T = {T:g} s; "
+            f"got {v:.6g}"
+        )
+    return TimeScaling("trapezoid", T, v, v * v / (v * T - 1.0))
+
+
+def minimum_time(
+    kind: str,
+    distance: ArrayLike,
+    max_velocity: ArrayLike,
+    max_acceleration: ArrayLike,
+) -> TimeScaling:
+    """The fastest time scaling of ``kind`` that keeps every joint within its limits.
+
+    Every joint follows the same ``s(t)``: joint ``i`` moves ``distance[i] · s(t)``, so its
+    speed is ``|distance[i]| ṡ`` and its acceleration ``|distance[i]| s̈``.  The slowest joint
+    (the bottleneck) sets the duration: for the cubic and quintic ``T`` is the smallest with
+    both peaks within limits; for the trapezoid, the shortest bang-coast-bang profile (a
+    triangle when the cruise speed is never reached).
+
+    Parameters
+    ----------
+    kind : {"cubic", "quintic", "trapezoid"}
+    distance : array_like, shape (n,)
+        How far each joint moves (rad or m); not all zero.
+    max_velocity, max_acceleration : array_like, shape (n,) or scalar
+        Limits (> 0) per joint, in the units of ``distance`` per s and per s².
+
+    Examples
+    --------
+    >>> ts = minimum_time("trapezoid", [1.0, 0.5], max_velocity=1.0, max_acceleration=2.0)
+    >>> ts.T, ts.peak_speed, ts.peak_acceleration
+    (1.5, 1.0, 2.0)
+    """
+    d = np.abs(real(distance, "distance"))
+    if d.ndim != 1 or not np.any(d > 0):
+        raise ValueError("distance must be a vector (n,) of joint motions, not all zero")
+    limits = []
+    for value, name in ((max_velocity, "max_velocity"), (max_acceleration, "max_acceleration")):
+        limit = (
+            np.broadcast_to(real(value, name), d.shape)
+            if np.ndim(value) == 0
+            else real(value, name)
+        )
+        if limit.shape != d.shape or not np.all(limit > 0):
+            raise ValueError(f"{name} must be > 0, one number or one per joint {d.shape}")
+        limits.append(limit)
+    moving = d > 0
+    V = float(np.min(limits[0][moving] / d[moving]))  # largest ṡ every joint allows (1/s)
+    A = float(np.min(limits[1][moving] / d[moving]))  # largest s̈ (1/s²)
+    if kind in _PEAKS:
+        speed, acceleration = _PEAKS[kind]
+        return time_scaling(kind, max(speed / V, math.sqrt(acceleration / A)))
+    if kind != "trapezoid":
+        raise ValueError(f"kind must be 'cubic', 'quintic' or 'trapezoid'; got {kind!r}")
+    if V * V >= A:  # the cruise speed is never reached: a triangle
+        T = 2.0 / math.sqrt(A)
+        return TimeScaling("trapezoid", T, 2.0 / T, A)
+    return TimeScaling("trapezoid", 1.0 / V + V / A, V, A)
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Joint positions, velocities and accelerations sampled in time.
+
+    Attributes
+    ----------
+    t : ndarray, shape (M,)
+        Times (s).
+    q, qd, qdd : ndarray, shape (M, n)
+        Joint positions (rad), velocities (rad/s) and accelerations (rad/s²).
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+
+
+def joint_trajectory(
+    q_start: ArrayLike,
+    q_end: ArrayLike,
+    scaling: TimeScaling,
+    samples: int = 100,
+) -> Trajectory:
+    """A straight joint-space move from ``q_start`` to ``q_end`` timed by ``scaling``.
+
+    ``q(t) = q_start + s(t) (q_end − q_start)``, sampled at ``samples`` equally spaced times
+    from 0 to ``scaling.T``.  (Joint angles are used as given: wrap them first if the move
+    should take the shorter way round.)
+
+    Examples
+    --------
+    >>> traj = joint_trajectory([0.0, 0.0], [1.0, -2.0], time_scaling("cubic", 2.0), samples=3)
+    >>> traj.q.tolist(), traj.qd[1].tolist()
+    ([[0.0, 0.0], [0.5, -1.0], [1.0, -2.0]], [0.75, -1.5])
+    """
+    q0, q1 = real(q_start, "q_start"), real(q_end, "q_end")
+    if q0.ndim != 1 or q0.shape != q1.shape:
+        raise ValueError(
+            f"q_start and q_end must be vectors of one shape; got {q0.shape}, {q1.shape}"
+        )
+    if not isinstance(scaling, TimeScaling):
+        raise TypeError("scaling must be a TimeScaling (from time_scaling or minimum_time)")
+    if int(samples) != samples or samples < 2:
+        raise ValueError(f"samples must be an integer ≥ 2; got {samples!r}")
+    t = np.linspace(0.0, scaling.T, int(samples))
+    s, sd, sdd = scaling(t)
+    delta = q1 - q0
+    return Trajectory(t, q0 + s[:, None] * delta, sd[:, None] * delta, sdd[:, None] * delta)
