@@ -14,6 +14,8 @@ Time scaling
     quintic or trapezoidal velocity) and :func:`minimum_time` the shortest duration under
     per-joint velocity and acceleration limits when every joint follows the same ``s(t)``;
     :func:`joint_trajectory` samples such a joint-space move as a :class:`Trajectory`.
+Tracking
+    :func:`track` (from :mod:`urkin.tracking`) follows poses with warm-started IK.
 
 Units are metres, radians and seconds; every function is batched over samples (no Python loop
 over them).
@@ -41,11 +43,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._inputs import real
+from urkin.tracking import Tracking, track
 from urkin.transforms import check_rotation, so3_exp, so3_log
 
 __all__ = [
     "Path",
     "TimeScaling",
+    "Tracking",
     "Trajectory",
     "circle",
     "joint_trajectory",
@@ -55,6 +59,7 @@ __all__ = [
     "pose_path",
     "square",
     "time_scaling",
+    "track",
 ]
 
 #: The coordinate planes a square or circle may lie in, as (first in-plane axis, second); the

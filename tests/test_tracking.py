@@ -1,0 +1,124 @@
+"""urkin.trajectory.track: warm-started, nearest-solution tracking that never moves on failure
+and never winds a joint past its limits.  Every reached sample is re-measured with urkin.fk
+here; branches are read off urkin.ik_analytic's row order (its documented branch bits)."""
+
+import numpy as np
+import pytest
+
+import urkin
+from urkin import trajectory as tj
+from urkin.tracking import _chase
+from urkin.transforms import pose_error, rot_z, wrap_angles
+
+UR3, UR5 = urkin.robot("ur3"), urkin.robot("ur5")
+
+
+def _branches(robot, q, poses):
+    """The ik_analytic row (branch) each configuration is, by matching wrapped angles."""
+    rows, mask = urkin.ik_analytic(robot, poses, return_mask=True)
+    gap = np.abs(wrap_angles(rows - wrap_angles(q)[:, None, :])).max(axis=2)
+    gap[~mask] = np.inf
+    assert np.all(gap.min(axis=1) < 1e-6)
+    return np.argmin(gap, axis=1)
+
+
+def _elbow_up_start(robot, pose):
+    solutions = urkin.ik_analytic(robot, pose)
+    elbows = urkin.fk_frames(robot, solutions)[:, 3, 2, 3]  # height of the elbow (frame 3)
+    return solutions[int(np.argmax(elbows))]
+
+
+@pytest.mark.parametrize(
+    ("robot", "path"),
+    [
+        (UR3, tj.circle((0.25, 0.1, 0.3), 0.1, plane="yz")),  # seed 000's circle
+        (UR3, tj.square((0.25, 0.1, 0.3), 0.15, plane="yz")),  # seed 000's square
+        (UR5, tj.square((0.4, 0.1, 0.2), 0.2, plane="xy")),
+        (UR5, tj.circle((-0.3, 0.35, 0.45), 0.12, normal=(1, 1, 1))),
+    ],
+)
+def test_paths_are_tracked_exactly_on_one_branch_within_limits(robot, path):
+    poses = tj.pose_path(path, rot_z(0.4) if robot is UR5 else None)
+    q0 = _elbow_up_start(robot, poses[0])
+    result = tj.track(robot, poses, q0)
+    assert result.ok.all(), result.failures
+    position, angle = pose_error(urkin.fk(robot, result.q), poses)
+    assert position.max() < 1e-9 and angle.max() < 1e-9
+    assert len(set(_branches(robot, result.q, poses))) == 1  # no branch flip
+    assert np.abs(result.q).max() <= 2 * np.pi
+    assert np.abs(np.diff(result.q, axis=0)).max() < 0.05  # 1 mm steps: small joint steps
+    np.testing.assert_allclose(result.q[0], q0, atol=1e-9)
+
+
+@pytest.mark.parametrize("method", ["lm", "dls", "nr"])
+def test_numerical_methods_track_warm_started(method):
+    path = tj.circle((0.25, 0.1, 0.3), 0.1, plane="yz")
+    poses = tj.pose_path(path)[::7]
+    q0 = _elbow_up_start(UR3, poses[0])
+    result = tj.track(UR3, poses, q0, method=method)
+    assert result.ok.all(), result.failures
+    assert result.method == method
+    position, angle = pose_error(urkin.fk(UR3, result.q), poses)
+    assert position.max() < 1e-9 and angle.max() < 1e-9
+
+
+def test_a_sample_out_of_reach_leaves_the_arm_where_it_was_and_says_why():
+    points = tj.line((0.3, 0.1, 0.3), (0.9, 0.1, 0.3)).points(0.01)  # UR3 reaches ~0.5 m
+    there = np.r_[points, points[::-1]]  # out and back
+    poses = tj.pose_path(there)
+    q0 = _elbow_up_start(UR3, poses[0])
+    result = tj.track(UR3, poses, q0)
+    failed = np.flatnonzero(~result.ok)
+    assert len(failed) > 0 and result.ok[0] and result.ok[-1]
+    assert set(result.failures) == set(failed.tolist())
+    assert all("unreachable" in result.failures[k] for k in failed)
+    for k in failed:  # never moved on a failed sample
+        np.testing.assert_array_equal(result.q[k], result.q[k - 1])
+    position, angle = pose_error(urkin.fk(UR3, result.q[result.ok]), poses[result.ok])
+    assert position.max() < 1e-9 and angle.max() < 1e-9
+
+
+def test_a_path_that_would_wind_a_joint_past_its_limit_stops_there():
+    # the tool turns about its own axis by three full turns while standing still
+    T0 = urkin.fk(UR5, np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.5]))
+    turns = np.linspace(0, 6 * np.pi, 361)
+    poses = T0 @ np.stack([np.eye(4)] * len(turns))
+    poses[:, :3, :3] = T0[:3, :3] @ rot_z(turns)
+    q0 = np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.5])
+    result = tj.track(UR5, poses, q0)
+    assert np.abs(result.q).max() <= 2 * np.pi + 1e-12
+    failed = np.flatnonzero(~result.ok)
+    assert len(failed) > 0 and np.all(np.diff(failed) == 1) and failed[-1] == len(poses) - 1
+    assert "joint 6 would turn past its limit" in result.failures[int(failed[0])]
+    reached = result.ok
+    position, angle = pose_error(urkin.fk(UR5, result.q[reached]), poses[reached])
+    assert position.max() < 1e-9 and angle.max() < 1e-9
+    # joint 6 went as far as it could: to within one sample's turn (6π/360) of +2π
+    assert 2 * np.pi - 6 * np.pi / 360 < result.q[reached][-1, 5] <= 2 * np.pi
+
+
+def test_chase_follows_the_chain_like_a_loop():
+    rng = np.random.default_rng(3)
+    for length in (1, 2, 3, 7, 64, 1000):
+        table = rng.integers(0, 8, (length, 8))
+        first = int(rng.integers(8))
+        expected = [first]
+        for k in range(length):
+            expected.append(int(table[k, expected[-1]]))
+        np.testing.assert_array_equal(_chase(table, first), expected)
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        (lambda: tj.track(UR3, np.eye(4), np.zeros(6)), r"shape \(M, 4, 4\)"),
+        (lambda: tj.track(UR3, np.eye(4)[None], np.zeros(5)), r"q0 must be one configuration"),
+        (lambda: tj.track(UR3, np.eye(4)[None], np.full(6, 7.0)), "outside the robot's joint"),
+        (lambda: tj.track(UR3, np.eye(4)[None], np.zeros(6), method="rrt"), "method must be"),
+        (lambda: tj.track(UR3, 2 * np.eye(4)[None], np.zeros(6)), "poses"),
+        (lambda: tj.track("ur3", np.eye(4)[None], np.zeros(6)), "robot"),
+    ],
+)
+def test_bad_input_is_refused_with_the_argument_named(call, message):
+    with pytest.raises((ValueError, TypeError), match=message):
+        call()
