@@ -9,10 +9,19 @@
 # * **writing**: exercises, each a single function, followed by a *check cell* that tells you
 #   whether your function is right and, when it is not, what it probably got wrong.
 #
-# By the end of this lesson you will know how to work through a notebook, which units and
-# frame conventions the whole course uses, and you will have looked at a UR3 in 3D.
+# **What you will be able to do**
 #
-# **Time:** about 30 minutes. **You need:** Python and numpy; no robotics yet.
+# * work through a notebook: run it top to bottom, write an exercise and read its check cell's
+#   report (exercise 0.1);
+# * convert degrees to radians exactly, for one angle or a whole array of configurations, and
+#   say why rounded factors such as 0.0175 are a bug (exercise 0.1);
+# * express a pose given in UR's `base` frame in the URDF `base_link` frame, putting the
+#   transform on the side where the frame names cancel (exercise 0.2);
+# * predict, without forward kinematics, the flange pose after the base joint turns, and tell
+#   a turn about the base's z axis (`Rz @ T`) from a turn about the flange's own (`T @ Rz`)
+#   (exercise 0.3).
+#
+# **Time:** about 40 minutes. **You need:** Python and numpy; no robotics yet.
 
 # %% [markdown]
 # ## Working in JupyterLab
@@ -35,7 +44,7 @@ import numpy as np
 
 import urkin
 import urkin.plot
-from urkin.course import check
+from urkin.course import below, check
 
 np.set_printoptions(precision=4, suppress=True)
 
@@ -89,10 +98,10 @@ print(f"pi/180            = {exact:.7f}")
 print(f"0.0175  differs by {100 * (0.0175 / exact - 1):+.3f} %")
 print(f"0.01744 differs by {100 * (0.01744 / exact - 1):+.3f} %")
 
-angle_deg = 20.0  # the initial guess of one report, on every joint
+angle = 20.0 * exact  # the initial guess of one report, on every joint (radians)
 for step in range(1, 4):
-    angle_deg = angle_deg * 0.0175 / 0.01744  # degrees → "radians" → "degrees"
-    print(f"after round trip {step}: {angle_deg:.4f}°")
+    angle = angle / 0.0175 * 0.01744  # radians → "degrees" → "radians", as the report does
+    print(f"after round trip {step}: {angle / exact:.4f}° (it started at 20°)")
 
 # %% [markdown]
 # ### Exercise 0.1 — `deg_to_rad` (5 points)
@@ -153,11 +162,9 @@ print(ur3)
 zero = np.zeros(6)
 home = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])
 
-fig = plt.figure(figsize=(11, 5.5))
-for index, (q, name) in enumerate([(zero, "q = 0 (stretched out)"), (home, "home")]):
-    ax = fig.add_subplot(1, 2, index + 1, projection="3d")
-    urkin.plot.show_robot(ur3, q, ax=ax, title=f"UR3, {name}")
-fig.suptitle("The UR3 in two configurations: links through the DH frames, with their axes")
+urkin.plot.robot_panels(ur3, [(zero, "UR3, q = 0 (stretched out)"), (home, "UR3, home")],
+                        title="The UR3 in two configurations: links through the DH frames, "
+                              "with their axes")
 plt.show()
 
 # %% [markdown]
@@ -177,7 +184,7 @@ sweep = np.tile(home, (40, 1))
 sweep[:, 1] = np.linspace(-np.pi / 2, 0.0, 40)
 flange = urkin.fk(ur3, sweep)[:, :3, 3]  # all 40 poses at once: shape (40, 4, 4)
 
-ax = urkin.plot.axes3d(center=(0.0, -0.1, 0.3), half_width=0.45,
+ax = urkin.plot.axes3d(center=(-0.15, -0.1, 0.32), half_width=0.4, figsize=(7.5, 7.5),
                        title="UR3: the flange while the shoulder turns from −90° to 0°")
 for q in sweep[::13]:
     urkin.plot.draw_robot(ax, ur3, q, frames=False, alpha=0.5)
@@ -263,12 +270,127 @@ def base_link_pose(T_base_tool):
 check("0.2", base_link_pose)
 
 # %% [markdown]
+# ## Turning the base joint
+#
+# Joint 1, the base, turns about the z axis of the base frame: the vertical line through the
+# base origin. It carries everything after it — shoulder, elbow, wrist and flange turn
+# together, like an object on a turntable, and nothing inside the arm changes. Every point of
+# the arm moves on a horizontal circle about that line.
+#
+# ### Exercise 0.3 — `turn_joint1` (3 points)
+#
+# **Predict, then verify.** You are given the flange pose `T_base_flange` (4×4, in UR's base
+# frame) of some arm at some configuration `q`. Joint 1 turns by `angle` radians; the other
+# five joints stay where they are. What is the new flange pose? You are given neither the arm
+# nor `q`, so forward kinematics cannot help: the answer has to come from reasoning. Before you
+# write any code, decide:
+#
+# * about which axis, and measured in which frame, does the flange turn?
+# * so does `Rz(angle)` multiply `T_base_flange` from the **left** or from the **right**? In
+#   exercise 0.2 the names told you: a transform on the left acts in the frame named on the
+#   left (here `base`), one on the right acts in the frame named on the right (here the flange's
+#   own). Which side would turn the flange about *its own* z axis instead, and which joint of
+#   the arm does that?
+#
+# Write `turn_joint1(T_base_flange, angle)`: return the 4×4 flange pose, in the base frame,
+# after joint 1 turns by `angle` radians — any angle: negative ones and ones beyond a full turn
+# too (positive turns counter-clockwise seen from above, as every angle about z does). Build
+# `Rz(angle)` as a 4×4 array from `np.cos` and `np.sin`, as in exercise 0.2 (or use
+# `urkin.transforms.rot_z` and `urkin.transforms.make_transform`).
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision) on the flange poses of random
+# UR arms at random configurations, for eight random angles between −10 and 10 rad (four within
+# ±π, two beyond +π, two beyond −π): that the flange position turns about the base z axis by
+# the angle, keeping its height and its distance from the axis (1 point); and that the whole
+# pose equals `urkin.fk` at `q` with `q[0] + angle` (2 points). The feedback recognises the
+# product on the wrong side (a turn about the flange's own z axis), the opposite angle, only the
+# orientation or only the position turned, degrees for radians, and a turn about x or y.
+
+# %%
+def turn_joint1(T_base_flange, angle):
+    """The flange pose after joint 1 turns, from the flange pose before.
+
+    Parameters
+    ----------
+    T_base_flange : ndarray, shape (4, 4)
+        Pose of the flange in the base frame at some configuration q.
+    angle : float
+        How far joint 1 turns, in radians (positive: counter-clockwise seen from above).
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+        The flange pose in the base frame at q with q[0] + angle, the other joints unchanged.
+    """
+    ### BEGIN SOLUTION
+    c, s = np.cos(angle), np.sin(angle)
+    Rz = np.array([[c, -s, 0.0, 0.0], [s, c, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0],
+                   [0.0, 0.0, 0.0, 1.0]])
+    return Rz @ T_base_flange  # about the base's z axis: the base frame's side, the left
+    ### END SOLUTION
+
+
+# %%
+check("0.3", turn_joint1)
+
+# %% [markdown]
+# Now verify the prediction with forward kinematics. The cell turns joint 1 of the UR3 by
+# 2.5 rad (about 143°) from a working pose and compares your answer with `urkin.fk` at the new
+# configuration. It also tests the other side: `T @ Rz(angle)` spins the flange about its own z
+# axis, and that is exactly what turning **joint 6** does — the flange's z axis is joint 6's
+# axis. Left or right of the same matrix: the base joint or the last wrist joint.
+
+# %%
+q_work = np.array([0.4, -1.1, 1.3, -1.7, -1.5, 0.2])
+turn = 2.5  # radians
+q_joint1, q_joint6 = q_work.copy(), q_work.copy()
+q_joint1[0] += turn
+q_joint6[5] += turn
+T_work = urkin.fk(ur3, q_work)
+Rz_turn = urkin.transforms.make_transform(urkin.transforms.rot_z(turn))
+
+gap_left = np.abs(Rz_turn @ T_work - urkin.fk(ur3, q_joint1)).max()
+gap_right = np.abs(T_work @ Rz_turn - urkin.fk(ur3, q_joint6)).max()
+miss = np.linalg.norm((T_work @ Rz_turn)[:3, 3] - urkin.fk(ur3, q_joint1)[:3, 3])
+print(f"Rz(angle) @ T against fk with joint 1 turned: largest difference {below(gap_left)}")
+print(f"T @ Rz(angle) against fk with joint 6 turned: largest difference {below(gap_right)}")
+print(f"T @ Rz(angle) puts the flange {miss:.3f} m from where turning joint 1 does")
+try:
+    mine = np.asarray(turn_joint1(T_work, turn), dtype=float)
+except NotImplementedError:
+    print("exercise 0.3 is not written yet: nothing to compare")
+else:
+    gap_mine = np.abs(mine - urkin.fk(ur3, q_joint1)).max()
+    print(f"your turn_joint1 against fk with joint 1 turned: largest difference "
+          f"{below(gap_mine, 1e-9)}")
+
+# %% [markdown]
+# The picture of the same turn: the flange travels on a horizontal circle about the base z
+# axis, and its frame turns with it — position and orientation both, as `Rz(angle) @ T` says.
+
+# %%
+sweep_1 = np.tile(q_work, (60, 1))
+sweep_1[:, 0] += np.linspace(0.0, turn, 60)
+path_1 = urkin.fk(ur3, sweep_1)[:, :3, 3]
+
+ax = urkin.plot.axes3d(center=(0.0, 0.0, 0.25), half_width=0.45,
+                       title="UR3: joint 1 turns the whole arm about the base z axis")
+urkin.plot.draw_robot(ax, ur3, q_work, frames=False, alpha=0.35, label="before")
+urkin.plot.draw_robot(ax, ur3, q_joint1, frames=False, label="joint 1 turned by 2.5 rad")
+for T in (T_work, urkin.fk(ur3, q_joint1)):
+    urkin.plot.draw_frame(ax, T, length=0.1)
+ax.plot(*path_1.T, color="tab:orange", linewidth=2, label="flange path")
+ax.plot([0.0, 0.0], [0.0, 0.0], [0.0, 0.5], "k--", linewidth=1, label="joint 1 axis (base z)")
+ax.legend(loc="upper right")
+plt.show()
+
+# %% [markdown]
 # ## Seven arms, one structure
 #
 # All seven arms share the same joint layout; only six lengths differ. That is why one
 # derivation (lesson 02) serves them all. The chart measures each arm as the sweep above did:
 # the flange's distance from the shoulder axis with the arm stretched, $|a_2| + |a_3| + d_5$.
-# The longest, the UR10 and UR10e, reach about two and a half times as far as the UR3.
+# The longest, the UR10 and UR10e, reach about 2.4 times as far as the UR3.
 
 # %%
 names = urkin.ROBOTS
@@ -292,5 +414,5 @@ plt.show()
 # * **Lesson 02** derives the UR forward kinematics with SymPy from a table of four numbers per
 #   joint, and shows how a published formula can hide an error from its own test.
 #
-# Before you move on: restart the kernel and run the whole notebook. Both check cells should now
-# report full marks.
+# Before you move on: restart the kernel and run the whole notebook. All three check cells
+# should now report full marks.

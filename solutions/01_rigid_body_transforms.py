@@ -5,18 +5,20 @@
 # say where a frame is and how it is turned. This lesson builds that language from the ground
 # up, with numpy arrays you can print and check.
 #
-# You will learn
+# **What you will be able to do**
 #
-# * what a rotation matrix is, why its columns are the axes of a frame, and why the order of
-#   two rotations matters;
-# * how a 4×4 homogeneous transform moves points between frames, how to name transforms so
-#   that chains of them cannot go wrong, and how to invert one without `np.linalg.inv`;
-# * how to read roll, pitch and yaw out of a rotation — the numbers on a pose panel — and
-#   where that breaks down (the *gimbal lock*);
-# * exponential coordinates: one axis and one angle, Rodrigues' formula and its inverse, the
-#   log map, and how to measure tiny and large rotation angles without losing precision.
+# * write an elementary rotation (exercise 1.1), read any rotation matrix column by column as
+#   the axes of a frame, and say why the order of two rotations matters;
+# * move points between frames with 4×4 transforms named so that chains cannot go wrong, and
+#   invert a transform with Rᵀ instead of `np.linalg.inv` (exercise 1.2);
+# * read roll, pitch and yaw — the numbers on a pose panel — out of a rotation, also at the
+#   *gimbal lock*, where they stop being unique (exercise 1.3);
+# * turn an axis and an angle into a rotation with Rodrigues' formula (exercise 1.4), go back
+#   with the log map, and measure tiny and half-turn angles without losing precision;
+# * tell a rotation from a reflection and from a matrix that is neither, within a stated
+#   tolerance (exercise 1.5).
 #
-# **Time:** about 90 minutes. **You need:** lesson 00, and matrix products in numpy (`A @ B`).
+# **Time:** about 100 minutes. **You need:** lesson 00, and matrix products in numpy (`A @ B`).
 
 # %%
 import matplotlib.pyplot as plt
@@ -25,7 +27,7 @@ import numpy as np
 import urkin
 import urkin.plot
 import urkin.transforms
-from urkin.course import check
+from urkin.course import below, check
 from urkin.transforms import (
     check_rotation,
     inv_transform,
@@ -206,16 +208,6 @@ print(f"turn about the moved x axis, then compare: {np.allclose(about_moved_x @ 
 # frame. Follow the red x arrow: in the top row it ends up along Y, in the bottom row along Z.
 
 # %%
-def draw_fixed_axes(ax, length=1.0):
-    """Grey dashed X, Y, Z axes of the fixed frame, for reference."""
-    for axis, name in enumerate("XYZ"):
-        tip = np.zeros(3)
-        tip[axis] = length
-        ax.plot(*np.column_stack([np.zeros(3), tip]), color="0.6", linestyle="--",
-                linewidth=1.0, label="fixed axes" if axis == 0 else None)
-        ax.text(*(1.08 * tip), name, color="0.45", fontsize=9)
-
-
 steps = [
     [("start", np.eye(3)),
      ("after Rz(90°)", urkin.transforms.rot_z(quarter)),
@@ -224,21 +216,9 @@ steps = [
      ("after Rx(90°)", rot_x(quarter)),
      ("then Rz(90°) about the new z", Rx_Rz)],
 ]
-fig = plt.figure(figsize=(13, 9))
-for row, sequence in enumerate(steps):
-    for column, (caption, R) in enumerate(sequence):
-        ax = fig.add_subplot(2, 3, 3 * row + column + 1, projection="3d")
-        urkin.plot.axes3d(ax, center=(0.0, 0.0, 0.0), half_width=1.0, title=caption)
-        draw_fixed_axes(ax)
-        urkin.plot.draw_frame(ax, make_transform(R), length=0.8, linewidth=3.0, tips=True)
-        for set_ticks in (ax.set_xticks, ax.set_yticks, ax.set_zticks):
-            set_ticks([-1.0, 0.0, 1.0])
-        ax.view_init(elev=22, azim=-55)
-        if row == 0 and column == 0:
-            ax.legend(loc="upper left", fontsize=8)
-fig.suptitle("Order matters. Top row: Rz(90°) @ Rx(90°). Bottom row: Rx(90°) @ Rz(90°).\n"
-             "Coloured arrows: the moving frame; grey dashes: the fixed frame")
-fig.subplots_adjust(left=0.02, right=0.96, hspace=0.25, wspace=0.25)
+urkin.plot.rotation_steps_figure(
+    steps, title="Order matters. Top row: Rz(90°) @ Rx(90°). Bottom row: Rx(90°) @ Rz(90°).\n"
+                 "Coloured arrows: the moving frame; grey dashes: the fixed frame")
 plt.show()
 
 # %% [markdown]
@@ -303,8 +283,9 @@ ur3 = urkin.robot("UR3")
 q_reach = np.array([1.393, -1.741, -2.501, -0.470, 1.571, -0.177])  # flange above the block
 T_table_links = T_table_base @ urkin.fk_frames(ur3, q_reach)  # all 7 frames, in table frame
 
-ax = urkin.plot.axes3d(center=(0.40, 0.35, 0.45), half_width=0.55, figsize=(7.5, 7.5),
-                       title="A block seen by a camera, located for the robot")
+ax = urkin.plot.axes3d(center=(0.40, 0.35, 0.45), half_width=0.55, figsize=(8, 8),
+                       title="A block seen by a camera, located for the robot",
+                       frame="table frame")
 ax.plot(*T_table_links[:, :3, 3].T, "-o", color="0.45", linewidth=3, markersize=4,
         label="UR3 links")
 for T, name in [(np.eye(4), "table"), (T_table_base, "base"), (T_table_cam, "camera")]:
@@ -497,12 +478,10 @@ print(f"angle between the two orientations: {rotation_angle(near_lock, nudged):.
 q_work = np.array([0.5, -1.2, 1.4, -1.8, -1.5, 0.3])
 q_locked = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, np.pi / 2])
 
-fig = plt.figure(figsize=(12, 6))
-for index, (q, caption) in enumerate([(q_work, "a working pose"),
-                                      (q_locked, "home, wrist 3 at +90°: gimbal lock")]):
-    ax = fig.add_subplot(1, 2, index + 1, projection="3d")
-    urkin.plot.show_robot(ur3, q, ax=ax, title=f"UR3, {caption}")
-fig.suptitle("The pose panel: flange position (m) and roll, pitch, yaw (degrees, for reading)")
+urkin.plot.robot_panels(ur3, [(q_work, "UR3, a working pose"),
+                              (q_locked, "UR3, home, wrist 3 at +90°: gimbal lock")],
+                        title="The pose panel: flange position (m) and roll, pitch, yaw "
+                              "(degrees, for reading)")
 plt.show()
 
 for q, caption in [(q_work, "working pose"), (q_locked, "gimbal lock")]:
@@ -794,10 +773,10 @@ print(f"half turn about k equals half turn about −k: "
       f"{np.allclose(so3_exp(np.pi * k), so3_exp(-np.pi * k))}")
 print(f"so3_log of that half turn: {so3_log(so3_exp(np.pi * k)).round(4) + 0.0}")
 
-below, above = so3_exp((np.pi - 1e-3) * k), so3_exp((np.pi + 1e-3) * k)
-print(f"turn by π − 0.001 about k: ω = {so3_log(below).round(4) + 0.0}")
-print(f"turn by π + 0.001 about k: ω = {so3_log(above).round(4) + 0.0}")
-print(f"the two orientations differ by {rotation_angle(below, above):.4f} rad")
+R_below, R_above = so3_exp((np.pi - 1e-3) * k), so3_exp((np.pi + 1e-3) * k)
+print(f"turn by π − 0.001 about k: ω = {so3_log(R_below).round(4) + 0.0}")
+print(f"turn by π + 0.001 about k: ω = {so3_log(R_above).round(4) + 0.0}")
+print(f"the two orientations differ by {rotation_angle(R_below, R_above):.4f} rad")
 
 # %% [markdown]
 # ### The seeds' cross-product error is blind at 180°
@@ -894,6 +873,132 @@ plt.show()
 # *smaller* as the target gets further away, and at π it stops dead. The IK lessons use the
 # log-map error by default and keep the cross-product version, by name, to show this failure.
 #
+# ## 7. Rotation, reflection, or neither?
+#
+# Rotation matrices come from many places: typed in by hand, read from a file, printed with
+# four decimals and pasted back, produced by a formula with a bug in it. Before trusting one,
+# ask which of three things it is. Section 1 gave the two tests: RᵀR = I (the columns are
+# orthonormal) and the sign of det R (+1 for a rotation, −1 for a mirror image). In floating
+# point the first can only hold *within a tolerance*: a rotation computed with cos and sin has
+# an RᵀR a few 1e-16 away from I.
+#
+# ### Exercise 1.5 — `rotation_verdict` (5 points)
+#
+# **Predict, then verify.** Before you write any code, decide what each of these matrices is —
+# a rotation, a reflection or not orthonormal — and why, at a tolerance of 1e-9:
+#
+# 1. `Rz(30°)`, section 1's `R_a_b`;
+# 2. `diag(1, 1, −1)`, the mirror in the x-y plane;
+# 3. `1.01 * Rz(30°)`;
+# 4. `Rz(30°) @ S` with the small shear `S = [[1, 0.001, 0], [0, 1, 0], [0, 0, 1]]`: what is
+#    its determinant, and does that settle it?
+# 5. `Rz(30°)` with its first two columns swapped;
+# 6. `Rz(30°)` rounded to four decimals, as `print` shows it — and does your answer change at a
+#    tolerance of 1e-3?
+#
+# Then write `rotation_verdict(R, tol=1e-9)`. It returns exactly one of three strings:
+#
+# * `"not orthonormal"` unless the largest entry of |RᵀR − I| is at most `tol` — so also when
+#   an entry of `R` is NaN or infinite;
+# * otherwise `"rotation"` when det R > 0 and `"reflection"` when det R < 0 (within such a
+#   tolerance det R is ±1, so its sign is never in doubt).
+#
+# `R` is a numpy array (or anything `np.asarray` takes). If its shape is not (3, 3), raise
+# `ValueError` with a message that names `R`, such as "R must have shape (3, 3), got (4, 4)": a
+# 4×4 transform passed by mistake gets no verdict. `tol` is a positive number between 1e-12
+# and 1e-3.
+#
+# *Checked*: at the default tol, random rotations and the identity are "rotation", and
+# orthonormal matrices with det −1 — a mirror, a rotation times a mirror, −R, a rotation with
+# two columns swapped, a Householder mirror — are "reflection" (2 points); shears with det
+# exactly 1, a mirrored shear, a scaled rotation, a singular matrix and Rodrigues' formula with
+# an axis of length 2 are "not orthonormal" (1 point); `tol` is honoured, for one tol between
+# 1e-12 and 1e-11, the default 1e-9 and one between 1e-4 and 1e-3: a rotation whose largest
+# |RᵀR − I| is 1000 times smaller than tol is "rotation", a matrix whose largest |RᵀR − I| is
+# 1000 times larger is "not orthonormal" — so far from the edge that neither round-off nor
+# another reasonable measure (the Frobenius norm, the singular values) changes the verdict
+# (1 point); and a NaN, inf or −inf entry gives "not orthonormal", while shapes (4, 4), (2, 2),
+# (3,) and (3, 4) raise `ValueError` naming `R` (1 point). The feedback recognises a test of
+# the determinant alone, of orthonormality alone, RᵀR compared with I exactly, a tolerance
+# other than `tol`, and a NaN that slips through `deviation > tol`. urkin's own
+# `check_rotation` and `check_transform` give such a verdict already: every check reads your
+# code for them, and a function that uses them earns no points.
+
+# %%
+def rotation_verdict(R, tol=1e-9):
+    """Whether a 3×3 matrix is a rotation, a reflection, or not orthonormal.
+
+    Parameters
+    ----------
+    R : array_like, shape (3, 3)
+        The matrix to judge.
+    tol : float
+        Largest accepted entry of |RᵀR − I|, between 1e-12 and 1e-3.
+
+    Returns
+    -------
+    str
+        ``"not orthonormal"`` unless max |RᵀR − I| ≤ tol (NaN and infinite entries included);
+        otherwise ``"rotation"`` if det R > 0 and ``"reflection"`` if det R < 0.
+
+    Raises
+    ------
+    ValueError
+        If R does not have shape (3, 3).
+    """
+    ### BEGIN SOLUTION
+    R = np.asarray(R, dtype=float)
+    if R.shape != (3, 3):
+        raise ValueError(f"R must have shape (3, 3), got {R.shape}")
+    if not np.all(np.isfinite(R)):
+        return "not orthonormal"
+    deviation = np.abs(R.T @ R - np.eye(3)).max()
+    if not deviation <= tol:  # written so that a NaN could not pass either
+        return "not orthonormal"
+    return "rotation" if np.linalg.det(R) > 0 else "reflection"
+    ### END SOLUTION
+
+
+# %%
+check("1.5", rotation_verdict)
+
+# %% [markdown]
+# Now verify your predictions: the cell prints, for each matrix, the largest entry of
+# |RᵀR − I|, the determinant and your function's verdict at the default tolerance.
+
+# %%
+R_30 = urkin.transforms.rot_z(np.pi / 6)
+shear = np.array([[1.0, 0.001, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+predictions = {
+    "Rz(30°)": R_30,
+    "diag(1, 1, −1)": np.diag([1.0, 1.0, -1.0]),
+    "1.01 * Rz(30°)": 1.01 * R_30,
+    "Rz(30°) @ S (small shear)": R_30 @ shear,
+    "Rz(30°), columns 1 and 2 swapped": R_30[:, [1, 0, 2]],
+    "Rz(30°) rounded to 4 decimals": R_30.round(4),
+}
+for name, M in predictions.items():
+    deviation = np.abs(M.T @ M - np.eye(3)).max()
+    try:
+        verdict = rotation_verdict(M)
+    except NotImplementedError:
+        verdict = "(exercise 1.5 is not written yet)"
+    print(f"{name:<34} max |RᵀR − I| {below(deviation):>12}   det {np.linalg.det(M):+.4f}"
+          f"   → {verdict}")
+try:
+    print(f"Rz(30°) rounded to 4 decimals, at tol = 1e-3: "
+          f"{rotation_verdict(R_30.round(4), tol=1e-3)}")
+except NotImplementedError:
+    print("exercise 1.5 is not written yet: no verdict at tol = 1e-3 either")
+
+# %% [markdown]
+# Three things to take away. The shear has det R = 1 to four decimals, yet its columns are
+# not perpendicular: a determinant of +1 alone does not make a rotation. Swapping two columns
+# keeps them orthonormal but swaps two axes, which turns a right-handed frame into a
+# left-handed one: a reflection. And the matrix you see printed with four decimals is not the
+# matrix you computed: pasted back, it is 4e-5 away from orthonormal — a rotation at a tolerance
+# of 1e-3, not at 1e-9. A tolerance is part of the question; state it.
+#
 # ## Summary
 #
 # * A rotation matrix's columns are the axes of the turned frame in the fixed frame's
@@ -909,6 +1014,8 @@ plt.show()
 #   and matrices. Measure small angles with 2·asin(‖R1 − R2‖_F / 2√2), not arccos of a trace.
 # * At 180° the rotation axis is ambiguous in sign, and the cross-product error sin φ · k
 #   vanishes: use the log map for orientation errors.
+# * A matrix is a rotation when RᵀR = I within a stated tolerance *and* det R = +1: the
+#   determinant alone misses shears and scalings, orthonormality alone misses mirrors.
 #
 # ## What comes next
 #
@@ -916,5 +1023,5 @@ plt.show()
 # rotations and translations, `Rz(θ) Tz(d) Tx(a) Rx(α)` — into the forward kinematics of every
 # UR arm, derives it symbolically with SymPy and tests a published formula against it.
 #
-# Before you move on: restart the kernel and run the whole notebook. All four check cells
+# Before you move on: restart the kernel and run the whole notebook. All five check cells
 # should report full marks.

@@ -556,9 +556,11 @@ print("|d1|, |a2|, |a3|, |d4|, |d5|, |d6| (m):       ",
 # Seed 002 is a UR5 project. It prints a closed-form flange position (in millimetres), uses it
 # for a Newton–Raphson inverse kinematics, and says it verified the formula with its own
 # implementation of the DH chain. It does not print the pose it checked at; we will find
-# that its formula agrees with the true chain exactly when $\cos(q_2 + q_3 + q_4) = 0$, so the
-# test pose must have had, for instance, $q_2 + q_3 + q_4 = 90°$ — an inference, not a quote
-# (ERRATA draws the same conclusion). Let us repeat such a test, and then test more carefully.
+# that its formula agrees with the true chain exactly where $\cos(q_2 + q_3 + q_4) = 0$ or
+# $\sin q_5 = 1$, so its test pose must have been one of those — for instance
+# $q_2 + q_3 + q_4 = 90°$, the pose ERRATA names. That is an inference, not a quote: a pose with
+# $q_5 = 90°$ would have passed as well. Let us repeat such a test, and then test more
+# carefully.
 #
 # The report works in its own convention: positive $a_2 = 425$ mm and $a_3 = 392$ mm, lengths
 # 89.2, 425, 392, 109.3, 94.75 and 82.5 mm (close to, but not exactly, UR's UR5 numbers), and
@@ -640,8 +642,8 @@ display(p_error)
 #
 # $$\|e\| = d_6\,|\cos(q_2+q_3+q_4)|\,(1 - \sin q_5),$$
 #
-# which is zero whenever $\cos(q_2+q_3+q_4) = 0$ — at any pose like the one the report must
-# have tested at (its verification passed), which could therefore never reveal it — and
+# which is zero whenever $\cos(q_2+q_3+q_4) = 0$ or $\sin q_5 = 1$ — the only poses at which
+# the report's verification could have passed, and which could therefore never reveal it — and
 # reaches $2 d_6 = 165$ mm when $\sin q_5 = -1$. At the
 # report's `q = 0` it is already $d_6 = 82.5$ mm.
 #
@@ -955,13 +957,14 @@ for name in urkin.ROBOTS:
 #   $R_x(\alpha_{i-1})T_x(a_{i-1})R_z(\theta_i)T_z(d_i)$, needs a rewritten table. A table
 #   without its convention is not a robot.
 # * Forward kinematics is the product of the link transforms, base first. Derived in SymPy with
-#   symbolic lengths, one formula serves all seven UR arms; its terms depend on $q_1$, $q_5$,
-#   $q_6$ and the sums $q_2+q_3$ and $q_2+q_3+q_4$.
+#   symbolic lengths, one formula serves all seven UR arms; its terms depend on $q_1$, $q_2$,
+#   $q_5$, $q_6$ and the sums $q_2+q_3$ and $q_2+q_3+q_4$.
 # * DH frame origins lie on joint axes, but not always at the physical joints: the UR's
 #   sideways offsets all end up in $d_4$.
 # * Test formulas at many random configurations, and against an independent computation. Seed
 #   002's published position lacks a factor $\sin q_5$ in two terms, an error of up to
-#   $2d_6 = 165$ mm that vanishes exactly at the pose its author checked.
+#   $2d_6 = 165$ mm that vanishes exactly where $\cos(q_2+q_3+q_4) = 0$ or $\sin q_5 = 1$: the
+#   only poses at which its author's check could have passed.
 #
 # ## What comes next
 #
@@ -970,5 +973,5 @@ for name in urkin.ROBOTS:
 # * **Inverse kinematics**: the way back, from a pose to joint angles — numerically with the
 #   Jacobian, and in closed form, where a UR arm has up to eight answers.
 #
-# Before you move on: restart the kernel and run the whole notebook. All three check cells
+# Before you move on: restart the kernel and run the whole notebook. All five check cells
 # should report full marks.

@@ -9,22 +9,24 @@
 #
 # Each factor is the motion of one joint, described by a *screw axis* $S_i$: the joint's axis
 # written in one fixed frame. $M$ is where the flange is when every joint is at zero. That is
-# all PoE needs — no frame per link, no table tied to a convention. You will
+# all PoE needs — no frame per link, no table tied to a convention. Along the way you meet
+# twists and their ordering (ω, v), which is *not* the ordering of the course's geometric
+# Jacobian; rebuild the UR3 screw axes that seed report 001 read out of a robot simulator and
+# check its printed numbers; get screw axes automatically from a DH table; and reproduce a
+# worked UR5 example from *Modern Robotics*.
 #
-# * meet twists and screw axes, and learn their ordering (ω, v) — which is *not* the ordering
-#   of the course's geometric Jacobian;
-# * build the screw axes of a UR3 by hand from the axes and points that seed report 001 read
-#   out of a robot simulator, and check its printed numbers;
-# * derive the exponential $e^{[S]\theta}$ of a screw axis, and see why its translation is not
-#   simply $v\theta$;
-# * write PoE forward kinematics in the *space* form and the *body* form, and check them
-#   against lesson 02 on all seven UR arms;
-# * get screw axes automatically from a DH table, and reproduce a worked UR5 example from
-#   *Modern Robotics*;
+# **What you will be able to do**
+#
+# * write the screw axis of a revolute joint from its direction and a point, and read back
+#   from a screw axis where the joint's axis passes (exercises 3.1 and 3.6);
+# * compute the motion $e^{[S]\theta}$ of a turn about a screw axis in closed form, and say
+#   why its translation is not simply $v\theta$ (exercise 3.2);
+# * compute a UR arm's flange pose by the product of exponentials, in the *space* form and
+#   the *body* form, matching lesson 02's DH forward kinematics (exercises 3.3 and 3.4);
 # * go back from a pose to its twist with the matrix logarithm, including its two special
-#   cases, θ = 0 and θ = π.
+#   cases, θ = 0 and θ = π (exercise 3.5).
 #
-# **Time:** about 90 minutes. **You need:** lesson 01 (transforms, skew matrices, Rodrigues'
+# **Time:** about 100 minutes. **You need:** lesson 01 (transforms, skew matrices, Rodrigues'
 # formula, the exponential map) and lesson 02 (DH frames and forward kinematics).
 
 # %%
@@ -130,7 +132,7 @@ print(f"velocity of the point at the origin, by finite differences: "
 swapped = np.r_[S_vertical[3:], S_vertical[:3]]  # the same numbers, read as (v, ω)
 for name, V in [("(ω, v), right", S_vertical), ("(v, ω), swapped", swapped)]:
     moved = (se3_exp(V * np.pi / 2) @ origin)[:3]
-    print(f"{name:<16}: a quarter turn takes the origin to {moved.round(4) + 0.0} m")
+    print(f"{name:<16}: θ = π/2 takes the origin to {moved.round(4) + 0.0} m")
 
 # %% [markdown]
 # The origin sits 0.5 m from the axis, so turning about it at 1 rad/s moves the origin at
@@ -495,7 +497,8 @@ for name, S_try in [("S from the listed points", S_seed_hand),
 
 # %% [markdown]
 # The seed's PoE model *is* a UR3: every orientation is exact (the axis directions are exact)
-# and positions agree within the millimetre to which the report rounded its points and M. The
+# and positions agree to about a millimetre, the precision to which the report rounded its
+# points and M. The
 # 1 mm slip in column 3 shows up as well — with the printed S the largest gap grows to almost
 # 2 mm. The figure shows the seed's arm at θ = 0, its screw axes and its M, and the spread of
 # the gaps.
@@ -1097,6 +1100,147 @@ def twist_log(T):
 check("3.5", twist_log)
 
 # %% [markdown]
+# ## 9. From a screw axis back to the joint
+#
+# Sections 1 and 2 went from a joint to its screw axis: a direction ω and a point $q$ give
+# $S = (\omega, -\omega \times q)$. The way back is just as useful. A screw axis handed to you
+# by a calibration, a book or the current axes $\mathrm{Ad}(\ldots)S_i$ of section 5 says
+# nothing directly about *where* the joint is; to draw it, or to compare it with a drawing of
+# the arm, you need a point of its line. Section 5's figure used one without proof: "the line
+# through ω × v". Now you prove it.
+#
+# **Predict first.** Look at the UR5's joint 2 in section 5's printout: $\omega = (0, -1, 0)$,
+# $v = (0.089159, 0, 0)$. Before any algebra, picture the arm at $q = 0$: the shoulder joint
+# sits on top of the base column, at the height $d_1 = 0.089159$ m, and turns about a
+# horizontal line. Where does that line pass closest to the base origin? Write your guess
+# down — a point, in metres — and do the same for joint 3, which is parallel to joint 2 and
+# $|a_2| = 0.425$ m further out along the upper arm.
+#
+# **Derive.** The line is all points $q + t\omega$. Its point nearest the origin minimises
+# $\|q + t\omega\|^2 = \|q\|^2 + 2t\,(q \cdot \omega) + t^2$ (for a unit ω), so
+# $t = -q \cdot \omega$: the nearest point is $q - (q \cdot \omega)\,\omega$, the one point of
+# the line with $q \cdot \omega = 0$. Now take the cross product of ω with
+# $v = -\omega \times q$ and expand the double cross product,
+# $a \times (b \times c) = (a \cdot c)\,b - (a \cdot b)\,c$:
+#
+# $$\omega \times v = -\omega \times (\omega \times q)
+#   = -\big((\omega \cdot q)\,\omega - (\omega \cdot \omega)\,q\big)
+#   = q - (\omega \cdot q)\,\omega .$$
+#
+# It is the nearest point, whichever point $q$ built $S$ — as it must be, since $S$ does not
+# remember $q$. The derivation used $\omega \cdot \omega = 1$. For an ω of another length it
+# gives $\|\omega\|^2 q - (\omega \cdot q)\,\omega$, a point off the axis; for a prismatic
+# joint, $\omega = 0$, there is no axis at all, only a direction of sliding. Either way
+# $\omega \times v$ is not a point of a joint axis, so a function that returns it must refuse
+# such an $S$ rather than answer quietly.
+#
+# ### Exercise 3.6 — `screw_to_joint` (3 points)
+#
+# Write `screw_to_joint(S)`: for the screw axis `S = (ω, v)` of a revolute joint (shape
+# `(6,)`, angular part first, ω a unit vector, v in metres), return the point of the joint's
+# axis nearest the origin of the frame `S` is written in, as an array of shape `(3,)` in
+# metres: the one point $q$ of the axis with $q \cdot \omega = 0$. **Bad input:** when
+# $\|\omega\|$ differs from 1 by more than 1e-6 — a prismatic joint (ω = 0) or an ω that was
+# not normalised — raise `ValueError` with a message that names the argument `S`.
+#
+# *Checked* (to 1e-9; a float32 answer to float32's precision): (1 point) the nearest point
+# for random unit axes through random points; (1 point) the nearest points of the joint axes
+# of random UR arms, from `urkin.poe.space_screws` at $q = 0$ and their current axes at a
+# random $q$; (1 point) a `ValueError` whose message contains `S` for ω = 0 and for ω of
+# length 2, 0.5 and 1.01 — and, in the same check, a point for a valid `S`, so a function
+# that refuses everything earns nothing. The feedback recognises $v \times \omega$ (the
+# mirror point $-q$), $v$, $-v$ or ω returned as the point, and a point of the axis that is
+# not the nearest one.
+
+# %%
+def screw_to_joint(S):
+    """The point of a revolute joint's axis nearest the origin, from its screw axis.
+
+    Parameters
+    ----------
+    S : array_like, shape (6,)
+        Screw axis (ω, v) of a revolute joint, angular part first: ω a unit vector along the
+        axis, v = −ω × q in metres for any point q of the axis.
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        The point of the axis nearest the origin of S's frame, in metres: ω × v, the one
+        point q of the axis with q·ω = 0.
+
+    Raises
+    ------
+    ValueError
+        If ‖ω‖ differs from 1 by more than 1e-6 (a prismatic joint, ω = 0, or an ω that was
+        not normalised): then ω × v is not a point of a joint axis.
+    """
+    ### BEGIN SOLUTION
+    screw = np.asarray(S, dtype=float)
+    omega, v = screw[:3], screw[3:]
+    length = np.linalg.norm(omega)
+    if abs(length - 1.0) > 1e-6:
+        raise ValueError(
+            f"S must be a revolute screw axis with a unit ω; its ω has length {length:.3g}"
+        )
+    return np.cross(omega, v)
+    ### END SOLUTION
+
+
+# %%
+check("3.6", screw_to_joint)
+
+# %% [markdown]
+# **Verify.** The cell below takes every UR5 joint, at $q = 0$ and at section 5's `q_moved`,
+# and tests the point three ways: rebuilding $S = (\omega, -\omega \times q)$ from it must give
+# back the screw axis; $q \cdot \omega$ must be zero; and the point must lie on the line of
+# the z axis of the DH frame the joint turns about (frame i−1 for joint i, from
+# `urkin.fk_frames`), an independent description of the same axis. It uses your
+# `screw_to_joint`, or $\omega \times v$ while the exercise is not written yet.
+
+# %%
+try:
+    screw_to_joint(S_ur5[:, 1])
+    joint_point, source = screw_to_joint, "your screw_to_joint"
+except NotImplementedError:
+    def joint_point(S):
+        """ω × v, standing in for exercise 3.6 until it is written."""
+        return np.cross(S[:3], S[3:])
+
+    source = "ω × v (exercise 3.6 is not written yet)"
+print(f"points from {source}")
+
+for joint, (x, z) in ((2, (0.0, ur5.d1)), (3, (ur5.a2, ur5.d1))):
+    point = np.round(np.asarray(joint_point(S_ur5[:, joint - 1]), dtype=float), 6) + 0.0
+    print(f"UR5 joint {joint} at q = 0: nearest point ({point[0]:.6f}, {point[1]:.6f}, "
+          f"{point[2]:.6f}) m; prediction ({x:.6f}, 0.000000, {z:.6f})")
+
+for q, name in ((np.zeros(6), "q = 0"), (q_moved, "q_moved")):
+    axes_now = urkin.poe.jacobian_space(S_ur5, q)  # column i: joint i + 1's axis at q
+    frames_now = urkin.fk_frames(ur5, q)  # joint i + 1 turns about z of frame i
+    rebuilt_gap = perpendicular = off_line = 0.0
+    for i in range(6):
+        S_i = axes_now[:, i]
+        point = np.asarray(joint_point(S_i), dtype=float)
+        rebuilt = np.r_[S_i[:3], -np.cross(S_i[:3], point)]
+        rebuilt_gap = max(rebuilt_gap, np.abs(rebuilt - S_i).max())
+        perpendicular = max(perpendicular, abs(np.dot(point, S_i[:3])))
+        z_axis, origin = frames_now[i][:3, 2], frames_now[i][:3, 3]
+        offset = point - origin
+        off_line = max(off_line, np.linalg.norm(offset - np.dot(offset, z_axis) * z_axis))
+    print(f"{name:<8}: S rebuilt from the point, largest difference "
+          f"{difference_text(rebuilt_gap)}; |q·ω| {difference_text(perpendicular)}; "
+          f"distance to the DH z axis {difference_text(off_line)} m")
+
+# %% [markdown]
+# Joint 2's axis passes closest to the base origin straight above it, at the shoulder height:
+# $(0, 0, d_1)$. Joint 3's is the same point moved out by $a_2 = -0.425$ m along x (UR's $a_2$
+# is negative: at $q = 0$ the arm stretches along −x). For every joint, at home and moved,
+# the point rebuilds its screw axis, is perpendicular to ω, and lies on the DH frame's z
+# axis: one line, described once by PoE and once by DH. If your prediction put joint 2's
+# point at the joint's physical centre, off to the side along y, remember section 2: a screw
+# axis records the line, not where along it the motor sits.
+
+# %% [markdown]
 # ## Summary
 #
 # * A **twist** $(\omega, v)$ is a rigid body's angular velocity and the velocity of its point
@@ -1123,6 +1267,9 @@ check("3.5", twist_log)
 # * The **matrix log** inverts the exponential: $V = (\omega\theta, \theta\,G^{-1}(\theta)p)$
 #   with $G^{-1} = I/\theta - [\omega]/2 + (1/\theta - \cot(\theta/2)/2)[\omega]^2$; a pure
 #   translation gives $(0, p)$, and at θ = π the axis comes from the symmetric part of R.
+# * **Back to the joint:** for a unit ω, $\omega \times v = q - (\omega \cdot q)\,\omega$ is the
+#   point of the axis nearest the origin, whichever point built $S$. A prismatic or
+#   unnormalised ω has no such point: refuse it.
 #
 # ## What comes next
 #
@@ -1131,5 +1278,5 @@ check("3.5", twist_log)
 # column from the joint axes — the current axes drawn in section 5 — and numerically by finite
 # differences, and it finds the configurations where a UR arm loses a direction of motion.
 #
-# Before you move on: restart the kernel and run the whole notebook. All five check cells
+# Before you move on: restart the kernel and run the whole notebook. All six check cells
 # should report full marks.

@@ -20,7 +20,8 @@
 # * say which singular families a configuration is in, and which motion it loses there
 #   (exercises 4.5 and 4.7);
 # * measure how far a configuration is from trouble with manipulability and the condition
-#   number (exercise 4.6), and find the joint torques that hold a load (exercise 4.8).
+#   number (exercise 4.6 computes the first), and find the joint torques that hold a load
+#   (exercise 4.8).
 #
 # **Time:** about 3 hours. **You need:** lesson 01 (rotations, the cross product as a matrix),
 # lesson 02 (DH frames, the UR forward kinematics) and lesson 03 (screw axes $(\omega, v)$,
@@ -139,39 +140,18 @@ print(f"ω, flange turned/Δt = {omega_observed.round(4) + 0.0} rad/s")
 # %%
 frames_demo = urkin.fk_frames(ur5, q_demo)  # (7, 4, 4): base, then DH frames 1 … 6
 p_flange = frames_demo[6, :3, 3]
-origins_demo = frames_demo[:, :3, 3]
-colours = plt.cm.tab10(np.arange(6))
-scale = 0.3  # metres of arrow per m/s
+z_axes, axis_points = frames_demo[:6, :3, 2], frames_demo[:6, :3, 3]  # z_(i−1) and p_(i−1)
+velocities = np.cross(z_axes, p_flange - axis_points)  # (6, 3): row i − 1 is v_i, m/s per rad/s
 
-ax = urkin.plot.axes3d(center=0.5 * (origins_demo.min(axis=0) + origins_demo.max(axis=0)),
-                       half_width=0.36, figsize=(11, 8),
-                       title="UR5: joint axes, lever arms and the flange velocity of each "
-                             "joint\ncolumn i of J: v_i = z_(i−1) × (p − p_(i−1)), "
-                             "ω_i = z_(i−1)")
-urkin.plot.draw_robot(ax, ur5, q_demo, frames=False, color="0.6", linewidth=3,
-                      label="arm (links between DH origins)")
-for i in range(6):
-    z, origin = frames_demo[i, :3, 2], frames_demo[i, :3, 3]
-    v_i = np.cross(z, p_flange - origin)
-    axis_line = np.array([origin - 0.1 * z, origin + 0.1 * z])
-    ax.plot(*axis_line.T, color=colours[i], linewidth=2.5,
-            label=f"joint {i + 1}: axis z{i} through p{i}")
-    ax.plot(*np.array([origin, p_flange]).T, "--", color=colours[i], linewidth=1.2)
-    ax.quiver(*p_flange, *(scale * v_i), color=colours[i], linewidth=2.0,
-              arrow_length_ratio=0.15)
-ax.plot([], [], "--", color="0.3", label="lever arm p − p_(i−1), in the joint's colour")
-ax.plot([], [], color="0.3", marker=r"$\rightarrow$", linestyle="none", markersize=12,
-        label="v_i: flange velocity, 0.3 m per m/s")
-ax.scatter(*p_flange, color="k", s=30, depthshade=False)
-ax.text(*(p_flange + np.array([0.0, 0.0, 0.03])), "p (flange)", fontsize=9)
-ax.view_init(elev=25, azim=-20)
-ax.legend(loc="center left", bbox_to_anchor=(1.05, 0.5), fontsize=9)
+urkin.plot.jacobian_columns_figure(
+    frames_demo, velocities, scale=0.3,
+    title="UR5: joint axes, lever arms and the flange velocity of each joint\n"
+          "column i of J: v_i = z_(i−1) × (p − p_(i−1)), ω_i = z_(i−1)")
 plt.show()
 
 for i in range(6):
-    v_i = np.cross(frames_demo[i, :3, 2], p_flange - frames_demo[i, :3, 3])
-    print(f"joint {i + 1}: |lever arm| = {np.linalg.norm(p_flange - frames_demo[i, :3, 3]):.4f}"
-          f" m,  |v_i| = {np.linalg.norm(v_i):.4f} m/s per rad/s")
+    print(f"joint {i + 1}: |lever arm| = {np.linalg.norm(p_flange - axis_points[i]):.4f}"
+          f" m,  |v_i| = {np.linalg.norm(velocities[i]):.4f} m/s per rad/s")
 
 # %% [markdown]
 # Read the figure joint by joint. The lever arm of joint 6 runs *along* its own axis — the
@@ -367,23 +347,14 @@ J_own = np.array(  # central differences of the *published* p: what the report d
 ).transpose(2, 1, 0)  # (500, 3, 6)
 worst_own = np.abs(J_seed - J_own).max(axis=0)
 
-fig, axes = plt.subplots(1, 2, figsize=(13, 4.2), constrained_layout=True)
-panels = [(worst, "against the true DH chain: 10 entries wrong"),
-          (worst_own, "against its own published p: all 18 right")]
-for ax, (errors, title) in zip(axes, panels):
-    image = ax.imshow(1000 * errors, cmap="Reds", vmin=0.0, vmax=170.0)
-    for row in range(3):
-        for col in range(6):
-            value = 1000 * errors[row, col]
-            ax.text(col, row, f"{value:.1f}", ha="center", va="center", fontsize=10,
-                    color="white" if value > 100 else "black")
-    ax.set_xticks(range(6), [f"∂/∂q{j + 1}" for j in range(6)])
-    ax.set_yticks(range(3), ["p_x", "p_y", "p_z"])
-    ax.set_xlabel("joint (column of the Jacobian)")
-    ax.set_ylabel("flange coordinate (row)")
-    ax.set_title(title)
-fig.colorbar(image, ax=axes, shrink=0.9, label="largest |error| over 500 poses (mm/rad)")
-fig.suptitle("Seed 002's hand-derived UR5 position Jacobian, entry by entry")
+urkin.plot.entry_error_maps(
+    [(worst, "against the true DH chain: 10 entries wrong"),
+     (worst_own, "against its own published p: all 18 right")],
+    factor=1000.0,  # m/rad → mm/rad
+    row_labels=["p_x", "p_y", "p_z"], column_labels=[f"∂/∂q{j + 1}" for j in range(6)],
+    xlabel="joint (column of the Jacobian)", ylabel="flange coordinate (row)",
+    colorbar_label="largest |error| over 500 poses (mm/rad)",
+    title="Seed 002's hand-derived UR5 position Jacobian, entry by entry")
 plt.show()
 
 # %% [markdown]
@@ -529,21 +500,11 @@ errors = {name: np.abs(estimate - exact).max(axis=(1, 2))
                                  ("complex step", complex_step)]}
 
 floor = 1e-18  # exact answers (error 0) are drawn here, so that they show on a log axis
-eps = np.finfo(float).eps
-fig, ax = plt.subplots(figsize=(8.5, 5.5))
-styles = {"forward": "o-", "central": "s-", "complex step": "^-"}
-for name, error in errors.items():
-    ax.loglog(steps_h, np.maximum(error, floor), styles[name], markersize=4, linewidth=1.2,
-              label=f"{name} differences" if name != "complex step" else "complex step")
-ax.loglog(steps_h, steps_h, ":", color="0.5", linewidth=1, label="slopes: h, h², ε/h")
-ax.loglog(steps_h, steps_h**2, ":", color="0.5", linewidth=1)
-ax.loglog(steps_h, eps / steps_h, ":", color="0.5", linewidth=1)
-ax.axhline(eps, color="0.7", linewidth=0.8, linestyle="--", label="machine precision ε")
-ax.set_xlabel("step size h (rad)")
-ax.set_ylabel("largest error of ∂p/∂q entries (m/rad)")
-ax.set_title("UR5 flange position Jacobian: error against step size")
-ax.set_ylim(floor / 3, 10.0)
-ax.legend(loc="upper center", fontsize=9)
+urkin.plot.step_size_figure(
+    steps_h, {"forward differences": errors["forward"], "central differences": errors["central"],
+              "complex step": errors["complex step"]},
+    floor=floor, ylabel="largest error of ∂p/∂q entries (m/rad)",
+    title="UR5 flange position Jacobian: error against step size")
 plt.show()
 
 # the smallest errors are set by round-off, which differs between CPUs: print bounds
@@ -755,7 +716,10 @@ check("4.4", jacobian_body)
 q1, q2, q3, q4, q5, q6 = Q
 d1, a2, a3, d4, d5, d6 = LENGTHS
 print("J depends on q6:", J_symbolic.has(q6))
-det_J = sp.factor(simplify_angles(J_symbolic.subs(q1, 0).det(method="berkowitz")))
+det_raw = sp.expand(simplify_angles(J_symbolic.subs(q1, 0).det(method="berkowitz")))
+# one identity is left for us: cos²(q2+q3+q4) = 1 − sin²(q2+q3+q4)
+c234, s234 = sp.cos(q2 + q3 + q4), sp.sin(q2 + q3 + q4)
+det_J = sp.factor(det_raw.subs(c234**2, 1 - s234**2))
 print("det J =")
 display(det_J)
 
@@ -816,11 +780,6 @@ print(f"det J with q1 and q6 changed: largest change {below(spread)}")
 # motion.
 
 # %%
-def view_from(ax, direction, elev):
-    """Look at a 3D axes from the horizontal direction of `direction`, `elev` degrees up."""
-    ax.view_init(elev=elev, azim=np.degrees(np.arctan2(direction[1], direction[0])))
-
-
 reach = ur5.a2 * np.cos(-1.0) + ur5.a3 * np.cos(-2.0)  # q2 = −1, q3 = −1: the arm's reach
 families = {  # q4 puts the wrist centre's d5 s234 exactly against the reach
     "shoulder": np.array([0.3, -1.0, -1.0, np.arcsin(-reach / ur5.d5) + 2.0, 1.0, 0.4]),
@@ -830,45 +789,8 @@ families = {  # q4 puts the wrist centre's d5 s234 exactly against the reach
 conditions = {"shoulder": "a2 c2 + a3 c23 + d5 s234 = 0", "elbow": "sin q3 = 0",
               "wrist": "sin q5 = 0"}
 
-fig = plt.figure(figsize=(16, 7.2))
-for index, (family, q) in enumerate(families.items()):
-    frames = urkin.fk_frames(ur5, q)
-    origins, axes_z = frames[:, :3, 3], frames[:, :3, 2]
-    ax = urkin.plot.axes3d(fig.add_subplot(1, 3, index + 1, projection="3d"),
-                           center=0.5 * (origins.min(axis=0) + origins.max(axis=0)),
-                           half_width=0.42, title=f"{family}: {conditions[family]}")
-    urkin.plot.draw_robot(ax, ur5, q, frames=False, color="0.45", linewidth=3, label="UR5")
-    radial = np.array([np.cos(q[0]), np.sin(q[0]), 0.0])  # horizontal, in the arm's plane
-    sideways = axes_z[1]  # the shoulder axis: horizontal, across the arm's plane
-    if family == "shoulder":
-        ax.plot([0, 0], [0, 0], [0, 0.9], color="tab:blue", linewidth=1.5, label="base axis")
-        across, up = np.meshgrid([-0.3, 0.3], [0.0, 0.9])
-        ax.plot_surface(across * sideways[0], across * sideways[1], up, color="tab:blue",
-                        alpha=0.15)
-        ax.plot([], [], color="tab:blue", alpha=0.3, linewidth=8,
-                label="plane through the base axis, parallel to the shoulder axis")
-        ax.scatter(*origins[5], color="tab:red", s=60, depthshade=False,
-                   label="wrist centre (frame 5 origin), in that plane")
-        foot = np.array([0.0, 0.0, origins[5, 2]])
-        ax.plot(*np.array([foot, origins[5]]).T, ":", color="tab:red", linewidth=2,
-                label=f"its distance from the base axis: d4 = {ur5.d4:.3f} m")
-        view_from(ax, 0.6 * radial - 0.8 * sideways, elev=18)
-    elif family == "elbow":
-        ahead = origins[3] - origins[1]
-        line = np.array([origins[1] - 0.15 * ahead, origins[3] + 0.15 * ahead])
-        ax.plot(*line.T, "--", color="tab:red", linewidth=1.5,
-                label="frames 1, 2, 3 (shoulder, elbow, wrist 1) in one line")
-        ax.scatter(*origins[1:4].T, color="tab:red", s=40, depthshade=False)
-        view_from(ax, -sideways, elev=10)
-    else:
-        for k, name, colour in ((3, "joint 4 axis (z3, through frame 3)", "tab:red"),
-                                (5, "joint 6 axis (z5, through frame 5)", "tab:purple")):
-            axis_line = np.array([origins[k] - 0.3 * axes_z[k], origins[k] + 0.3 * axes_z[k]])
-            ax.plot(*axis_line.T, color=colour, linewidth=2.0, label=name)
-        view_from(ax, np.cross(axes_z[3], axes_z[4]) + 0.5 * axes_z[3], elev=15)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, 0.02), fontsize=8)
-fig.suptitle("The three singular families of a UR arm, each on a UR5")
-fig.subplots_adjust(left=0.02, right=0.98, top=0.92, bottom=0.14, wspace=0.08)
+urkin.plot.singular_families_figure(ur5, families, conditions=conditions,
+                                    title="The three singular families of a UR arm, each on a UR5")
 plt.show()
 
 print("family     urkin.kinematics.singularities     factors (shoulder m, sin q3, sin q5)")
@@ -1017,51 +939,20 @@ kappa = urkin.kinematics.condition_number(ur5, path)
 Jv_path = urkin.jacobian(ur5, path)[:, :3, :]
 sigma_v = np.linalg.svd(Jv_path, compute_uv=False)  # (101, 3), m/s per rad/s
 
-ellipsoid_scale = 0.15
+ellipsoid_scale = 0.15  # metres of drawing per m/s
 shown = [0, 25, 50, 75, 100]
-shades = plt.cm.viridis(np.linspace(0.0, 0.85, len(shown)))
+shades = plt.cm.viridis(np.linspace(0.0, 0.85, len(shown)))  # one colour per drawn arm
+U_shown, sigma_shown, _ = np.linalg.svd(Jv_path[shown])  # directions and lengths of semi-axes
+shown_labels = [f"s = {path_s[k]:.2f}  (q3 = {round(np.degrees(path[k, 2])) + 0}°)" for k in shown]
 
-fig = plt.figure(figsize=(15, 8))
-grid = fig.add_gridspec(3, 2, width_ratios=(1.15, 1.0))
-ax3 = urkin.plot.axes3d(fig.add_subplot(grid[:, 0], projection="3d"),
-                        center=(-0.4, -0.1, 0.45), half_width=0.5,
-                        title="velocity ellipsoids of the flange (×0.15) as the elbow "
-                              "straightens")
-for k, colour in zip(shown, shades):
-    U, semi_axes, _ = np.linalg.svd(Jv_path[k])  # directions and lengths of the semi-axes
-    urkin.plot.draw_ellipsoid(ax3, urkin.fk(ur5, path[k])[:3, 3], U * semi_axes,
-                              scale=ellipsoid_scale, color=colour, alpha=0.35)
-    degrees = round(np.degrees(path[k, 2])) + 0
-    urkin.plot.draw_robot(ax3, ur5, path[k], frames=False, color=colour, linewidth=2.5,
-                          label=f"s = {path_s[k]:.2f}  (q3 = {degrees}°)")
-ax3.view_init(elev=18, azim=-62)
-ax3.legend(loc="upper left", fontsize=8)
-
-top = fig.add_subplot(grid[0, 1])
-top.plot(path_s, w_position, label="position part: √det(J_v J_vᵀ) (m³/rad³)")
-top.plot(path_s, w_full, label="full J: |det J| (units mixed)")
-top.set_ylabel("manipulability w")
-top.set_title("measures along the path")
-top.legend(loc="lower left", fontsize=8)
-
-middle = fig.add_subplot(grid[1, 1], sharex=top)
-for axis_index, style in enumerate(["-", "--", ":"]):
-    middle.plot(path_s, sigma_v[:, axis_index], style, color="tab:green",
-                label=f"σ{axis_index + 1}")
-middle.set_ylabel("semi-axes of the\nellipsoid (m/s per rad/s)")
-middle.legend(loc="center left", fontsize=8, title="singular values of J_v", title_fontsize=8)
-
-bottom = fig.add_subplot(grid[2, 1], sharex=top)
-bottom.semilogy(path_s[:-1], kappa[:-1], color="tab:red", label="κ = σ_max / σ_min of J")
-bottom.annotate("κ → ∞ at s = 1", xy=(0.99, kappa[-2]), xytext=(0.62, 3e2),
-                arrowprops={"arrowstyle": "->"})
-bottom.set_ylabel("condition number κ")
-bottom.set_xlabel("path parameter s (0: q3 = −1.6 rad, 1: q3 = 0, the elbow singularity)")
-bottom.legend(loc="upper left", fontsize=8)
-for panel in (top, middle, bottom):
-    panel.grid(True, alpha=0.3)
-fig.suptitle("A UR5 approaching the elbow singularity")
-fig.subplots_adjust(left=0.02, right=0.97, top=0.92, bottom=0.08, hspace=0.3)
+urkin.plot.manipulability_figure(
+    ur5, path[shown], U_shown * sigma_shown[:, None, :], shown_labels,
+    s=path_s, semi_axes=sigma_v, condition=kappa, scale=ellipsoid_scale,
+    manipulability={"position part: √det(J_v J_vᵀ) (m³/rad³)": w_position,
+                    "full J: |det J| (units mixed)": w_full},
+    center=(-0.4, -0.1, 0.45), half_width=0.5,
+    s_label="path parameter s (0: q3 = −1.6 rad, 1: q3 = 0, the elbow singularity)",
+    title="A UR5 approaching the elbow singularity")
 plt.show()
 
 print("   s    q3 (rad)   w position   w full      κ     smallest semi-axis (m/s per rad/s)")
@@ -1071,13 +962,14 @@ for k in shown:
           f"  {condition}   {sigma_v[k, 2]:.4f}")
 
 # %% [markdown]
-# Follow the smallest semi-axis, $\sigma_3$. It points along the arm — from shoulder towards
-# wrist — and shrinks steadily as the elbow opens, from 0.22 to 0.016 m/s per rad/s: near a
-# stretched elbow, moving the flange towards or away from the shoulder takes large joint
-# rates. The other two axes grow at the same time, so manipulability, their product, first
-# *rises* (the best configuration on this path has the elbow bent by about 50°) and only then
-# falls. The condition number sees the imbalance all along: it starts to climb from s ≈ 0.2
-# and is infinite at the end, where the full manipulability $|\det J|$ is exactly zero.
+# Follow the smallest semi-axis, $\sigma_3$. Once the elbow has opened a little (from s ≈ 0.25
+# on) it points along the arm — from shoulder towards wrist — and it shrinks steadily as the
+# elbow opens, from 0.22 to 0.016 m/s per rad/s: near a stretched elbow, moving the flange
+# towards or away from the shoulder takes large joint rates. The other two axes grow at the same
+# time, so manipulability, their product, first *rises* (the best configuration on this path has
+# the elbow bent by about 50°) and only then falls. The condition number sees the imbalance all
+# along: it starts to climb from s ≈ 0.2 and is infinite at the end, where the full
+# manipulability $|\det J|$ is exactly zero.
 #
 # The position part does *not* reach zero. With the wrist bent ($q_5 = \pi/2$) the wrist
 # joints can still nudge the flange origin along the arm, at the cost of turning the tool: the
@@ -1261,23 +1153,16 @@ for k in (0, 100):
     torques = (urkin.jacobian(ur5, path[k]).T @ hold).round(2) + 0.0  # + 0.0: no "-0.00"
     print(f"  s = {path_s[k]:.2f}: " + "  ".join(f"{t:7.2f}" for t in torques))
 
-fig = plt.figure(figsize=(15, 6.5))
-for index, (kind, scale, unit) in enumerate((("velocity", 0.15, "m/s per rad/s"),
-                                             ("force", 0.03, "N per N·m"))):
-    ax = urkin.plot.axes3d(fig.add_subplot(1, 2, index + 1, projection="3d"),
-                           center=(-0.4, -0.1, 0.45), half_width=0.5,
-                           title=f"{kind} ellipsoids of the flange origin (×{scale}, {unit})")
-    for k, colour in zip(shown[:-1], shades[:-1]):  # the force ellipsoid is infinite at s = 1
-        U, sigma, _ = np.linalg.svd(Jv_path[k])
-        lengths = sigma if kind == "velocity" else 1.0 / sigma
-        urkin.plot.draw_ellipsoid(ax, urkin.fk(ur5, path[k])[:3, 3], U * lengths,
-                                  scale=scale, color=colour, alpha=0.35)
-        urkin.plot.draw_robot(ax, ur5, path[k], frames=False, color=colour, linewidth=2.5,
-                              label=f"s = {path_s[k]:.2f}")
-    ax.view_init(elev=18, azim=-62)
-    ax.legend(loc="upper left", fontsize=8)
-fig.suptitle("Velocity and force ellipsoids: the same axes, inverse lengths (UR5, base frame)")
-fig.subplots_adjust(left=0.02, right=0.98, top=0.9, bottom=0.03, wspace=0.05)
+# the force ellipsoid is infinite at s = 1: that arm is left out
+U_drawn, sigma_drawn = U_shown[:-1], sigma_shown[:-1, None, :]
+urkin.plot.ellipsoid_panels(
+    ur5, path[shown[:-1]],
+    [("velocity ellipsoids of the flange origin (×0.15, m/s per rad/s)",
+      U_drawn * sigma_drawn, 0.15),
+     ("force ellipsoids of the flange origin (×0.03, N per N·m)", U_drawn / sigma_drawn, 0.03)],
+    labels=[f"s = {path_s[k]:.2f}" for k in shown[:-1]], colors=shades[:-1],
+    center=(-0.4, -0.1, 0.45), half_width=0.5,
+    title="Velocity and force ellipsoids: the same axes, inverse lengths (UR5, base frame)")
 plt.show()
 
 print("   s    velocity semi-axes σ (m/s per rad/s)    force semi-axes 1/σ (N per N·m)")
@@ -1309,7 +1194,7 @@ for k in shown[:-1]:
 #
 # Think before you type: which force does the flange apply to the part, and which moment
 # *about the flange origin* — the point whose velocity $v$ the geometric Jacobian gives? In
-# which frame is $r_	ext{com}$, and in which must the wrench be?
+# which frame is $r_\text{com}$, and in which must the wrench be?
 #
 # *Checked* (to 1e-9 N·m, against $J^\mathsf{T} F$ with `urkin.jacobian`) on random UR arms,
 # configurations and masses: a part with its centre of mass at the flange origin (2 points),

@@ -29,9 +29,10 @@ from urkin.course.submission import LocalSubmission
 
 SEEDS = (0, 5)
 MAX_MUTANTS = 10
-# exercises whose right answer is not unique (an IK solution): a mutant that answers otherwise
-# but still reaches every target is not wrong
-NOT_UNIQUE = {"5.2", "5.3", "6.3"}
+# exercises whose right answer is not unique (an IK solution, a direction up to its sign): a
+# mutant that answers otherwise but still reaches every target, or points the other way, is
+# not wrong
+NOT_UNIQUE = {"4.7", "5.2", "5.3", "6.3"}
 
 
 def _solution_source(number: str, function: str) -> str:

@@ -145,6 +145,52 @@ CORRECT = [
         "    assert T_base_tool.shape == (4, 4)\n"
         "    return np.diag([-1.0, -1.0, 1.0, 1.0]) @ T_base_tool\n",
     ),
+    # ---------------------------------------------------------------- 0.3 turn_joint1
+    Variant(
+        "0.3",
+        "rotation and position turned separately, explicit c and s",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    c, s = np.cos(angle), np.sin(angle)\n"
+        "    Rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])\n"
+        "    out = np.eye(4)\n"
+        "    out[:3, :3] = Rz @ T_base_flange[:3, :3]\n"
+        "    out[:3, 3] = Rz @ T_base_flange[:3, 3]\n"
+        "    return out\n",
+    ),
+    Variant(
+        "0.3",
+        "urkin's rot_z and make_transform",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    turn = urkin.transforms.make_transform(urkin.transforms.rot_z(angle))\n"
+        "    return turn @ T_base_flange\n",
+    ),
+    Variant(
+        "0.3",
+        "the angle wrapped into [0, 2π) first",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    angle = np.mod(angle, 2 * np.pi)\n"
+        "    c, s = np.cos(angle), np.sin(angle)\n"
+        "    Rz = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])\n"
+        "    return np.dot(Rz, T_base_flange)\n",
+    ),
+    Variant(
+        "0.3",
+        "x and y rows mixed by hand",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    T = np.array(T_base_flange, dtype=float)\n"
+        "    c, s = np.cos(angle), np.sin(angle)\n"
+        "    x, y = T[0].copy(), T[1].copy()\n"
+        "    T[0], T[1] = c * x - s * y, s * x + c * y\n"
+        "    return T\n",
+    ),
+    Variant(
+        "0.3",
+        "float32",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    c, s = np.cos(angle), np.sin(angle)\n"
+        "    Rz = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])\n"
+        "    return (Rz @ T_base_flange).astype(np.float32)\n",
+    ),
 ]
 
 WRONG = [
@@ -420,5 +466,86 @@ WRONG = [
     ),
     Variant(
         "0.2", "a constant", "def base_link_pose(T_base_tool):\n    return np.eye(4)\n", points=0
+    ),
+    # ---------------------------------------------------------------- 0.3 turn_joint1
+    Variant(
+        "0.3",
+        "right-multiplied: about the flange's own z axis",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    c, s = np.cos(angle), np.sin(angle)\n"
+        "    Rz = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])\n"
+        "    return T_base_flange @ Rz\n",
+        points=0,
+        mistake="wrong side",
+    ),
+    Variant(
+        "0.3",
+        "the opposite angle (Rz transposed)",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    c, s = np.cos(angle), np.sin(angle)\n"
+        "    Rz = np.array([[c, s, 0, 0], [-s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])\n"
+        "    return Rz @ T_base_flange\n",
+        points=0,
+        mistake="−angle",
+    ),
+    Variant(
+        "0.3",
+        "only the orientation turned",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    T = np.array(T_base_flange, dtype=float)\n"
+        "    T[:3, :3] = urkin.transforms.rot_z(angle) @ T[:3, :3]\n"
+        "    return T\n",
+        points=0,
+        mistake="only the orientation",
+    ),
+    Variant(
+        "0.3",
+        "only the position turned",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    T = np.array(T_base_flange, dtype=float)\n"
+        "    T[:3, 3] = urkin.transforms.rot_z(angle) @ T[:3, 3]\n"
+        "    return T\n",
+        points=1,
+        mistake="only the position",
+    ),
+    Variant(
+        "0.3",
+        "the angle taken as degrees",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    a = np.radians(angle)\n"
+        "    c, s = np.cos(a), np.sin(a)\n"
+        "    Rz = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])\n"
+        "    return Rz @ T_base_flange\n",
+        points=0,
+        mistake="degrees",
+    ),
+    Variant(
+        "0.3",
+        "a turn about x",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    turn = urkin.transforms.make_transform(urkin.transforms.rot_x(angle))\n"
+        "    return turn @ T_base_flange\n",
+        points=0,
+        mistake="about the base's x axis",
+    ),
+    Variant(
+        "0.3",
+        "unchanged",
+        "def turn_joint1(T_base_flange, angle):\n    return T_base_flange\n",
+        points=0,
+        mistake="unchanged",
+    ),
+    Variant(
+        "0.3",
+        "the 3×3 rotation only",
+        "def turn_joint1(T_base_flange, angle):\n"
+        "    return urkin.transforms.rot_z(angle) @ T_base_flange[:3, :3]\n",
+        points=0,
+    ),
+    Variant(
+        "0.3",
+        "a constant",
+        "def turn_joint1(T_base_flange, angle):\n    return np.eye(4)\n",
+        points=0,
     ),
 ]

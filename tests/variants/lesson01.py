@@ -38,6 +38,16 @@ _RODRIGUES = (
     "    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * (K @ K)\n"
 )
 
+# The start of a rotation_verdict that checks the shape and the finite entries as it should.
+_VERDICT_HEAD = (
+    "def rotation_verdict(R, tol=1e-9):\n"
+    "    R = np.asarray(R, dtype=float)\n"
+    "    if R.shape != (3, 3):\n"
+    "        raise ValueError(f'R must have shape (3, 3), got {R.shape}')\n"
+    "    if not np.all(np.isfinite(R)):\n"
+    "        return 'not orthonormal'\n"
+)
+
 CORRECT = [
     # ------------------------------------------------------------------------ 1.1 rot_z
     Variant(
@@ -395,6 +405,52 @@ CORRECT = [
         "a list divided by numpy's norm",
         "def axis_angle_to_rotation(axis, angle):\n"
         "    k = axis / np.linalg.norm(axis)\n" + _RODRIGUES,
+    ),
+    # ------------------------------------------------------------ 1.5 rotation_verdict
+    Variant(
+        "1.5",
+        "singular values",
+        _VERDICT_HEAD + "    s = np.linalg.svd(R, compute_uv=False)\n"
+        "    if np.max(np.abs(s**2 - 1)) > tol:\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
+    ),
+    Variant(
+        "1.5",
+        "Frobenius norm and a triple product",
+        _VERDICT_HEAD + "    if np.linalg.norm(R @ R.T - np.eye(3)) > tol:\n"
+        "        return 'not orthonormal'\n"
+        "    x, y, z = R.T\n"
+        "    return 'rotation' if np.dot(np.cross(x, y), z) > 0 else 'reflection'\n",
+    ),
+    Variant(
+        "1.5",
+        "np.allclose with atol=tol, columns dotted in loops",
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    if np.shape(R) != (3, 3):\n"
+        "        raise ValueError('the argument R is not a 3x3 matrix')\n"
+        "    R = np.array(R, dtype=float)\n"
+        "    gram = np.empty((3, 3))\n"
+        "    for i in range(3):\n"
+        "        for j in range(3):\n"
+        "            gram[i, j] = R[:, i] @ R[:, j]\n"
+        "    if not np.allclose(gram, np.eye(3), rtol=0.0, atol=tol):\n"
+        "        return 'not orthonormal'\n"
+        "    return 'reflection' if np.linalg.det(R) < 0 else 'rotation'\n",
+    ),
+    Variant(
+        "1.5",
+        "verdicts from a tuple, shape error with `R`",
+        "VERDICTS = ('not orthonormal', 'rotation', 'reflection')\n\n"
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    R = np.asarray(R, dtype=float)\n"
+        "    if R.ndim != 2 or R.shape[0] != 3 or R.shape[1] != 3:\n"
+        "        raise ValueError(f'`R` has shape {R.shape}; expected (3, 3)')\n"
+        "    with np.errstate(invalid='ignore'):\n"
+        "        ok = np.all(np.abs(R.T @ R - np.eye(3)) <= tol)\n"
+        "    if not ok:\n"
+        "        return VERDICTS[0]\n"
+        "    return VERDICTS[1] if np.linalg.det(R) > 0 else VERDICTS[2]\n",
     ),
 ]
 
@@ -990,5 +1046,165 @@ WRONG = [
         "a constant",
         "def axis_angle_to_rotation(axis, angle):\n    return np.eye(3)\n",
         points=0,
+    ),
+    # ------------------------------------------------------------ 1.5 rotation_verdict
+    Variant(
+        "1.5",
+        "the determinant only",
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    R = np.asarray(R, dtype=float)\n"
+        "    if R.shape != (3, 3):\n"
+        "        raise ValueError(f'R must have shape (3, 3), got {R.shape}')\n"
+        "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
+        points=2,
+        mistake="only the determinant",
+    ),
+    Variant(
+        "1.5",
+        "|det R − 1| within tol only",
+        _VERDICT_HEAD + "    d = np.linalg.det(R)\n"
+        "    if abs(d - 1) <= tol:\n"
+        "        return 'rotation'\n"
+        "    if abs(d + 1) <= tol:\n"
+        "        return 'reflection'\n"
+        "    return 'not orthonormal'\n",
+        points=4,
+        mistake="only the determinant",
+    ),
+    Variant(
+        "1.5",
+        "orthonormality only",
+        _VERDICT_HEAD + "    if np.abs(R.T @ R - np.eye(3)).max() <= tol:\n"
+        "        return 'rotation'\n"
+        "    return 'not orthonormal'\n",
+        points=3,
+        mistake="only orthonormality",
+    ),
+    Variant(
+        "1.5",
+        "RᵀR == I exactly",
+        _VERDICT_HEAD + "    if not np.array_equal(R.T @ R, np.eye(3)):\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
+        points=2,
+        mistake="compared with I exactly",
+    ),
+    Variant(
+        "1.5",
+        "np.allclose's defaults, tol unused",
+        _VERDICT_HEAD + "    if not np.allclose(R.T @ R, np.eye(3)):\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
+        points=4,
+        mistake="tol was not used",
+    ),
+    Variant(
+        "1.5",
+        "a fixed tolerance 1e-9",
+        _VERDICT_HEAD + "    if np.abs(R.T @ R - np.eye(3)).max() > 1e-9:\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
+        points=4,
+        mistake="a fixed tolerance decided",
+    ),
+    Variant(
+        "1.5",
+        "a NaN slips through deviation > tol",
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    R = np.asarray(R, dtype=float)\n"
+        "    if R.shape != (3, 3):\n"
+        "        raise ValueError(f'R must have shape (3, 3), got {R.shape}')\n"
+        "    if np.abs(R.T @ R - np.eye(3)).max() > tol:\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
+        points=4,
+        mistake="NaN slipped through",
+    ),
+    Variant(
+        "1.5",
+        "the sign of det read backwards",
+        _VERDICT_HEAD + "    if np.abs(R.T @ R - np.eye(3)).max() > tol:\n"
+        "        return 'not orthonormal'\n"
+        "    return 'reflection' if np.linalg.det(R) > 0 else 'rotation'\n",
+        points=2,
+        mistake="read backwards",
+    ),
+    Variant(
+        "1.5",
+        "no shape check: numpy's ValueError",
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    R = np.asarray(R, dtype=float)\n"
+        "    if not np.all(np.isfinite(R)):\n"
+        "        return 'not orthonormal'\n"
+        "    if not np.abs(R.T @ R - np.eye(3)).max() <= tol:\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
+        points=4,
+        mistake="does not name the argument R",
+    ),
+    Variant(
+        "1.5",
+        "an assert on the shape",
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    R = np.asarray(R, dtype=float)\n"
+        "    assert R.shape == (3, 3), 'R must be 3x3'\n"
+        "    if not np.all(np.isfinite(R)):\n"
+        "        return 'not orthonormal'\n"
+        "    if not np.abs(R.T @ R - np.eye(3)).max() <= tol:\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
+        points=4,
+        mistake="AssertionError",
+    ),
+    Variant(
+        "1.5",
+        "capitalised verdicts",
+        _VERDICT_HEAD + "    if np.abs(R.T @ R - np.eye(3)).max() > tol:\n"
+        "        return 'Not orthonormal'\n"
+        "    return 'Rotation' if np.linalg.det(R) > 0 else 'Reflection'\n",
+        points=1,
+        mistake="spelled differently",
+    ),
+    Variant(
+        "1.5",
+        "True or False",
+        _VERDICT_HEAD + "    return bool(np.abs(R.T @ R - np.eye(3)).max() <= tol)\n",
+        points=1,
+        mistake="True/False",
+    ),
+    Variant(
+        "1.5",
+        "urkin's check_rotation (forbidden)",
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    R = np.asarray(R, dtype=float)\n"
+        "    if R.shape != (3, 3):\n"
+        "        raise ValueError('R must be 3x3')\n"
+        "    try:\n"
+        "        check_rotation(R, tol=tol)\n"
+        "    except ValueError as error:\n"
+        "        return 'reflection' if 'reflection' in str(error) else 'not orthonormal'\n"
+        "    return 'rotation'\n",
+        points=0,
+        mistake="urkin's check_rotation used",
+    ),
+    Variant(
+        "1.5",
+        "urkin.transforms.check_transform on a padded matrix (forbidden)",
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    R = np.asarray(R, dtype=float)\n"
+        "    if R.shape != (3, 3):\n"
+        "        raise ValueError('R must be 3x3')\n"
+        "    T = np.eye(4)\n"
+        "    T[:3, :3] = R\n"
+        "    try:\n"
+        "        urkin.transforms.check_transform(T, tol=tol)\n"
+        "    except ValueError as error:\n"
+        "        return 'reflection' if 'reflection' in str(error) else 'not orthonormal'\n"
+        "    return 'rotation'\n",
+        points=0,
+        mistake="urkin's check_transform used",
+    ),
+    Variant(
+        "1.5", "a constant", "def rotation_verdict(R, tol=1e-9):\n    return 'rotation'\n", points=0
     ),
 ]

@@ -341,6 +341,36 @@ def twist_log(T):
     return [*(w * theta), *(G_inv @ p * theta)]
 """,
     ),
+    # ------------------------------------------------------------------------------ 3.6
+    Variant(
+        "3.6",
+        "least squares on [ω]q = −v with q·ω = 0",
+        """
+def screw_to_joint(S):
+    S = np.asarray(S, dtype=float)
+    w, v = S[:3], S[3:]
+    if not np.isclose(np.linalg.norm(w), 1.0, rtol=0.0, atol=1e-9):
+        raise ValueError("S: its angular part ω must be a unit vector")
+    W = np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+    A = np.vstack([W, w])  # ω × q = −v, and q ⟂ ω
+    b = np.r_[-v, 0.0]
+    q, *_ = np.linalg.lstsq(A, b, rcond=None)
+    return q
+""",
+    ),
+    Variant(
+        "3.6",
+        "any point of the line, then projected, float32",
+        """
+def screw_to_joint(S):
+    w = np.asarray(S[:3], dtype=np.float32)
+    v = np.asarray(S[3:], dtype=np.float32)
+    if abs(float(w @ w) - 1.0) > 1e-5:
+        raise ValueError(f"screw axis S has |ω|² = {float(w @ w):.3f}, not 1")
+    point = -np.linalg.pinv(urkin.transforms.skew(w)) @ v + 0.3 * w  # on the line
+    return (point - (point @ w) * w).astype(np.float32)
+""",
+    ),
 ]
 
 _TWIST_V_THETA = """
@@ -956,6 +986,85 @@ def twist_log(T):
         "3.5",
         "urkin's se3_log",
         "def twist_log(T):\n    return urkin.transforms.se3_log(T)\n",
+        points=0,
+    ),
+    # ------------------------------------------------------------------------------ 3.6
+    Variant(
+        "3.6",
+        "v × ω: the mirror point",
+        """
+def screw_to_joint(S):
+    S = np.asarray(S, dtype=float)
+    if abs(np.linalg.norm(S[:3]) - 1.0) > 1e-6:
+        raise ValueError("S needs a unit ω")
+    return np.cross(S[3:], S[:3])
+""",
+        points=1,
+        mistake="v × ω",
+    ),
+    Variant(
+        "3.6",
+        "v taken as the point",
+        """
+def screw_to_joint(S):
+    S = np.asarray(S, dtype=float)
+    if abs(np.linalg.norm(S[:3]) - 1.0) > 1e-6:
+        raise ValueError("S needs a unit ω")
+    return S[3:].copy()
+""",
+        points=1,
+        mistake="v itself",
+    ),
+    Variant(
+        "3.6",
+        "a point of the axis one metre along ω",
+        """
+def screw_to_joint(S):
+    S = np.asarray(S, dtype=float)
+    if abs(np.linalg.norm(S[:3]) - 1.0) > 1e-6:
+        raise ValueError("S needs a unit ω")
+    w, v = S[:3], S[3:]
+    return np.cross(w, v) + w
+""",
+        points=1,
+        mistake="not the one nearest the origin",
+    ),
+    Variant(
+        "3.6",
+        "no check of ω",
+        "def screw_to_joint(S):\n    return np.cross(S[:3], S[3:])\n",
+        points=2,
+        mistake="no check of the input",
+    ),
+    Variant(
+        "3.6",
+        "an assert instead of ValueError",
+        """
+def screw_to_joint(S):
+    S = np.asarray(S, dtype=float)
+    assert abs(np.linalg.norm(S[:3]) - 1.0) < 1e-6, "S needs a unit ω"
+    return np.cross(S[:3], S[3:])
+""",
+        points=2,
+        mistake="another exception than ValueError",
+    ),
+    Variant(
+        "3.6",
+        "a ValueError that does not name S",
+        """
+def screw_to_joint(S):
+    S = np.asarray(S, dtype=float)
+    if abs(np.linalg.norm(S[:3]) - 1.0) > 1e-6:
+        raise ValueError("the axis must be a unit vector")
+    return np.cross(S[:3], S[3:])
+""",
+        points=2,
+        mistake="does not say which argument",
+    ),
+    Variant(
+        "3.6",
+        "refuses every screw axis",
+        "def screw_to_joint(S):\n    raise ValueError('S is not accepted')\n",
         points=0,
     ),
 ]

@@ -944,7 +944,7 @@ def singularities(robot, q, tol=1e-9):
         "joint numbers off by one",
         _singularities_with(angles="q[2], q[3], q[4], q[5]"),
         points=0,
-        mistake="(this is o4 − o2)",
+        mistake="off by one",
     ),
     Variant(
         "4.5",

@@ -329,12 +329,82 @@ CORRECT = [
     Variant("5.1", "Jᵀ(JJᵀ)⁻¹ by solve, arctan2 wrap", _POSITION_RIGHT_INVERSE),
     Variant("5.1", "lstsq, norm-limited, max-abs test", _POSITION_LSTSQ),
     Variant("5.1", "float32 answer", _POSITION_FLOAT32),
+    Variant(
+        "5.4",
+        "np.polyfit on the log pairs of the last three",
+        """
+def convergence_order(errors):
+    e = np.asarray(errors, dtype=float)
+    if e.shape[0] < 3:
+        raise ValueError("errors: at least three values are needed")
+    if np.any(~np.isfinite(e)) or np.any(e <= 0):
+        raise ValueError("every value of errors must be positive and finite")
+    if e[-2] == e[-3]:
+        raise ValueError("errors: log(e_k / e_k-1) is zero, the order is undefined")
+    logs = np.log(e[-3:])
+    slope, _ = np.polyfit(logs[:-1], logs[1:], 1)  # log e_k+1 = p log e_k + log C
+    return float(slope)
+""",
+    ),
+    Variant(
+        "5.4",
+        "math.log10 on plain floats, a loop of checks",
+        """
+import math
+
+
+def convergence_order(errors):
+    values = [float(x) for x in errors]
+    if len(values) < 3:
+        raise ValueError(f"need three errors, got {len(values)}")
+    for x in values:
+        if not (math.isfinite(x) and x > 0):
+            raise ValueError(f"errors must be positive and finite, found {x}")
+    e0, e1, e2 = values[-3:]
+    if e1 == e0:
+        raise ValueError("the last errors repeat: no order")
+    return math.log10(e2 / e1) / math.log10(e1 / e0)
+""",
+    ),
+    # ------------------------------------------------------------------------------ 5.5
+    Variant(
+        "5.5",
+        "least squares for J⁺ e and an SVD basis of the null space",
+        """
+def null_space_step(J, e, q, q_rest, gain):
+    J = np.asarray(J, dtype=float)
+    task = np.linalg.lstsq(J, e, rcond=None)[0]
+    U, sigma, Vt = np.linalg.svd(J)
+    rank = int(np.sum(sigma > 1e-12 * sigma.max()))
+    null = Vt[rank:].T  # orthonormal basis of the null space
+    pull = (np.asarray(q_rest) - np.asarray(q) + np.pi) % (2 * np.pi) - np.pi
+    return task + gain * null @ (null.T @ pull)
+""",
+    ),
 ]
 
 _NEWTON_TOOL_FRAME = _newton(
     step="np.linalg.pinv(urkin.jacobian(robot, q))"
     " @ np.r_[e[:3], urkin.fk(robot, q)[:3, :3].T @ e[3:]]"
 )
+
+
+def _order(last="e[-3:]", result="np.log(c / b) / np.log(b / a)", checked="e"):
+    """A convergence_order with its input checks, its three errors and its formula
+    replaceable (a, b, c: the three errors, oldest first)."""
+    return f"""
+def convergence_order(errors):
+    e = np.asarray(errors, dtype=float)
+    if e.size < 3:
+        raise ValueError("errors must hold at least three values")
+    if not np.all(np.isfinite({checked}) & ({checked} > 0)):
+        raise ValueError("errors must be positive and finite")
+    if e[-2] == e[-3]:
+        raise ValueError("errors: e_k = e_k-1, the order is undefined")
+    a, b, c = {last}
+    return float({result})
+"""
+
 
 WRONG = [
     Variant("5.2", "seed 000's cross-product error", _CROSS_ERROR, 0, "cross-product"),
@@ -485,5 +555,107 @@ WRONG = [
         ),
         None,
         "millimetres",
+    ),
+    Variant("5.4", "the first three errors", _order(last="e[:3]"), 2, "first three"),
+    Variant(
+        "5.4",
+        "the ratio upside down",
+        _order(result="np.log(b / a) / np.log(c / b)"),
+        1,
+        "upside down",
+    ),
+    Variant(
+        "5.4",
+        "differences instead of logarithms",
+        _order(result="(c - b) / (b - a)"),
+        1,
+        "differences instead of logarithms",
+    ),
+    Variant("5.4", "the rate e_k+1 / e_k", _order(result="c / b"), 1, "the rate"),
+    Variant(
+        "5.4",
+        "log e_k+1 / log e_k",
+        _order(result="np.log(c) / np.log(b)"),
+        1,
+        "log e_(k+1) / log e_k",
+    ),
+    Variant(
+        "5.4",
+        "no check of the input",
+        """
+def convergence_order(errors):
+    a, b, c = np.asarray(errors, dtype=float)[-3:]
+    return float(np.log(c / b) / np.log(b / a))
+""",
+        2,
+        "no check of the input",
+    ),
+    Variant(
+        "5.4",
+        "checks only the last three",
+        _order(checked="e[-3:]"),
+        2,
+        "no check of the input",
+    ),
+    Variant(
+        "5.4",
+        "an assert instead of ValueError",
+        """
+def convergence_order(errors):
+    e = np.asarray(errors, dtype=float)
+    assert len(e) >= 3 and np.all(np.isfinite(e) & (e > 0)) and e[-2] != e[-3], "bad errors"
+    a, b, c = e[-3:]
+    return float(np.log(c / b) / np.log(b / a))
+""",
+        2,
+        "another exception than ValueError",
+    ),
+    # ------------------------------------------------------------------------------ 5.5
+    Variant(
+        "5.5",
+        "no projector",
+        """
+def null_space_step(J, e, q, q_rest, gain):
+    pull = (np.asarray(q_rest) - np.asarray(q) + np.pi) % (2 * np.pi) - np.pi
+    return np.linalg.pinv(J) @ e + gain * pull
+""",
+        points=0,
+        mistake="without the projector",
+    ),
+    Variant(
+        "5.5",
+        "not wrapped",
+        """
+def null_space_step(J, e, q, q_rest, gain):
+    J_plus = np.linalg.pinv(J)
+    N = np.eye(np.shape(J)[1]) - J_plus @ J
+    return J_plus @ e + gain * N @ (np.asarray(q_rest) - np.asarray(q))
+""",
+        points=3,
+        mistake="not wrapped",
+    ),
+    Variant(
+        "5.5",
+        "transpose for pseudo-inverse",
+        """
+def null_space_step(J, e, q, q_rest, gain):
+    J = np.asarray(J, dtype=float)
+    pull = (np.asarray(q_rest) - np.asarray(q) + np.pi) % (2 * np.pi) - np.pi
+    return np.linalg.pinv(J) @ e + gain * (np.eye(J.shape[1]) - J.T @ J) @ pull
+""",
+        points=0,
+        mistake="Jᵀ in place of J⁺",
+    ),
+    Variant(
+        "5.5",
+        "six joints hard-coded",
+        """
+def null_space_step(J, e, q, q_rest, gain):
+    J_plus = np.linalg.pinv(J)
+    pull = (np.asarray(q_rest) - np.asarray(q) + np.pi) % (2 * np.pi) - np.pi
+    return J_plus @ e + gain * (np.eye(6) - J_plus @ J) @ pull
+""",
+        points=3,
+        mistake=None,
     ),
 ]

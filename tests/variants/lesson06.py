@@ -425,6 +425,102 @@ def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
     return q
 """
 
+# ----------------------------------------------------------------------- 6.5 damping_for_step
+
+_DAMPING = """
+def damping_for_step(e, max_step):
+    e = np.asarray(e, dtype=float)
+    if not (np.isfinite(max_step) and max_step > 0):
+        raise ValueError(f"max_step must be a finite number > 0; got {{max_step}}")
+    if not np.all(np.isfinite(e)):
+        raise ValueError("e holds a NaN or an infinity")
+    return {body}
+"""
+
+
+def _damping(body):
+    return _DAMPING.format(body=body)
+
+
+_DAMPING_MATH = """
+import math
+
+
+def damping_for_step(e, max_step):
+    values = [float(x) for x in np.ravel(e)]
+    if not (math.isfinite(max_step) and max_step > 0.0):
+        raise ValueError("max_step: expected a finite bound > 0")
+    if not all(math.isfinite(x) for x in values):
+        raise ValueError("the error e must be finite")
+    peak_gain_per_lambda = 0.5  # max over σ of σ/(σ² + λ²) is 1/(2λ)
+    return peak_gain_per_lambda * math.sqrt(sum(x * x for x in values)) / max_step
+"""
+
+_DAMPING_SWEEP = """
+def damping_for_step(e, max_step):
+    # the step bound ‖e‖ g_max(λ), g_max(λ) = max over σ of σ/(σ² + λ²), solved for λ by
+    # bisection on a log scale (it is decreasing in λ)
+    e = np.asarray(e, dtype=float)
+    if not np.isfinite(max_step) or max_step <= 0:
+        raise ValueError("max_step must be positive and finite")
+    if not np.isfinite(e).all():
+        raise ValueError("non-finite e")
+    size = np.sqrt(e @ e)
+    if size == 0:
+        return 0.0
+    peak = lambda lam: lam / (lam * lam + lam * lam)  # at σ = λ (g' = 0 there)
+    lo, hi = 1e-300, 1e300
+    for _ in range(4000):
+        mid = np.sqrt(lo * hi)
+        if size * peak(mid) > max_step:
+            lo = mid
+        else:
+            hi = mid
+        if hi <= lo * (1 + 1e-15):
+            break
+    return hi
+"""
+
+_DAMPING_FLOAT32 = """
+def damping_for_step(e, max_step):
+    e = np.asarray(e, dtype=np.float32)
+    if not (np.isfinite(max_step) and max_step > 0):
+        raise ValueError("max_step must be > 0")
+    if not np.all(np.isfinite(e)):
+        raise ValueError("e must be finite")
+    return np.linalg.norm(e) / np.float32(2 * max_step)
+"""
+
+_DAMPING_NO_CHECKS = """
+def damping_for_step(e, max_step):
+    return np.linalg.norm(e) / (2 * max_step)
+"""
+
+_DAMPING_LE_ZERO_ONLY = """
+def damping_for_step(e, max_step):
+    e = np.asarray(e, dtype=float)
+    if max_step <= 0:
+        raise ValueError("max_step must be > 0")
+    if not np.all(np.isfinite(e)):
+        raise ValueError("e must be finite")
+    return np.linalg.norm(e) / (2 * max_step)
+"""
+
+_DAMPING_UNNAMED = """
+def damping_for_step(e, max_step):
+    e = np.asarray(e, dtype=float)
+    if not (np.isfinite(max_step) and max_step > 0) or not np.all(np.isfinite(e)):
+        raise ValueError("bad input")
+    return np.linalg.norm(e) / (2 * max_step)
+"""
+
+_DAMPING_NO_E_CHECK = """
+def damping_for_step(e, max_step):
+    if not (np.isfinite(max_step) and max_step > 0):
+        raise ValueError("max_step must be a finite number > 0")
+    return float(np.linalg.norm(e)) / (2 * max_step)
+"""
+
 CORRECT = [
     # ------------------------------------------------------------------------------ 6.4
     Variant(
@@ -445,6 +541,10 @@ def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
         theta = theta + np.linalg.pinv(urkin.poe.jacobian_space(S, theta)) @ V_s
 """,
     ),
+    Variant("6.5", "math module, a named 1/2", _DAMPING_MATH),
+    Variant("6.5", "bisection on the peak gain", _DAMPING_SWEEP),
+    Variant("6.5", "float32", _DAMPING_FLOAT32),
+    Variant("6.5", "0.5 * √(e·e) / max_step", _damping("0.5 * np.sqrt(e @ e) / max_step")),
     Variant("6.1", "Cholesky factor and two solves", _DLS_CHOLESKY),
     Variant("6.1", "the (JᵀJ + λ²I) form", _DLS_LM_FORM),
     Variant("6.1", "lstsq on [J; λI]", _DLS_AUGMENTED),
@@ -521,6 +621,35 @@ def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
 """,
         points=0,
     ),
+    Variant(
+        "6.5", "the 1/2 forgotten", _damping("np.linalg.norm(e) / max_step"), 1, "forgot the 1/2"
+    ),
+    Variant(
+        "6.5",
+        "λ² returned",
+        _damping("(np.linalg.norm(e) / (2 * max_step)) ** 2"),
+        0,
+        "returned λ²",
+    ),
+    Variant(
+        "6.5",
+        "a square root",
+        _damping("np.sqrt(np.linalg.norm(e) / max_step)"),
+        0,
+        "a square root",
+    ),
+    Variant(
+        "6.5",
+        "the largest |e_i|",
+        _damping("np.abs(e).max() / (2 * max_step)"),
+        0,
+        "the largest |e_i|",
+    ),
+    Variant("6.5", "‖e‖²", _damping("(e @ e) / (2 * max_step)"), 0, "‖e‖² in place of ‖e‖"),
+    Variant("6.5", "no input checks", _DAMPING_NO_CHECKS, 2, "max_step not checked"),
+    Variant("6.5", "max_step ≤ 0 only (NaN passes)", _DAMPING_LE_ZERO_ONLY, 2, "max_step not"),
+    Variant("6.5", "ValueError without a name", _DAMPING_UNNAMED, 2, "does not name max_step"),
+    Variant("6.5", "e not checked", _DAMPING_NO_E_CHECK, 2, "e not checked"),
     Variant("6.1", "seed 000's line, I undefined", _SEED000_UNDEFINED_I, 0, "seed 000"),
     Variant("6.1", "seed 000's line, I = eye", _SEED000_EYE, 0, "seed 000"),
     Variant(

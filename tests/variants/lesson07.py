@@ -138,6 +138,45 @@ def lab_theta1(x_c, y_c):
     return np.radians(theta_c - theta_b)
 """,
     ),
+    # ------------------------------------------------------------------------------ 7.6
+    Variant(
+        "7.6",
+        "a loop over solutions and joints, with math",
+        """
+def nearest_solution(solutions, q_current):
+    import math
+    if len(solutions) == 0:
+        raise ValueError("no solutions to choose from")
+    best, best_gap = None, math.inf
+    for row in solutions:
+        shifted = []
+        for s, q in zip(row, q_current):
+            s = s + 2 * math.pi * round((q - s) / (2 * math.pi))
+            if s > 2 * math.pi:
+                s -= 2 * math.pi
+            if s < -2 * math.pi:
+                s += 2 * math.pi
+            shifted.append(s)
+        gap = math.dist(shifted, q_current)
+        if gap < best_gap:
+            best, best_gap = shifted, gap
+    return np.array(best)
+""",
+    ),
+    Variant(
+        "7.6",
+        "wrapped differences added to q_current",
+        """
+def nearest_solution(solutions, q_current):
+    solutions = np.asarray(solutions, dtype=float)
+    if solutions.size == 0:
+        raise ValueError("the solutions array is empty")
+    step = wrap_angles(solutions - q_current)
+    shifted = q_current + step
+    shifted = np.where(np.abs(shifted) > 2 * np.pi, shifted - np.sign(shifted) * 2 * np.pi, shifted)
+    return shifted[np.argmin(np.linalg.norm(shifted - q_current, axis=1))]
+""",
+    ),
 ]
 
 WRONG = [
@@ -968,5 +1007,242 @@ def ik_lab(x_w, y_w, z_w, yaw_w):
     return urkin.ik_analytic(lab, gripper_pose(x_w, y_w, z_w, yaw_w))[2]
 """,
         points=0,
+    ),
+]
+
+# ------------------------------------------------------------------------------------ 7.5
+
+_COUNT = """
+def solution_count(robot, T):
+    T = np.asarray(T, dtype=float)
+    z = T[:3, 2]
+    wrist = T[:3, 3] - robot.d6 * z
+    rho = np.hypot(wrist[0], wrist[1])
+    if rho < robot.d4:
+        return 0
+    shortest, longest = abs(abs(robot.a2) - abs(robot.a3)), abs(robot.a2) + abs(robot.a3)
+    count = 0
+    for side in (1.0, -1.0):
+        theta1 = np.arctan2(wrist[1], wrist[0]) + side * np.arccos(robot.d4 / rho) + np.pi / 2
+        z1 = np.array([np.sin(theta1), -np.cos(theta1), 0.0])
+        u = np.array([np.cos(theta1), np.sin(theta1), 0.0])
+        link = np.cross(z1, z)
+        link /= np.linalg.norm(link)
+        for flip in (1.0, -1.0):
+            wrist1 = wrist - flip * robot.d5 * link
+            reach = np.hypot(u @ wrist1, wrist1[2] - robot.d1)
+            if shortest <= reach <= longest:
+                count += 2
+    return count
+"""
+
+CORRECT += [
+    Variant(
+        "7.5",
+        "the lesson's recipe: your wrist_angles, then θ234 and (r, h) of step 4",
+        """
+def solution_count(robot, T):
+    T = np.asarray(T, dtype=float)
+    d1, a2, a3, d4, d5, d6 = robot.d1, robot.a2, robot.a3, robot.d4, robot.d5, robot.d6
+    c = T[:3, 3] - d6 * T[:3, 2]
+    rho = np.hypot(c[0], c[1])
+    if rho < d4:
+        return 0
+    x_z, y_z, z_z = T[2, :3]
+    count = 0
+    for sign in (1, -1):
+        theta1 = np.arctan2(c[1], c[0]) + sign * np.arccos(d4 / rho) + np.pi / 2
+        for theta5, theta6 in wrist_angles(T, theta1):
+            c5, s5, c6, s6 = np.cos(theta5), np.sin(theta5), np.cos(theta6), np.sin(theta6)
+            q234 = np.arctan2(c5 * (c6 * x_z - s6 * y_z) - s5 * z_z, s6 * x_z + c6 * y_z)
+            r = np.cos(theta1) * c[0] + np.sin(theta1) * c[1] - d5 * np.sin(q234)
+            h = c[2] - d1 + d5 * np.cos(q234)
+            cos3 = (r * r + h * h - a2 * a2 - a3 * a3) / (2 * a2 * a3)
+            if abs(cos3) <= 1:
+                count += 2
+    return count
+""",
+    ),
+    Variant(
+        "7.5",
+        "math module, wrist 1's distance from the shoulder axis as a line in space",
+        """
+import math
+
+
+def solution_count(robot, T):
+    rows = [[float(v) for v in row] for row in np.asarray(T)]
+    z = [rows[0][2], rows[1][2], rows[2][2]]
+    c = [rows[i][3] - robot.d6 * z[i] for i in range(3)]
+    rho = math.hypot(c[0], c[1])
+    if rho < robot.d4:
+        return 0
+    lo, hi = abs(abs(robot.a2) - abs(robot.a3)), abs(robot.a2) + abs(robot.a3)
+    total = 0
+    for theta1 in (math.atan2(c[1], c[0]) + s * math.acos(robot.d4 / rho) + math.pi / 2
+                   for s in (1, -1)):
+        axis = [math.sin(theta1), -math.cos(theta1), 0.0]  # the shoulder axis, through (0, 0, d1)
+        link = [axis[1] * z[2] - axis[2] * z[1], axis[2] * z[0] - axis[0] * z[2],
+                axis[0] * z[1] - axis[1] * z[0]]
+        size = math.sqrt(sum(v * v for v in link))
+        for flip in (1, -1):
+            point = [c[i] - flip * robot.d5 * link[i] / size for i in range(3)]
+            rel = [point[0], point[1], point[2] - robot.d1]
+            along = sum(a * b for a, b in zip(rel, axis))
+            distance = math.sqrt(max(sum(v * v for v in rel) - along * along, 0.0))
+            total += 2 * (lo <= distance <= hi)
+    return total
+""",
+    ),
+    Variant(
+        "7.5",
+        "the four branches as arrays, a numpy integer returned",
+        """
+def solution_count(robot, T):
+    T = np.asarray(T, dtype=float)
+    z = T[:3, 2]
+    c = T[:3, 3] - robot.d6 * z
+    rho = np.hypot(*c[:2])
+    if rho <= robot.d4:
+        return np.int64(0)
+    theta1 = np.arctan2(c[1], c[0]) + np.array([1, 1, -1, -1]) * np.arccos(robot.d4 / rho)
+    theta1 = theta1 + np.pi / 2
+    z1 = np.stack([np.sin(theta1), -np.cos(theta1), np.zeros(4)], axis=1)
+    link = np.cross(z1, z)
+    link /= np.linalg.norm(link, axis=1, keepdims=True)
+    wrist1 = c - robot.d5 * np.array([1, -1, 1, -1])[:, None] * link
+    r = np.cos(theta1) * wrist1[:, 0] + np.sin(theta1) * wrist1[:, 1]
+    d = np.hypot(r, wrist1[:, 2] - robot.d1)
+    closes = (d >= abs(abs(robot.a2) - abs(robot.a3))) & (d <= abs(robot.a2) + abs(robot.a3))
+    return 2 * np.count_nonzero(closes)
+""",
+    ),
+]
+
+WRONG += [
+    Variant(
+        "7.5",
+        "always 8",
+        "def solution_count(robot, T):\n    return 8\n",
+        points=0,
+        mistake="always 8",
+    ),
+    Variant(
+        "7.5",
+        "the elbow triangle not checked",
+        _COUNT.replace("if shortest <= reach <= longest:", "if True:"),
+        points=1,
+        mistake="the elbow triangle not checked",
+    ),
+    Variant(
+        "7.5",
+        "the cylinder not checked: arccos clipped",
+        _COUNT.replace("    if rho < robot.d4:\n        return 0\n", "").replace(
+            "np.arccos(robot.d4 / rho)", "np.arccos(np.clip(robot.d4 / rho, -1.0, 1.0))"
+        ),
+        points=2,
+        mistake="the d4 cylinder not checked",
+    ),
+    Variant(
+        "7.5",
+        "one triangle per θ1, counted for both θ5",
+        _COUNT.replace("wrist - flip * robot.d5 * link", "wrist - robot.d5 * link"),
+        points=2,
+        mistake="the elbow decided once per θ1",
+    ),
+    Variant(
+        "7.5",
+        "the two elbows not counted",
+        _COUNT.replace("count += 2", "count += 1"),
+        points=0,
+        mistake="the two elbows not counted",
+    ),
+    Variant(
+        "7.5",
+        "only θ1 counted",
+        """
+def solution_count(robot, T):
+    T = np.asarray(T, dtype=float)
+    wrist = T[:3, 3] - robot.d6 * T[:3, 2]
+    return 2 if np.hypot(wrist[0], wrist[1]) >= robot.d4 else 0
+""",
+        points=0,
+        mistake="only the θ1 tangents counted",
+    ),
+    Variant(
+        "7.5",
+        "d1 left out",
+        _COUNT.replace("wrist1[2] - robot.d1", "wrist1[2]"),
+        points=None,
+        mistake="d1 left out",
+    ),
+    Variant(
+        "7.5",
+        "the flange position as the wrist point",
+        _COUNT.replace("wrist = T[:3, 3] - robot.d6 * z", "wrist = T[:3, 3]"),
+        points=None,
+        mistake="the flange position p",
+    ),
+    Variant(
+        "7.5",
+        "urkin.ik_analytic (hidden)",
+        "def solution_count(robot, T):\n    return len(urkin.ik_analytic(robot, T))\n",
+        points=0,
+    ),
+    # ------------------------------------------------------------------------------ 7.6
+    Variant(
+        "7.6",
+        "returned wrapped",
+        """
+def nearest_solution(solutions, q_current):
+    solutions = np.asarray(solutions, dtype=float)
+    if len(solutions) == 0:
+        raise ValueError("solutions is empty")
+    gaps = np.linalg.norm(wrap_angles(solutions - q_current), axis=1)
+    return solutions[np.argmin(gaps)]
+""",
+        points=1,
+        mistake="returned wrapped",
+    ),
+    Variant(
+        "7.6",
+        "limits ignored",
+        """
+def nearest_solution(solutions, q_current):
+    solutions = np.asarray(solutions, dtype=float)
+    if len(solutions) == 0:
+        raise ValueError("solutions is empty")
+    shifted = solutions + 2 * np.pi * np.round((q_current - solutions) / (2 * np.pi))
+    return shifted[np.argmin(np.linalg.norm(shifted - q_current, axis=1))]
+""",
+        points=3,
+        mistake="limits ignored",
+    ),
+    Variant(
+        "7.6",
+        "plain distance",
+        """
+def nearest_solution(solutions, q_current):
+    solutions = np.asarray(solutions, dtype=float)
+    if len(solutions) == 0:
+        raise ValueError("solutions is empty")
+    return solutions[np.argmin(np.linalg.norm(solutions - q_current, axis=1))]
+""",
+        points=None,
+        mistake=None,
+    ),
+    Variant(
+        "7.6",
+        "argmin of an empty array",
+        """
+def nearest_solution(solutions, q_current):
+    solutions = np.asarray(solutions, dtype=float).reshape(-1, 6)
+    shifted = solutions + 2 * np.pi * np.round((q_current - solutions) / (2 * np.pi))
+    shifted = np.where(shifted > 2 * np.pi, shifted - 2 * np.pi, shifted)
+    shifted = np.where(shifted < -2 * np.pi, shifted + 2 * np.pi, shifted)
+    return shifted[np.argmin(np.linalg.norm(shifted - q_current, axis=1))]
+""",
+        points=3,
+        mistake="not a ValueError naming solutions",
     ),
 ]

@@ -32,6 +32,7 @@ from pathlib import Path
 from typing import Any
 
 from urkin.course import wire
+from urkin.course.parsing import parse
 
 __all__ = [
     "Call",
@@ -150,7 +151,7 @@ def functions_used(sources: Mapping[str, str], start: str) -> list[str]:
             continue
         order.append(name)
         try:
-            tree = ast.parse(textwrap.dedent(sources[name]))
+            tree = parse(textwrap.dedent(sources[name]))
         except SyntaxError:
             continue
         todo += sorted({n.id for n in ast.walk(tree) if isinstance(n, ast.Name)} - set(order))

@@ -30,6 +30,8 @@ from typing import Any
 
 import numpy as np
 
+from urkin.course.parsing import parse
+
 __all__ = ["MAX_TEXT", "Symbolic", "read"]
 
 #: Longest srepr text accepted (characters); a six-joint chain unsimplified is about 100 kB.
@@ -244,7 +246,7 @@ def read(text: str) -> Symbolic:
     if _LONG_NUMBER.search(text):
         raise ValueError("the symbolic answer holds a number with more than 300 digits")
     try:
-        tree = ast.parse(text, mode="eval").body
+        tree = parse(text, mode="eval").body
     except (SyntaxError, RecursionError, MemoryError, ValueError):
         raise ValueError("the symbolic answer is not an expression urkin can read") from None
     symbols: set[str] = set()

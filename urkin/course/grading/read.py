@@ -31,6 +31,8 @@ import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from urkin.course.parsing import parse
+
 __all__ = [
     "MAX_NOTEBOOK_BYTES",
     "Notebook",
@@ -427,7 +429,7 @@ def read_notebook(path: str | Path, lesson: str | None = None) -> Notebook:
             notebook.notes.append(f"code cell {number} is {why_not}: it was skipped")
             continue
         try:
-            tree = ast.parse(source, filename=f"<cell {number}>")
+            tree = parse(source, filename=f"<cell {number}>")
         except SyntaxError as exc:
             notebook.notes.append(
                 f"code cell {number} has a syntax error on line {exc.lineno}: {exc.msg}; "

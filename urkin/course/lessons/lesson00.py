@@ -5,10 +5,18 @@ from __future__ import annotations
 import numpy as np
 
 from urkin.course import concepts
-from urkin.course.compare import Mismatch, as_array, close, compare, require_transform
+from urkin.course.compare import (
+    Mismatch,
+    as_array,
+    close,
+    compare,
+    identify_mistake,
+    require_transform,
+)
 from urkin.course.exercise import Check, Exercise, Lesson
-from urkin.course.inputs import random_pose
+from urkin.course.inputs import random_arm, random_pose, random_q
 from urkin.course.submission import StudentRaised
+from urkin.kinematics import fk
 from urkin.robots import T_BASE_LINK_BASE
 from urkin.transforms import make_transform, rot_x, rot_y, rot_z
 
@@ -264,6 +272,98 @@ def _base_link_matches(sub, rng):
         )
 
 
+# ------------------------------------------------------------------------- 0.3 turn_joint1
+
+
+def _turn_angles(rng):
+    """Eight angles: four within (−π, π), two beyond +π and two beyond −π (up to ±10 rad), none
+    within 0.2 rad of a whole turn (where turning changes nothing a check could see)."""
+    angles = [
+        *rng.uniform(-np.pi, np.pi, 4),
+        *rng.uniform(np.pi, 10.0, 2),
+        *rng.uniform(-10.0, -np.pi, 2),
+    ]
+    return [a if abs(_wrapped(a)) > 0.2 else a + 0.5 for a in angles]
+
+
+def _turn_hypotheses(T, angle):
+    R, p = T[:3, :3], T[:3, 3]
+    turn = rot_z(angle)
+    return {
+        "multiplied on the wrong side: T @ Rz(angle) turns the flange about its own z axis; "
+        "joint 1 turns the whole arm about the base's z axis, Rz(angle) @ T": lambda: (
+            T @ _pose(turn)
+        ),
+        "turned by −angle: Rz(−angle), or Rz transposed; a positive angle turns "
+        "counter-clockwise seen from above": lambda: _pose(rot_z(-angle)) @ T,
+        "only the orientation was turned: joint 1 carries the flange's position round the base "
+        "z axis too": lambda: _pose(turn @ R, p),
+        "only the position was turned: the flange's axes turn with the arm too": lambda: _pose(
+            R, turn @ p
+        ),
+        "the angle was taken as degrees: it is already in radians": lambda: (
+            _pose(rot_z(np.radians(angle))) @ T
+        ),
+        "the angle was converted to degrees before cos and sin (they take radians)": lambda: (
+            _pose(rot_z(np.degrees(angle))) @ T
+        ),
+        "returned T_base_flange unchanged": lambda: T,
+        "turned about the base's x axis instead of z": lambda: _pose(rot_x(angle)) @ T,
+        "turned about the base's y axis instead of z": lambda: _pose(rot_y(angle)) @ T,
+        "the inverse of T was turned: the flange pose itself turns, Rz(angle) @ T": lambda: (
+            _pose(turn) @ np.linalg.inv(T)
+        ),
+    }
+
+
+def _turn_case(rng, angle):
+    """A random arm at a random configuration, its flange pose, and the pose after joint 1
+    turns by ``angle`` (urkin's forward kinematics)."""
+    robot, q = random_arm(rng), random_q(rng)
+    turned = q.copy()
+    turned[0] += angle
+    T = fk(robot, q)
+    inputs = {"T_base_flange": T, "angle": angle}
+    return T, fk(robot, turned), inputs
+
+
+def _turn_call(sub, T, angle, inputs):
+    got = sub.turn_joint1(T.copy(), angle)
+    return as_array(got, (4, 4), "turn_joint1(T_base_flange, angle)", inputs)
+
+
+def _turn_moves_the_position(sub, rng):
+    for angle in _turn_angles(rng):
+        T, _, inputs = _turn_case(rng, angle)
+        got = _turn_call(sub, T, angle, inputs)
+        try:
+            compare(
+                got[:3, 3],
+                rot_z(angle) @ T[:3, 3],
+                what="joint 1 carries the flange round the base z axis: same height, same "
+                "distance from the axis, turned by the angle, p' = Rz(angle) p",
+                inputs=inputs,
+            )
+        except Mismatch as exc:
+            exc.expected, exc.got = _pose(rot_z(angle)) @ T, got
+            exc.mistake = identify_mistake(got, _turn_hypotheses(T, angle), right=exc.expected)
+            raise
+
+
+def _turn_matches_fk(sub, rng):
+    for angle in _turn_angles(rng):
+        T, expected, inputs = _turn_case(rng, angle)
+        got = _turn_call(sub, T, angle, inputs)
+        compare(
+            got,
+            expected,
+            what="the flange pose after joint 1 turns: fk at q with q[0] + angle, which is "
+            "Rz(angle) @ T_base_flange",
+            inputs=inputs,
+            hypotheses=_turn_hypotheses(T, angle),
+        )
+
+
 LESSON = Lesson(
     number="00",
     title="How the course works",
@@ -300,6 +400,23 @@ LESSON = Lesson(
                 Check("equals Rz(π) @ T_base_tool on random poses", 2, _base_link_matches),
             ),
             answer=concepts.BASE_LINK_FRAME,
+        ),
+        Exercise(
+            id="0.3",
+            function="turn_joint1",
+            title="the flange pose after joint 1 turns, without forward kinematics",
+            checks=(
+                Check(
+                    "the flange position turns about the base z axis by the angle",
+                    1,
+                    _turn_moves_the_position,
+                ),
+                Check(
+                    "equals fk at q with q[0] + angle, for random arms, configurations and angles",
+                    2,
+                    _turn_matches_fk,
+                ),
+            ),
         ),
     ),
 )

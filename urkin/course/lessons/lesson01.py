@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import ast
+import re
 
 import numpy as np
 
@@ -16,6 +17,7 @@ from urkin.course.compare import (
     require_rotation,
     require_transform,
 )
+from urkin.course.display import below
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_pose, random_rotation
 from urkin.course.submission import StudentRaised
@@ -719,6 +721,350 @@ def _axis_as_list(sub, rng):
         )
 
 
+# --------------------------------------------------------------------- 1.5 rotation_verdict
+
+_VERDICTS = ("rotation", "reflection", "not orthonormal")
+_DEFAULT_TOL = 1e-9
+
+
+def _deviation(R):
+    """max |RᵀR − I| (NaN when an entry is not finite)."""
+    with np.errstate(all="ignore"):
+        return float(np.abs(R.T @ R - np.eye(3)).max())
+
+
+def _determinant(R):
+    with np.errstate(all="ignore"):
+        try:
+            return float(np.linalg.det(R))
+        except np.linalg.LinAlgError:
+            return float("nan")
+
+
+def _verdict(R, tol=_DEFAULT_TOL):
+    """The verdict the contract of exercise 1.5 asks for."""
+    if not np.all(np.isfinite(R)) or not _deviation(R) <= tol:
+        return "not orthonormal"
+    return "rotation" if _determinant(R) > 0 else "reflection"
+
+
+_FIXED_TOL = (
+    "tol was not used: a fixed tolerance decided instead of the tol given (is `tol` a "
+    "parameter, and is it the number compared with?)"
+)
+
+
+def _measured(R):
+    """max |RᵀR − I| and det R as the feedback shows them: round-off shows as "below 1e-13"
+    (the checks' smallest deviation on purpose is 5e-16 × 1000), no "−0.0000"."""
+    return (
+        f"max |RᵀR − I| is {below(_deviation(R), 1e-13)}, "
+        f"det R = {round(_determinant(R), 4) + 0.0:+.4f}"
+    )
+
+
+def _mistake_text(key):
+    """A hypothesis' name; every fixed tolerance has the same one (the checks cannot tell
+    which tolerance it was)."""
+    return _FIXED_TOL if isinstance(key, tuple) else key
+
+
+def _sign_verdict(det):
+    return "rotation" if det > 0 else "reflection"
+
+
+def _verdict_hypotheses(R, tol, tol_first=False):
+    """Wrong verdicts by name; with ``tol_first``, those about the tolerance come first (for
+    matrices built to test it, where a determinant-only verdict would match as well)."""
+    det, deviation = _determinant(R), _deviation(R)
+    exact = bool(np.array_equal(R.T @ R, np.eye(3)))
+    about_tol = {
+        "RᵀR was compared with I exactly (== or np.array_equal): round-off leaves a true "
+        "rotation's RᵀR about 1e-16 away from I; compare within tol": lambda: (
+            _sign_verdict(det) if exact else "not orthonormal"
+        ),
+        "tol was not used: np.allclose's default tolerances (rtol 1e-5, atol 1e-8) decided "
+        "instead of the tol given": lambda: (
+            _sign_verdict(det) if np.allclose(R.T @ R, np.eye(3)) else "not orthonormal"
+        ),
+    }
+    for fixed in (1e-12, 1e-10, 1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2):
+        about_tol[("fixed", fixed)] = lambda fixed=fixed: _verdict(R, fixed)
+    others = {
+        "only the determinant was checked: det R = +1 does not make a rotation (a shear has "
+        "det 1 too, and a scaled rotation any det); test RᵀR = I first": lambda: _sign_verdict(det),
+        "only orthonormality was checked: a reflection (det R = −1) is orthonormal too, but it "
+        "is not a rotation; the sign of det R tells them apart": lambda: (
+            "rotation" if deviation <= tol else "not orthonormal"
+        ),
+        "the sign of det R was read backwards: +1 is a rotation, −1 a reflection": lambda: {
+            "rotation": "reflection",
+            "reflection": "rotation",
+            "not orthonormal": "not orthonormal",
+        }[_verdict(R, tol)],
+    }
+    return {**about_tol, **others} if tol_first else {**others, **about_tol}
+
+
+def _verdict_mistake(got, R, tol, tol_first=False):
+    right = _verdict(R, tol)
+    for name, compute in _verdict_hypotheses(R, tol, tol_first).items():
+        try:
+            candidate = compute()
+        except Exception:  # a hypothesis that cannot be evaluated names nothing
+            continue
+        if candidate == got and candidate != right:
+            return _mistake_text(name)
+    return None
+
+
+_LIBRARY_VERDICTS = ("check_rotation", "check_transform")
+
+
+def _refuse_library_verdict(sub):
+    """A Mismatch when the student's code calls urkin's own validators: they give the verdict
+    (and cannot be hidden while graded: every UR arm is built with them), so each check reads
+    the code for them instead."""
+    code = sub.code("rotation_verdict")
+    for name, source in code.items():
+        try:
+            tree = ast.parse(source)
+        except SyntaxError:
+            continue
+        for node in ast.walk(tree):
+            used = node.id if isinstance(node, ast.Name) else None
+            used = node.attr if isinstance(node, ast.Attribute) else used
+            if used in _LIBRARY_VERDICTS and used not in code:
+                raise Mismatch(
+                    f"{name} uses urkin's {used}, which gives the verdict itself: the exercise "
+                    "asks for the two tests, RᵀR = I within tol and the sign of det R, written "
+                    "with numpy",
+                    mistake=f"urkin's {used} used: it earns no points in exercise 1.5",
+                )
+
+
+def _verdict_call(sub, R, tol=None):
+    """The student's verdict for ``R`` (with ``tol`` when given), checked to be one of the
+    three strings."""
+    inputs = {"R": R} if tol is None else {"R": R, "tol": f"{tol:.3g}"}
+    what = "rotation_verdict(R)" if tol is None else "rotation_verdict(R, tol)"
+    got = sub.rotation_verdict(R.copy()) if tol is None else sub.rotation_verdict(R.copy(), tol)
+    if isinstance(got, str) and got in _VERDICTS:
+        return got, inputs
+    if got is None:
+        raise Mismatch(f"{what} returned None: is a `return` statement missing?", inputs=inputs)
+    shown = repr(got)[:80]
+    mistake = None
+    if isinstance(got, str):
+        normal = " ".join(got.lower().replace("_", " ").replace("-", " ").split())
+        if normal in _VERDICTS or normal in ("non orthonormal", "not orthogonal"):
+            mistake = (
+                "the verdict is spelled differently: return exactly 'rotation', 'reflection' "
+                "or 'not orthonormal' (lower case, one space)"
+            )
+    elif isinstance(got, (bool, np.bool_)):
+        mistake = "a True/False answer: the verdict has three values, returned as strings"
+    raise Mismatch(
+        f"{what} must return one of the strings 'rotation', 'reflection' or "
+        f"'not orthonormal'; got {shown}",
+        inputs=inputs,
+        mistake=mistake,
+    )
+
+
+def _require_verdict(sub, R, why, tol=None):
+    """A Mismatch unless the student's verdict on ``R`` is right; a ``tol`` given is passed on
+    (and makes the tolerance the first suspect when the verdict is wrong)."""
+    got, inputs = _verdict_call(sub, R, tol)
+    right = _verdict(R, _DEFAULT_TOL if tol is None else tol)
+    if got != right:
+        raise Mismatch(
+            f"{why}: {_measured(R)}",
+            inputs=inputs,
+            expected=right,
+            got=got,
+            mistake=_verdict_mistake(
+                got, R, _DEFAULT_TOL if tol is None else tol, tol_first=tol is not None
+            ),
+        )
+
+
+def _inexact_rotation(rng):
+    """A random rotation whose RᵀR differs from I by round-off (not exactly I)."""
+    while True:
+        R = random_rotation(rng)
+        if not np.array_equal(R.T @ R, np.eye(3)):
+            return R
+
+
+def _reflections(rng):
+    mirror = np.diag([1.0, 1.0, -1.0])
+    n = rng.normal(size=3)
+    n /= np.linalg.norm(n)
+    swapped = _inexact_rotation(rng)[:, [1, 0, 2]]
+    return [
+        mirror,
+        _inexact_rotation(rng) @ mirror,
+        mirror @ _inexact_rotation(rng),
+        -_inexact_rotation(rng),
+        swapped,
+        np.eye(3) - 2.0 * np.outer(n, n),  # a Householder mirror
+    ]
+
+
+def _verdict_rotations_and_reflections(sub, rng):
+    _refuse_library_verdict(sub)
+    rotations = [np.eye(3), *(_inexact_rotation(rng) for _ in range(7))]
+    for R in rotations:
+        _require_verdict(sub, R, "a rotation (orthonormal to round-off, det +1) is 'rotation'")
+    for R in _reflections(rng):
+        _require_verdict(sub, R, "an orthonormal matrix with det −1 is 'reflection'")
+
+
+def _shear(rng):
+    """A unit upper or lower shear: det exactly 1, not orthonormal."""
+    S = np.eye(3)
+    i, j = rng.choice(3, size=2, replace=False)
+    S[i, j] = rng.choice([-1.0, 1.0]) * rng.uniform(0.05, 1.0)
+    return S
+
+
+def _verdict_not_orthonormal(sub, rng):
+    _refuse_library_verdict(sub)
+    Q = _inexact_rotation(rng)
+    scale = rng.choice([rng.uniform(0.5, 0.99), rng.uniform(1.01, 2.0)])
+    singular = _inexact_rotation(rng)
+    singular[:, 2] = singular[:, 0]
+    unit_axis = rng.normal(size=3)
+    unit_axis /= np.linalg.norm(unit_axis)
+    K = skew(2.0 * unit_axis)  # an axis of length 2 in Rodrigues' formula
+    angle = rng.uniform(0.5, 2.5)
+    cases = [
+        (_shear(rng), "a shear with det exactly 1"),
+        (_inexact_rotation(rng) @ _shear(rng), "a rotation times a shear (det 1)"),
+        (_shear(rng) @ np.diag([1.0, -1.0, 1.0]), "a mirrored shear (det −1)"),
+        (scale * Q, f"a rotation scaled by {scale:.3f}"),
+        (singular, "a rotation with its third column replaced by the first (det 0)"),
+        (
+            np.eye(3) + np.sin(angle) * K + (1.0 - np.cos(angle)) * K @ K,
+            "Rodrigues' formula with an axis of length 2",
+        ),
+    ]
+    for R, name in cases:
+        _require_verdict(sub, R, f"{name} is 'not orthonormal', whatever its determinant")
+
+
+def _near_orthonormal(rng, proper, deviation):
+    """An orthonormal matrix (det +1 when ``proper``) stretched so that max |RᵀR − I| is
+    between ``deviation / 2`` and ``deviation``: RᵀR − I = V diag(e) Vᵀ, all e of one sign."""
+    Q = _inexact_rotation(rng)
+    Q = Q if proper else Q @ np.diag([1.0, 1.0, -1.0])
+    V = random_rotation(rng)
+    sign = rng.choice([-1.0, 1.0]) if deviation < 0.5 else 1.0
+    e = sign * deviation * rng.uniform(0.5, 1.0, 3)
+    return Q @ V @ np.diag(np.sqrt(1.0 + e)) @ V.T
+
+
+def _verdict_honours_tol(sub, rng):
+    """Tolerances far apart (between 1e-4 and 1e-3, the default 1e-9, between 1e-12 and
+    1e-11), so that no fixed tolerance passes; each matrix 1000 times inside or outside its
+    tol, so that neither rounding nor the choice of norm can decide.  All six verdicts are
+    gathered first: the mistake named is one that explains every one of them."""
+    _refuse_library_verdict(sub)
+    tols = [10.0 ** rng.uniform(-4.0, -3.0), _DEFAULT_TOL, 10.0 ** rng.uniform(-12.0, -11.0)]
+    cases = []
+    for tol in tols:
+        outside = _near_orthonormal(rng, bool(rng.integers(2)), 1e3 * tol)
+        inside = _near_orthonormal(rng, True, 1e-3 * tol)
+        assert _deviation(inside) <= 1e-2 * tol and _deviation(outside) >= 1e2 * tol
+        cases += [
+            (outside, tol, "a matrix 1000 times beyond tol of orthonormal is 'not orthonormal'"),
+            (inside, tol, "a rotation 1000 times within tol of orthonormal is 'rotation'"),
+        ]
+    answers = [(R, tol, why, *_verdict_call(sub, R, tol)) for R, tol, why in cases]
+    wrong = [a for a in answers if a[3] != _verdict(a[0], a[1])]
+    if not wrong:
+        return
+    R, tol, why, got, inputs = wrong[0]
+    mistake = None
+    for name in _verdict_hypotheses(R, tol, tol_first=True):
+        explained = True
+        for R_k, tol_k, _, got_k, _ in answers:
+            try:
+                explained = _verdict_hypotheses(R_k, tol_k)[name]() == got_k
+            except Exception:  # a hypothesis that cannot be evaluated explains nothing
+                explained = False
+            if not explained:
+                break
+        if explained:
+            mistake = _mistake_text(name)
+            break
+    raise Mismatch(
+        f"{why}: {_measured(R)}",
+        inputs=inputs,
+        expected=_verdict(R, tol),
+        got=got,
+        mistake=mistake,
+    )
+
+
+_NAMES_R = re.compile(r"(?<![A-Za-z0-9_])R(?![A-Za-z0-9_])")
+
+
+def _verdict_bad_input(sub, rng):
+    _refuse_library_verdict(sub)
+    for bad in (np.nan, np.inf, -np.inf):
+        R = _inexact_rotation(rng)
+        R[tuple(rng.integers(3, size=2))] = bad
+        got, inputs = _verdict_call(sub, R)
+        if got != "not orthonormal":
+            raise Mismatch(
+                f"a matrix with an entry {bad} is 'not orthonormal'",
+                inputs=inputs,
+                expected="not orthonormal",
+                got=got,
+                mistake="a NaN slipped through: every comparison with NaN is False, so "
+                "`deviation > tol` does not catch it (and inf − inf is NaN); test "
+                "np.isfinite first, or write `not deviation <= tol`",
+            )
+    shapes = [
+        (make_transform(random_rotation(rng), rng.uniform(-1.0, 1.0, 3)), "a 4×4 transform"),
+        (random_rotation(rng)[:2, :2], "a 2×2 matrix"),
+        (random_rotation(rng)[:, 0], "a vector of 3"),
+        (np.column_stack([random_rotation(rng), np.zeros(3)]), "a 3×4 matrix"),
+    ]
+    for R, name in shapes:
+        inputs = {"R": R}
+        what = f"rotation_verdict(R) for {name}"
+        try:
+            got = sub.rotation_verdict(R.copy())
+        except StudentRaised as exc:
+            first = exc.message.strip().splitlines()[0][:200] if exc.message.strip() else ""
+            where = f" ({exc.where})" if exc.where else ""
+            if exc.kind == "ValueError" and _NAMES_R.search(exc.message):
+                continue
+            if exc.kind == "ValueError":
+                mistake = (
+                    "the ValueError does not name the argument R: check R.shape == (3, 3) "
+                    "yourself and say what is wrong with R"
+                )
+            elif exc.kind == "AssertionError":
+                mistake = "an assert raises AssertionError (and is skipped under python -O)"
+            else:
+                mistake = "no shape check: test R.shape == (3, 3) first and raise ValueError"
+            raise Mismatch(
+                f"{what} must raise ValueError naming R; it raised {exc.kind}: {first}{where}",
+                inputs=inputs,
+                mistake=mistake,
+            ) from None
+        raise Mismatch(
+            f"{what} must raise ValueError naming R, not return a verdict",
+            inputs=inputs,
+            got=got if isinstance(got, str) else repr(got)[:80],
+            mistake="no shape check: test R.shape == (3, 3) first and raise ValueError",
+        )
+
+
 LESSON = Lesson(
     number="01",
     title="Rigid-body transforms",
@@ -802,6 +1148,35 @@ LESSON = Lesson(
                 Check("accepts the axis as a list", 1, _axis_as_list),
             ),
             answer=concepts.SO3_EXP,
+        ),
+        Exercise(
+            id="1.5",
+            function="rotation_verdict",
+            title="rotation, reflection or not orthonormal",
+            checks=(
+                Check(
+                    "random rotations are 'rotation', orthonormal matrices with det −1 "
+                    "'reflection'",
+                    2,
+                    _verdict_rotations_and_reflections,
+                ),
+                Check(
+                    "shears (det 1), scaled and singular matrices are 'not orthonormal'",
+                    1,
+                    _verdict_not_orthonormal,
+                ),
+                Check(
+                    "honours tol: 1000 times inside is orthonormal, 1000 times beyond is not",
+                    1,
+                    _verdict_honours_tol,
+                ),
+                Check(
+                    "NaN or infinite entries are 'not orthonormal'; a wrong shape raises "
+                    "ValueError naming R",
+                    1,
+                    _verdict_bad_input,
+                ),
+            ),
         ),
     ),
 )

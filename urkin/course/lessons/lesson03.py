@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
@@ -24,7 +25,7 @@ from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_arm, random_q
 from urkin.course.submission import StudentRaised
 from urkin.kinematics import dh_chain
-from urkin.poe import body_screws, screw_axis, space_screws
+from urkin.poe import body_screws, jacobian_space, screw_axis, space_screws
 from urkin.transforms import inv_transform, se3_exp, se3_log, skew
 
 _fk = urkin.fk
@@ -794,6 +795,153 @@ def _log_at_the_edges(sub, rng):
         )
 
 
+# ------------------------------------------------------------------------- 3.6 screw_to_joint
+
+_NOT_NEAREST = (
+    "a point of the axis, but not the one nearest the origin: remove its part along ω, "
+    "q − (q·ω) ω — ω × v is that nearest point"
+)
+_POINT_SHAPES = {
+    (6,): "a 6-vector: the answer is one point, shape (3,)",
+    (3, 1): "a column of shape (3, 1): the point is a flat vector of shape (3,)",
+    (1, 3): "a row of shape (1, 3): the point is a flat vector of shape (3,)",
+}
+
+
+def _joint_hypotheses(S):
+    w, v = S[:3], S[3:]
+    hypotheses = {
+        "v × ω (or S read as (v, ω)): the cross product in the wrong order gives the mirror "
+        "point −q; from v = −ω × q, ω × v = q − (ω·q) ω": lambda: np.cross(v, w),
+        "v itself: v is the velocity of the body point at the origin, not a point of the axis; "
+        "the nearest point is ω × v": lambda: v,
+        "−v (which is also ω × (ω × v)): v is a velocity, not a point of the axis; the nearest "
+        "point is ω × v": lambda: -v,
+        "ω itself: the direction of the axis, not a point on it; the nearest point is ω × v": (
+            lambda: w
+        ),
+    }
+    return unless_right(hypotheses, np.cross(w, v))
+
+
+def _joint_call(sub, S, inputs=None) -> np.ndarray:
+    inputs = {"S": S} if inputs is None else inputs
+    return as_array(sub.screw_to_joint(S.copy()), (3,), "screw_to_joint(S)", inputs, _POINT_SHAPES)
+
+
+def _joint_mistake(got, S) -> str | None:
+    """The named mistake behind a wrong point: a point of the axis that is not the nearest one,
+    or a hypothesis."""
+    w, v = S[:3], S[3:]
+    on_axis = close(-np.cross(w, got.astype(float)), v, 1e-6)
+    if on_axis and abs(float(np.dot(got, w))) > 1e-6:
+        return _NOT_NEAREST
+    return identify_mistake(got, _joint_hypotheses(S))
+
+
+def _joint_compare(sub, S, what, inputs=None) -> None:
+    got = _joint_call(sub, S, inputs)
+    expected = np.cross(S[:3], S[3:])
+    if not close(got, expected, 1e-9):
+        scale = float(np.abs(expected).max(initial=0.0))
+        gap = float(np.abs(got.astype(float) - expected).max())
+        raise Mismatch(
+            what,
+            inputs=inputs or {"S": S},
+            expected=expected,
+            got=got,
+            mistake=_joint_mistake(got, S),
+            difference=(
+                f"largest difference {gap:.1e}; the tolerance is {tolerance(1e-9, got, scale):.0e}"
+                if gap < 1e-3
+                else None
+            ),
+        )
+
+
+def _joint_random_axes(sub, rng):
+    for _ in range(10):
+        w, q = _unit(rng), rng.uniform(-0.8, 0.8, 3)
+        q = q + rng.uniform(-1.0, 1.0) * w  # any point of the line, not the nearest one
+        S = screw_axis(w, q)
+        _joint_compare(
+            sub,
+            S,
+            "the point of the axis nearest the origin, q = ω × v (the one point of the axis "
+            "with q·ω = 0)",
+            inputs={"S": S, "a point of the axis": q},
+        )
+
+
+def _joint_ur_axes(sub, rng):
+    for _ in range(3):
+        arm = random_arm(rng)
+        S_home, _ = space_screws(arm)
+        q = random_q(rng)
+        current = jacobian_space(S_home, q)  # joint axes at q, same (ω, v) form
+        for axes, where in ((S_home, "at q = 0"), (current, "at a random q")):
+            for i in range(6):
+                S = axes[:, i].copy()
+                _joint_compare(
+                    sub,
+                    S,
+                    f"joint {i + 1} of the {arm.name} {where}: the point of its axis nearest "
+                    "the base origin, ω × v",
+                    inputs={"robot": arm.name, "joint": str(i + 1), "S": S},
+                )
+
+
+_NO_UNIT_CHECK = (
+    "no check of the input: a screw axis whose ω is not a unit vector (a prismatic joint, "
+    "ω = 0, or an unnormalised ω) has no point ω × v; raise ValueError naming S"
+)
+
+
+def _joint_refuses_non_unit(sub, rng):
+    S = screw_axis(_unit(rng), rng.uniform(-0.5, 0.5, 3))
+    _joint_call(sub, S)  # a function that refuses every S earns nothing here
+    w = _unit(rng)
+    prismatic = np.r_[np.zeros(3), _unit(rng)]
+    cases = [
+        ("a prismatic joint, ω = 0", prismatic),
+        ("ω of length 2", np.r_[2.0 * w, -np.cross(2.0 * w, rng.uniform(-0.5, 0.5, 3))]),
+        ("ω of length 0.5", np.r_[0.5 * w, -np.cross(0.5 * w, rng.uniform(-0.5, 0.5, 3))]),
+        ("ω of length 1.01", np.r_[1.01 * w, rng.uniform(-0.3, 0.3, 3)]),
+    ]
+    for name, S in cases:
+        inputs = {"S": S, "case": name}
+        try:
+            value = sub.screw_to_joint(S.copy())
+        except StudentRaised as exc:
+            if exc.kind == "NotImplementedError" and exc.message.strip().startswith("Exercise "):
+                raise
+            if exc.kind != "ValueError":
+                raise Mismatch(
+                    f"screw_to_joint(S) raised {exc.kind} for {name}: the contract is a "
+                    "ValueError that names S",
+                    inputs=inputs,
+                    mistake=(
+                        "another exception than ValueError (an assert, a division by zero): "
+                        "raise ValueError naming S"
+                    ),
+                ) from None
+            if not re.search(r"\bS\b", exc.message):
+                raise Mismatch(
+                    f"screw_to_joint(S) raised ValueError for {name}, but its message does not "
+                    f"name the argument S: {exc.message.strip()[:120]!r}",
+                    inputs=inputs,
+                    mistake="the ValueError's message does not say which argument is wrong (S)",
+                ) from None
+            continue
+        raise Mismatch(
+            f"screw_to_joint(S) must raise ValueError for {name} (|ω| ≠ 1), and it returned a "
+            "value",
+            inputs=inputs,
+            got=value if np.shape(value) == (3,) else None,
+            mistake=_NO_UNIT_CHECK,
+        )
+
+
 LESSON = Lesson(
     number="03",
     title="The product of exponentials",
@@ -850,6 +998,29 @@ LESSON = Lesson(
                 ),
             ),
             answer=concepts.TWIST_LOG,
+        ),
+        Exercise(
+            id="3.6",
+            function="screw_to_joint",
+            title="the point of a joint's axis nearest the origin, from its screw axis",
+            checks=(
+                Check(
+                    "returns ω × v, the point of the axis nearest the origin, for random axes",
+                    1,
+                    _joint_random_axes,
+                ),
+                Check(
+                    "finds the nearest points of the joint axes of random UR arms, at q = 0 and "
+                    "at a random q",
+                    1,
+                    _joint_ur_axes,
+                ),
+                Check(
+                    "raises ValueError naming S when ω is not a unit vector",
+                    1,
+                    _joint_refuses_non_unit,
+                ),
+            ),
         ),
     ),
 )

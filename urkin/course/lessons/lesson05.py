@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 import urkin
@@ -603,6 +605,305 @@ def _position_wraps_and_takes_lists(sub, rng):
         _check_wrapped(q, "ik_position", inputs)
 
 
+# --------------------------------------------------------------------- 5.4 convergence_order
+
+
+def _order_of(e) -> float:
+    """log(e_(k+1)/e_k) / log(e_k/e_(k−1)) over the last three values of ``e``."""
+    a, b, c = np.asarray(e, dtype=float)[-3:]
+    return float(np.log(c / b) / np.log(b / a))
+
+
+def _order_sequence(rng, p: float, count: int = 6, floor: float = 1e-280) -> list[float]:
+    """Up to ``count`` errors (at least three) above ``floor`` with e_(k+1) = C e_k^p, C
+    random: a decreasing sequence of order p."""
+    if p == 1.0:
+        C = rng.uniform(0.05, 0.7)
+        e = [10 ** rng.uniform(-3.0, 0.0)]
+    else:
+        C = 10 ** rng.uniform(-1.0, 1.0)
+        ceiling = C ** (-1.0 / (p - 1.0))  # below it the sequence decreases
+        e = [ceiling * 10 ** rng.uniform(-2.0, -0.5)]
+    while len(e) < count and C * e[-1] ** p > floor:
+        e.append(C * e[-1] ** p)
+    return e
+
+
+def _shown(e) -> str:
+    """Errors as text with three significant digits: they span many orders of magnitude."""
+    return "[" + ", ".join(f"{x:.3e}" for x in np.asarray(e, dtype=float)) + "]"
+
+
+_ORDER_SHAPES = {
+    (1,): "an array of one number: return the order as a float",
+    (2,): "two numbers: return one estimate, from the last three errors",
+}
+
+
+_AMBIGUOUS = ("differences instead", "the rate")  # equal for a geometric sequence
+
+
+def _order_hypotheses(e) -> dict:
+    e = np.asarray(e, dtype=float)
+    a, b, c = e[-3:]
+    hypotheses = {
+        "the first three errors: the order is read from the last three, the ones nearest the "
+        "solution, where the asymptotic behaviour has set in": lambda: _order_of(e[:3]),
+        "three errors but not the last three (e[-4:-1]): use e[-3:], the newest": lambda: _order_of(
+            e[:-1]
+        ),
+        "the ratio upside down: p = log(e_(k+1)/e_k) / log(e_k/e_(k−1)) — the newest ratio "
+        "goes on top": lambda: 1.0 / _order_of(e),
+        "differences instead of logarithms, (e_(k+1) − e_k)/(e_k − e_(k−1)): the order "
+        "compares the logarithms of successive ratios": lambda: (c - b) / (b - a),
+        "the rate e_(k+1)/e_k, not the order: the rate of a linear method is this ratio, the "
+        "order is log(e_(k+1)/e_k) / log(e_k/e_(k−1))": lambda: c / b,
+        "a ratio of ratios, (e_(k+1)/e_k)/(e_k/e_(k−1)): take their logarithms first": lambda: (
+            (c / b) / (b / a)
+        ),
+        "log e_(k+1) / log e_k: the order divides the logarithms of successive ratios, "
+        "log(e_(k+1)/e_k) / log(e_k/e_(k−1))": lambda: np.log(c) / np.log(b),
+    }
+    if np.isclose((c - b) / (b - a), c / b, rtol=1e-6, atol=0.0):  # a geometric tail
+        hypotheses = {k: h for k, h in hypotheses.items() if not k.startswith(_AMBIGUOUS)}
+    return hypotheses
+
+
+def _order_call(sub, e, inputs=None) -> np.ndarray:
+    inputs = {"errors": _shown(e)} if inputs is None else inputs
+    value = sub.convergence_order(e.copy() if isinstance(e, np.ndarray) else list(e))
+    return as_array(value, (), "convergence_order(errors)", inputs, _ORDER_SHAPES)
+
+
+def _order_compare(sub, e, what, inputs=None) -> None:
+    expected = _order_of(e)
+    answer = _order_call(sub, e, inputs)
+    got = float(answer)
+    if abs(got - expected) <= tolerance(1e-9 * max(1.0, abs(expected)), answer, expected):
+        return
+    mistake = None  # named by relative closeness: wrong answers such as a rate can be tiny
+    for name, hypothesis in _order_hypotheses(e).items():
+        try:
+            with np.errstate(all="ignore"):
+                candidate = float(hypothesis())
+        except (ValueError, ZeroDivisionError):  # e[:-1] of three errors has only two
+            continue
+        if abs(candidate - expected) <= 1e-6 * max(1.0, abs(expected)):
+            continue  # right for these errors: names nothing
+        if abs(got - candidate) <= 1e-6 * abs(candidate):
+            mistake = name
+            break
+    raise Mismatch(
+        what,
+        inputs=inputs or {"errors": _shown(e)},
+        expected=f"{expected:.6g}",
+        got=f"{got:.6g}",
+        mistake=mistake,
+    )
+
+
+def _order_known(sub, rng):
+    orders = [1.5, 2.0, 3.0] * 2
+    rng.shuffle(orders)
+    for p in [*orders, 1.0, 1.0]:  # linear last: there the rate and the differences agree
+        e = np.array(_order_sequence(rng, p, count=int(rng.integers(4, 8))))
+        _order_compare(
+            sub,
+            e,
+            f"a sequence with e_(k+1) = C e_k^p exactly, of order p = {p:g}: "
+            "log(e_(k+1)/e_k) / log(e_k/e_(k−1)) gives p (to 1e-9, relative)",
+            inputs={"errors": _shown(e), "order": f"{p:g}"},
+        )
+
+
+def _order_uses_last_three(sub, rng):
+    pairs = [(1.0, 2.0), (1.0, 3.0), (3.0, 1.5)]
+    rng.shuffle(pairs)
+    for index, (early, late) in enumerate([*pairs, (2.0, 1.0), (1.5, 1.0)]):
+        head = _order_sequence(rng, early, count=int(rng.integers(3, 6)), floor=1e-60)
+        tail = _order_sequence(rng, late, count=3)
+        # scaled to start below the head (still decreasing); e → s e keeps the order p
+        scale = 0.5 * head[-1] / tail[0]
+        tail = [t * scale for t in tail]
+        e = head + tail
+        shown = e if index == 0 else np.array(e)  # the first one as a plain list
+        _order_compare(
+            sub,
+            shown,
+            f"order {early:g} at first, then {late:g} for the last three errors: the estimate "
+            "comes from the last three",
+            inputs={"errors": _shown(e), "early order": f"{early:g}", "late order": f"{late:g}"},
+        )
+
+
+_NO_ERROR_CHECK = (
+    "no check of the input: fewer than three errors, a value that is not positive and finite, "
+    "or e_k = e_(k−1) (a zero denominator) have no order; raise ValueError naming errors"
+)
+
+
+def _order_refuses_bad_input(sub, rng):
+    e = _order_sequence(rng, 2.0, count=5)
+    _order_call(sub, np.array(e))  # a function that refuses every sequence earns nothing here
+    cases = [
+        ("only two errors", np.array(e[-2:])),
+        ("a zero error among the last three", np.r_[e[:-1], 0.0]),
+        ("a negative error among the last three", np.r_[e[:-2], -e[-2], e[-1]]),
+        ("a negative error early in the sequence", np.r_[-e[0], e[1:]]),
+        ("NaN among the errors", np.r_[e[:-1], np.nan]),
+        ("an infinite error", np.r_[np.inf, e[1:]]),
+        ("e_k = e_(k−1): log(e_k/e_(k−1)) = 0", np.r_[e[:-2], e[-3], e[-1]]),
+    ]
+    for name, bad in cases:
+        inputs = {"errors": _shown(bad), "case": name}
+        try:
+            value = sub.convergence_order(bad.copy())
+        except StudentRaised as exc:
+            if exc.kind == "NotImplementedError" and exc.message.strip().startswith("Exercise "):
+                raise
+            if exc.kind != "ValueError":
+                raise Mismatch(
+                    f"convergence_order(errors) raised {exc.kind} for {name}: the contract is a "
+                    "ValueError that names errors",
+                    inputs=inputs,
+                    mistake=(
+                        "another exception than ValueError (an assert, an IndexError, a "
+                        "division by zero): raise ValueError naming errors"
+                    ),
+                ) from None
+            if exc.message.startswith(("not enough values to unpack", "too many values")):
+                raise Mismatch(
+                    f"convergence_order(errors) for {name}: the ValueError came from unpacking "
+                    f"({exc.message.strip()[:80]}), not from a check that names errors",
+                    inputs=inputs,
+                    mistake=_NO_ERROR_CHECK,
+                ) from None
+            if not re.search(r"\berrors\b", exc.message):
+                raise Mismatch(
+                    f"convergence_order(errors) raised ValueError for {name}, but its message "
+                    f"does not name the argument errors: {exc.message.strip()[:120]!r}",
+                    inputs=inputs,
+                    mistake=(
+                        "the ValueError's message does not say which argument is wrong (errors)"
+                    ),
+                ) from None
+            continue
+        raise Mismatch(
+            f"convergence_order(errors) must raise ValueError for {name}, and it returned a value",
+            inputs=inputs,
+            got=value if np.ndim(value) == 0 else None,
+            mistake=_NO_ERROR_CHECK,
+        )
+
+
+# ----------------------------------------------------------------------- 5.5 null_space_step
+
+
+def _null_step(J, e, q, q_rest, gain, *, pull=None, wrap=True, projector="pinv", task_gain=False):
+    """Δq = J⁺ e + k (I − J⁺ J) wrap(q_rest − q), with one piece swappable for a wrong one."""
+    J_plus = np.linalg.pinv(J)
+    difference = (q_rest - q) if pull is None else pull
+    if wrap:
+        difference = wrap_angles(difference)
+    if projector == "none":
+        N = np.eye(J.shape[1])
+    elif projector == "transpose":
+        N = np.eye(J.shape[1]) - J.T @ J
+    else:
+        N = np.eye(J.shape[1]) - J_plus @ J
+    task = J_plus @ e
+    return (gain * task if task_gain else task) + gain * N @ difference
+
+
+def _null_hypotheses(J, e, q, q_rest, gain) -> dict:
+    return {
+        "the pull added without the projector (I − J⁺ J): it moves the task too": lambda: (
+            _null_step(J, e, q, q_rest, gain, projector="none")
+        ),
+        "Jᵀ in place of J⁺ in the projector: I − Jᵀ J is no projector unless J's rows are "
+        "orthonormal": lambda: _null_step(J, e, q, q_rest, gain, projector="transpose"),
+        "the pull towards q instead of q_rest (q − q_rest)": lambda: _null_step(
+            J, e, q, q_rest, gain, pull=q - q_rest
+        ),
+        "q_rest − q not wrapped: a joint a turn from its rest angle is pulled round a full "
+        "turn": lambda: _null_step(J, e, q, q_rest, gain, wrap=False),
+        "the gain applied to the task term J⁺ e too: only the secondary pull is scaled by k": (
+            lambda: _null_step(J, e, q, q_rest, gain, task_gain=True)
+        ),
+    }
+
+
+def _null_compare(sub, J, e, q, q_rest, gain, what) -> None:
+    inputs = {"J": J, "e": e, "q": q, "q_rest": q_rest, "gain": gain}
+    n = J.shape[1]
+    got = as_array(
+        sub.null_space_step(J.copy(), e.copy(), q.copy(), q_rest.copy(), gain),
+        (n,),
+        "null_space_step(J, e, q, q_rest, gain)",
+        inputs,
+    )
+    compare(
+        got,
+        _null_step(J, e, q, q_rest, gain),
+        what=what,
+        inputs=inputs,
+        hypotheses=_null_hypotheses(J, e, q, q_rest, gain),
+    )
+
+
+def _near_rest(rng, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """q and q_rest less than half a turn apart in every joint."""
+    q_rest = rng.uniform(-np.pi, np.pi, n)
+    return q_rest + rng.uniform(-2.5, 2.5, n), q_rest
+
+
+def _null_position(sub, rng):
+    for _ in range(5):
+        arm = random_arm(rng)
+        q, q_rest = _near_rest(rng, 6)
+        J = urkin.position_jacobian(arm, q)
+        e, gain = rng.normal(0, 0.05, 3), float(rng.uniform(0.1, 2.0))
+        _null_compare(sub, J, e, q, q_rest, gain, "Δq = J⁺ e + k (I − J⁺ J) wrap(q_rest − q)")
+
+
+def _null_shapes(sub, rng):
+    for m, n in ((2, 6), (3, 7), (6, 6), (3, 6)):
+        J = rng.normal(size=(m, n))
+        if (m, n) == (3, 6):  # rank 2: a task direction no joint moves (as at a singularity)
+            J[2] = 0.0
+        q, q_rest = _near_rest(rng, n)
+        _null_compare(
+            sub,
+            J,
+            rng.normal(size=m),
+            q,
+            q_rest,
+            float(rng.uniform(0.1, 2.0)),
+            f"Δq for a {m} × {n} Jacobian"
+            + (" of rank 2" if (m, n) == (3, 6) else "")
+            + " (J⁺ is the pseudo-inverse, I is n × n)",
+        )
+
+
+def _null_wrapped(sub, rng):
+    for _ in range(4):
+        arm = random_arm(rng)
+        q_rest = rng.uniform(-np.pi, np.pi, 6)
+        q = q_rest + rng.choice([-1.0, 1.0], 6) * rng.uniform(3.5, 5.5, 6)  # > half a turn
+        q = np.clip(q, -2 * np.pi, 2 * np.pi)
+        J = urkin.position_jacobian(arm, q)
+        _null_compare(
+            sub,
+            J,
+            rng.normal(0, 0.05, 3),
+            q,
+            q_rest,
+            float(rng.uniform(0.1, 2.0)),
+            "with joints more than half a turn from their rest angles, q_rest − q is wrapped "
+            "into (−π, π] first",
+        )
+
+
 LESSON = Lesson(
     number="05",
     title="Newton–Raphson inverse kinematics",
@@ -662,6 +963,35 @@ LESSON = Lesson(
             answer=concepts.INVERSE_KINEMATICS,
             uses=("pose_error",),
             builds_on=("5.2",),
+        ),
+        Exercise(
+            id="5.4",
+            function="convergence_order",
+            title="the order of convergence from the last three errors",
+            checks=(
+                Check("gives the order p of sequences with e_(k+1) = C e_k^p", 1, _order_known),
+                Check(
+                    "reads the order from the last three errors (also of a plain list)",
+                    1,
+                    _order_uses_last_three,
+                ),
+                Check(
+                    "raises ValueError naming errors for too few, non-positive or non-finite "
+                    "errors and for e_k = e_(k−1)",
+                    1,
+                    _order_refuses_bad_input,
+                ),
+            ),
+        ),
+        Exercise(
+            id="5.5",
+            function="null_space_step",
+            title="a task step with a secondary objective in its null space",
+            checks=(
+                Check("the step on position Jacobians of UR arms", 2, _null_position),
+                Check("other shapes (2 × 6, 3 × 7, 6 × 6) and a rank-deficient J", 1, _null_shapes),
+                Check("wraps q_rest − q into (−π, π]", 1, _null_wrapped),
+            ),
         ),
     ),
 )

@@ -15,6 +15,7 @@ from urkin.course.compare import (
     as_array,
     close,
     compare,
+    format_array,
     tolerance,
     unless_right,
 )
@@ -910,6 +911,214 @@ def _poe_any_arm(sub, rng):
     _poe_reaches(sub, rng, any_arm=True)
 
 
+# ----------------------------------------------------------------------- 6.5 damping_for_step
+
+_NO_MAX_STEP_CHECK = (
+    "max_step not checked: raise ValueError (naming max_step) when it is ≤ 0, NaN or infinite "
+    "— no damping can keep a step within a bound of 0 or less"
+)
+_NO_E_CHECK = "e not checked: raise ValueError when e holds a NaN or an infinity"
+
+
+def _damping_right(e, max_step) -> float:
+    """λ = ‖e‖ / (2 max_step): the peak gain 1/(2λ) of σ/(σ² + λ²) times ‖e‖ is max_step."""
+    return float(np.linalg.norm(e)) / (2.0 * max_step)
+
+
+def _damping_hypotheses(e, max_step) -> dict:
+    size = float(np.linalg.norm(e))
+    return {
+        "forgot the 1/2: the gain σ/(σ² + λ²) peaks at 1/(2λ), so ‖Δq‖ ≤ ‖e‖/(2λ) and "
+        "λ = ‖e‖/(2·max_step)": lambda: size / max_step,
+        "returned λ²: the damping term in JJᵀ + λ²I is λ², but the function returns λ": lambda: (
+            (size / (2.0 * max_step)) ** 2
+        ),
+        "a square root: λ = √(‖e‖/max_step) — the bound ‖e‖/(2λ) is proportional to 1/λ, "
+        "not 1/λ²": lambda: np.sqrt(size / max_step),
+        "the largest |e_i| in place of the norm ‖e‖: the bound is on the whole step, "
+        "‖Δq‖ ≤ ‖e‖/(2λ)": lambda: float(np.abs(e).max()) / (2.0 * max_step),
+        "‖e‖² in place of ‖e‖: the step grows linearly with the error": lambda: (
+            size**2 / (2.0 * max_step)
+        ),
+    }
+
+
+def _damping_mistake(got, e, max_step) -> str | None:
+    """The hypothesis that gives ``got`` (to 1e-9 relative, float32: its precision), unless it
+    also gives the right λ for these inputs."""
+    right = _damping_right(e, max_step)
+    rel = tolerance(1e-9, got)
+    for name, compute in _damping_hypotheses(e, max_step).items():
+        candidate = float(compute())
+        if abs(candidate - right) <= 1e-9 * max(right, 1e-300):
+            continue
+        if abs(float(got) - candidate) <= rel * max(abs(candidate), 1e-300):
+            return name
+    return None
+
+
+def _damping_inputs(e, max_step) -> dict:
+    return {"e": np.asarray(e, dtype=float), "max_step": max_step}
+
+
+def _damping_call(sub, e, max_step) -> np.ndarray:
+    inputs = _damping_inputs(e, max_step)
+    value = sub.damping_for_step(e, max_step)
+    got = as_array(value, (), "damping_for_step(e, max_step)", inputs)
+    if got < 0:
+        raise Mismatch(
+            "the damping must be a number ≥ 0 (only λ² enters the step, so its sign means "
+            "nothing: return the non-negative one)",
+            inputs=inputs,
+            expected=_damping_right(e, max_step),
+            got=got,
+        )
+    return got
+
+
+def _damping_agrees(got, e, max_step, what: str) -> None:
+    right = _damping_right(e, max_step)
+    if abs(float(got) - right) <= tolerance(1e-12, got) * right:
+        return
+    raise Mismatch(
+        f"{what}; here ‖e‖ = {np.linalg.norm(e):.6g} and max_step = {max_step:.6g}, so λ = "
+        f"{right:.6g}, but your function returned {float(got):.6g}",
+        inputs=_damping_inputs(e, max_step),
+        expected=right,
+        got=got,
+        mistake=_damping_mistake(got, e, max_step),
+        difference=f"relative difference {abs(float(got) - right) / right:.1e}",
+    )
+
+
+def _damping_matches(sub, rng):
+    for n in (1, 2, 3, 6, 6, int(rng.integers(4, 9))):
+        e = rng.normal(size=n) * 10 ** rng.uniform(-3, 1)
+        max_step = float(10 ** rng.uniform(-2, 1))
+        shown = e.tolist() if n == 3 else e  # array_like: a list too
+        got = _damping_call(sub, shown, max_step)
+        _damping_agrees(
+            got,
+            e,
+            max_step,
+            "λ must be the smallest damping that keeps every DLS step within max_step: "
+            "‖e‖ / (2·max_step) (to 1e-12, relative)",
+        )
+
+
+def _orthogonal(rng, n: int, first: np.ndarray | None = None) -> np.ndarray:
+    """A random n × n orthogonal matrix (with ``first`` as its first column, when given)."""
+    start = rng.normal(size=(n, n))
+    if first is not None:
+        start[:, 0] = first
+    Q, R = np.linalg.qr(start)
+    Q = Q * np.sign(np.diag(R))
+    return Q
+
+
+def _sharp_jacobian(rng, e, sigma) -> np.ndarray:
+    """An m × k Jacobian (m = len(e)) whose singular value ``sigma`` has its output direction
+    along e, the others random between 1e-3 and 10: the DLS step for e then has the length
+    ‖e‖ σ/(σ² + λ²), which is largest, ‖e‖/(2λ), at σ = λ."""
+    m = len(e)
+    k = m + int(rng.integers(0, 3))
+    U = _orthogonal(rng, m, e / np.linalg.norm(e))
+    V = _orthogonal(rng, k)
+    sigmas = 10 ** rng.uniform(-3, 1, m)
+    sigmas[0] = sigma
+    S = np.zeros((m, k))
+    S[np.arange(m), np.arange(m)] = sigmas
+    return U @ S @ V.T
+
+
+def _damping_bound(sub, rng):
+    """With the student's λ, no Jacobian gives a DLS step longer than max_step: random ones, and
+    the sharpest one, whose singular value along e equals λ (then ‖Δq‖ = ‖e‖/(2λ))."""
+    # λ below 1 (where λ² < λ), above 3 (where √(2λ) < λ) and anywhere
+    for exponents in ((-3.0, -0.5), (0.5, 2.0), (-3.0, 2.0), (-3.0, 2.0)):
+        m = int(rng.integers(2, 9))
+        e = rng.normal(size=m) * 10 ** rng.uniform(-3, 0)
+        max_step = float(np.linalg.norm(e) / (2.0 * 10 ** rng.uniform(*exponents)))
+        inputs = _damping_inputs(e, max_step)
+        got = _damping_call(sub, e, max_step)
+        lam = float(got)
+        if lam == 0.0:
+            raise Mismatch(
+                "λ = 0 for an error e ≠ 0: without damping a singular value near zero makes the "
+                "step as long as you like",
+                inputs=inputs,
+                expected=_damping_right(e, max_step),
+                got=got,
+                mistake=_damping_mistake(got, e, max_step),
+            )
+        jacobians = [("whose singular value along e equals your λ", _sharp_jacobian(rng, e, lam))]
+        jacobians += [
+            ("random", rng.normal(size=(m, m + 1)) * 10 ** rng.uniform(-2, 1)) for _ in range(3)
+        ]
+        for kind, J in jacobians:
+            step = J.T @ np.linalg.solve(J @ J.T + lam**2 * np.eye(m), e)
+            length = float(np.linalg.norm(step))
+            if length > max_step * (1.0 + tolerance(1e-9, got)):
+                raise Mismatch(
+                    f"with your λ = {lam:.6g}, a Jacobian {kind} gives a DLS step of length "
+                    f"{length:.6g} rad > max_step = {max_step:.6g}: λ is too small to guarantee "
+                    "the bound for every J",
+                    inputs={**inputs, "J": J},
+                    expected=_damping_right(e, max_step),
+                    got=got,
+                    mistake=_damping_mistake(got, e, max_step),
+                )
+
+
+def _expect_value_error(sub, e, max_step, names: str | None, mistake: str) -> None:
+    inputs = {"e": np.asarray(e, dtype=float), "max_step": max_step}
+    demand = f"raise ValueError{f' naming {names}' if names else ''}"
+    try:
+        value = sub.damping_for_step(e, max_step)
+    except StudentRaised as exc:
+        if exc.kind == "ValueError" and (names is None or names in exc.message):
+            return
+        first = exc.message.strip().splitlines()[0][:200] if exc.message.strip() else ""
+        if exc.kind == "ValueError":  # raised, but the message does not say which input
+            mistake = f"the ValueError's message does not name {names}: say which input is wrong"
+        raise Mismatch(
+            f"damping_for_step must {demand} here; it raised {exc.kind}: {first}",
+            inputs=inputs,
+            mistake=mistake,
+        ) from None
+    raise Mismatch(
+        f"damping_for_step must {demand} here; it returned {format_array(value, inline=True)}",
+        inputs=inputs,
+        mistake=mistake,
+    )
+
+
+def _damping_edges(sub, rng):
+    """e = 0 needs no damping; bad max_step or e raise ValueError — once λ itself is right."""
+    m = int(rng.integers(2, 7))
+    e, max_step = rng.normal(size=m), float(rng.uniform(0.05, 1.0))
+    _damping_agrees(
+        _damping_call(sub, e, max_step),
+        e,
+        max_step,
+        "the edge cases count once λ is right: λ = ‖e‖ / (2·max_step) (to 1e-12, relative)",
+    )
+    got = _damping_call(sub, np.zeros(m), max_step)
+    if float(got) != 0.0:
+        raise Mismatch(
+            "for e = 0 the step is 0 whatever λ is, so the smallest damping is λ = 0",
+            inputs=_damping_inputs(np.zeros(m), max_step),
+            expected=0.0,
+            got=got,
+        )
+    for bad in (0.0, -float(rng.uniform(0.1, 1.0)), np.nan, np.inf):
+        _expect_value_error(sub, e, bad, "max_step", _NO_MAX_STEP_CHECK)
+    for bad in (np.nan, np.inf, -np.inf):
+        broken = e.copy()
+        broken[int(rng.integers(m))] = bad
+        _expect_value_error(sub, broken, max_step, None, _NO_E_CHECK)
+
+
 LESSON = Lesson(
     number="06",
     title="Damped least squares, Levenberg–Marquardt and the PoE solver",
@@ -982,6 +1191,21 @@ LESSON = Lesson(
                 Check("works for arms of 2 to 7 joints", 1, _poe_any_arm),
             ),
             answer=concepts.INVERSE_KINEMATICS,
+        ),
+        Exercise(
+            id="6.5",
+            function="damping_for_step",
+            title="predict, then verify: the damping that bounds every DLS step",
+            checks=(
+                Check("matches λ = ‖e‖ / (2 max_step), the smallest such λ", 1, _damping_matches),
+                Check(
+                    "keeps the DLS step within max_step, even for a J with a singular value "
+                    "equal to λ",
+                    1,
+                    _damping_bound,
+                ),
+                Check("e = 0 gives λ = 0; bad max_step or e raise ValueError", 1, _damping_edges),
+            ),
         ),
     ),
 )

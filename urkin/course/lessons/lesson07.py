@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import ast
+import re
 from collections.abc import Callable, Mapping
 from fractions import Fraction
 from functools import partial
@@ -14,7 +15,7 @@ from urkin.analytic_ik import ik_analytic
 from urkin.course import concepts
 from urkin.course.compare import Mismatch, as_array, close, format_array, tolerance
 from urkin.course.exercise import Check, Exercise, Lesson
-from urkin.course.inputs import random_arm
+from urkin.course.inputs import random_arm, random_rotation
 from urkin.course.lab import LAB_BASE_IN_WORLD, LAB_LINKS, LAB_OFFSET, fk_lab, ik_lab, lab_robot
 from urkin.course.submission import StudentRaised
 from urkin.kinematics import fk
@@ -995,6 +996,374 @@ def _wrist_is_a_solution(sub, rng):
                 )
 
 
+# --------------------------------------------------------------------------- 7.5 solution_count
+
+_MARGIN = 0.005  # m: every pose is this far from each reach boundary
+_WRIST_MARGIN = 0.05  # |sin θ5| at least this on every θ1 branch
+
+
+def _branch_geometry(robot, T, *, clip=False, d1=True, d5=True, d6=True):
+    """ρ − d4 (the wrist point's distance from the base axis, less d4) and, for each of the
+    four (θ1, θ5) branches, (wrist 1's distance from the shoulder axis, |sin θ5|); no branches
+    when ρ < d4 (with ``clip``: θ1 from an arccos clipped to [−1, 1], as if it existed).  The
+    switches leave out d1, d5 or d6 (the usual slips)."""
+    T = np.asarray(T, dtype=float)
+    z = T[:3, 2]
+    wrist = T[:3, 3] - (robot.d6 if d6 else 0.0) * z  # joint 5's centre
+    rho = float(np.hypot(wrist[0], wrist[1]))
+    rows: list[tuple[float, float]] = []
+    if rho < robot.d4 and not clip:
+        return rho - robot.d4, rows
+    tangent = float(np.arccos(np.clip(robot.d4 / rho, -1.0, 1.0)))
+    for side in (1.0, -1.0):
+        theta1 = np.arctan2(wrist[1], wrist[0]) + side * tangent + np.pi / 2
+        z1 = np.array([np.sin(theta1), -np.cos(theta1), 0.0])  # the axis of joints 2-4
+        u = np.array([np.cos(theta1), np.sin(theta1), 0.0])  # the arm's direction
+        across = np.cross(z1, z)  # the wrist link (z4) is at right angles to z1 and to z
+        sin5 = float(np.linalg.norm(across))
+        link = across / sin5 if sin5 > 0.0 else across  # (at the wrist singularity: no margin)
+        for flip in (1.0, -1.0):
+            wrist1 = wrist - (robot.d5 if d5 else 0.0) * flip * link
+            reach = float(np.hypot(u @ wrist1, wrist1[2] - (robot.d1 if d1 else 0.0)))
+            rows.append((reach, sin5))
+    return rho - robot.d4, rows
+
+
+def _ring(robot) -> tuple[float, float]:
+    return abs(abs(robot.a2) - abs(robot.a3)), abs(robot.a2) + abs(robot.a3)
+
+
+def _closing(robot, rows) -> list[bool]:
+    small, big = _ring(robot)
+    return [small <= reach <= big for reach, _ in rows]
+
+
+def _model_count(robot, T, **switches) -> int:
+    """2 solutions (the two elbows) for each (θ1, θ5) branch whose triangle closes."""
+    _, rows = _branch_geometry(robot, T, **switches)
+    return 2 * sum(_closing(robot, rows))
+
+
+def _with_margins(robot, T) -> bool:
+    """Whether T is at least _MARGIN from every reach boundary and _WRIST_MARGIN from the wrist
+    singularity, and urkin's count agrees with the branch-by-branch count."""
+    gap, rows = _branch_geometry(robot, T)
+    if abs(gap) < _MARGIN:
+        return False
+    small, big = _ring(robot)
+    for reach, sin5 in rows:
+        if sin5 < _WRIST_MARGIN or min(abs(reach - small), abs(reach - big)) < _MARGIN:
+            return False
+    return len(_ik_analytic(robot, T)) == _model_count(robot, T)
+
+
+def _count_hypotheses(robot, T) -> dict[str, Callable[[], int]]:
+    _, rows = _branch_geometry(robot, T)
+    closing = _closing(robot, rows)
+    return {
+        "always 8: the pose decides how many of the 2 × 2 × 2 branches exist": lambda: 8,
+        "the elbow triangle not checked: each (θ1, θ5) branch must also put wrist 1 within the "
+        "planar arm's ring, ||a2| − |a3|| ≤ distance from the shoulder axis ≤ |a2| + |a3|": (
+            lambda: 8 if rows else 0
+        ),
+        "the d4 cylinder not checked: a wrist point closer than d4 to the base axis has no "
+        "tangent, so no θ1 and no solution at all (a clipped arccos invents one)": lambda: (
+            _model_count(robot, T, clip=True)
+        ),
+        "the elbow decided once per θ1, as if both θ5 gave the same wrist 1: flipping θ5 turns "
+        "the wrist link (z4 = ±z1 × z) over, and wrist 1 moves to the other side of joint 5's "
+        "centre, so each θ5 needs its own triangle": lambda: 4 * sum(closing[0::2]) if rows else 0,
+        "the two elbows not counted: each branch whose triangle closes gives two solutions, "
+        "elbow up and elbow down": lambda: sum(closing),
+        "only the θ1 tangents counted: 2 when the wrist point is outside the d4 cylinder": lambda: (
+            2 if rows else 0
+        ),
+        "wrist 1's height measured from the base, not from the shoulder (d1 left out)": lambda: (
+            _model_count(robot, T, d1=False)
+        ),
+        "wrist 1 taken at joint 5's centre: step back d5 along the wrist link": lambda: (
+            _model_count(robot, T, d5=False)
+        ),
+        "the flange position p in place of the wrist point p − d6 z": lambda: _model_count(
+            robot, T, d6=False
+        ),
+    }
+
+
+def _count_probes() -> tuple[tuple[Any, np.ndarray], ...]:
+    """Fixed poses of every kind (8, far, inside and just outside the cylinder, 2, 4, 6) on
+    which the student's answers tell the hypotheses apart."""
+    rng = np.random.default_rng(75)
+    return (
+        _middle_pose(rng),
+        _far_pose(rng),
+        _near_axis_pose(rng, True),
+        _near_axis_pose(rng, False),
+        *(_middle_pose(rng, (count,)) for count in (2, 4, 6)),
+    )
+
+
+_PROBES: list[tuple[Any, np.ndarray]] = []
+
+
+def _count_mistake(sub, seen, robot, T, got: float, right: int) -> str | None:
+    """The first hypothesis that gives ``got`` here (and not the right count), and the
+    student's answers on every pose of the check before it and on the probe poses."""
+    if not _PROBES:
+        _PROBES.extend(_count_probes())
+    answers = list(seen)
+    for probe_robot, probe_T in _PROBES:
+        try:
+            answers.append((probe_robot, probe_T, _count_call(sub, probe_robot, probe_T)))
+        except (Mismatch, StudentRaised):
+            continue
+    for name, compute in _count_hypotheses(robot, T).items():
+        value = compute()
+        if value == right or value != got:
+            continue
+        if all(_count_hypotheses(r, t)[name]() == g for r, t, g in answers):
+            return name
+    return None
+
+
+def _translated(T, shift) -> np.ndarray:
+    moved = np.array(T, dtype=float)
+    moved[:3, 3] += shift
+    return moved
+
+
+def _middle_pose(rng, wanted=(8,)):
+    """A random configuration's pose with a count in ``wanted``, away from every boundary."""
+    arm = random_arm(rng)
+    while True:
+        T = _fk(arm, rng.uniform(-np.pi, np.pi, 6))
+        if _with_margins(arm, T) and _model_count(arm, T) in wanted:
+            return arm, T
+
+
+def _far_pose(rng):
+    """A pose whose wrist point is well beyond the arm's stretch from the shoulder."""
+    arm = random_arm(rng)
+    big = _ring(arm)[1]
+    while True:
+        direction = rng.normal(size=3)
+        direction /= np.linalg.norm(direction)
+        reach = big + arm.d4 + arm.d5 + arm.d6 + arm.d1
+        p = direction * reach * rng.uniform(1.1, 1.8)
+        T = make_transform(random_rotation(rng), p)
+        if _with_margins(arm, T) and _model_count(arm, T) == 0:
+            return arm, T
+
+
+def _near_axis_pose(rng, inside: bool):
+    """A random configuration's pose moved sideways so that its wrist point is inside the d4
+    cylinder (where a clipped θ1 would still close a triangle) or just outside it, with all
+    eight solutions."""
+    arm = random_arm(rng)
+    while True:
+        T = _fk(arm, rng.uniform(-np.pi, np.pi, 6))
+        wrist = T[:3, 3] - arm.d6 * T[:3, 2]
+        rho = np.hypot(wrist[0], wrist[1])
+        if rho < 1e-3:
+            continue
+        radius = arm.d4 * rng.uniform(0.05, 0.9) if inside else arm.d4 + rng.uniform(0.005, 0.03)
+        shift = np.r_[wrist[:2] * (radius / rho - 1.0), 0.0]
+        T = _translated(T, shift)
+        if not _with_margins(arm, T):
+            continue
+        if inside and _model_count(arm, T, clip=True) > 0:
+            return arm, T
+        if not inside and _model_count(arm, T) == 8:
+            return arm, T
+
+
+def _count_call(sub, robot, T) -> float:
+    inputs = {"robot": robot.name, "T": T}
+    got = as_array(sub.solution_count(robot, T), (), "solution_count(robot, T)", inputs)
+    if not float(got).is_integer():
+        raise Mismatch(
+            "solution_count must return a whole number: how many distinct solutions there are",
+            inputs=inputs,
+            got=got,
+        )
+    return float(got)
+
+
+def _count_explained(robot, T) -> str:
+    gap, rows = _branch_geometry(robot, T)
+    rho = gap + robot.d4
+    if not rows:
+        return (
+            f"the wrist point p − d6 z is {rho:.4f} m from the base axis, inside the cylinder "
+            f"of radius d4 = {robot.d4:.4f} m"
+        )
+    small, big = _ring(robot)
+    reaches = ", ".join(f"{reach:.4f}" for reach, _ in rows)
+    return (
+        f"the wrist point is {rho:.4f} m from the base axis (d4 = {robot.d4:.4f} m); on the "
+        f"four (θ1, θ5) branches wrist 1 is {reaches} m from the shoulder axis, and the "
+        f"planar arm reaches from {small:.4f} m to {big:.4f} m"
+    )
+
+
+def _count_cases(sub, cases, what: str) -> None:
+    seen: list[tuple[Any, np.ndarray, float]] = []
+    for robot, T in cases:
+        got = _count_call(sub, robot, T)
+        right = len(_ik_analytic(robot, T))
+        if got != right:
+            raise Mismatch(
+                f"{what}: {robot.name} has {right} distinct solutions for this pose, not "
+                f"{got:g} — {_count_explained(robot, T)}",
+                inputs={"robot": robot.name, "T": T},
+                expected=right,
+                got=got,
+                mistake=_count_mistake(sub, seen, robot, T, got, right),
+            )
+        seen.append((robot, T, got))
+
+
+def _count_middle_and_far(sub, rng):
+    cases = [_middle_pose(rng), _far_pose(rng), _middle_pose(rng), _far_pose(rng)]
+    cases += [_middle_pose(rng), _far_pose(rng)]
+    _count_cases(sub, cases, "8 in the middle of the workspace, 0 beyond the arm's reach")
+
+
+def _count_near_axis(sub, rng):
+    cases = [_near_axis_pose(rng, inside) for inside in (True, False, True, True, False, True)]
+    _count_cases(sub, cases, "near the base axis: 0 inside the d4 cylinder, 8 just outside it")
+
+
+def _count_partial(sub, rng):
+    cases = [_middle_pose(rng, (count,)) for count in (2, 6, 4, 6, 2, 4)]
+    _count_cases(sub, cases, "2, 4 or 6: each (θ1, θ5) branch closes its elbow triangle or not")
+
+
+# ---------------------------------------------------------------------- 7.6 nearest_solution
+
+_LIMIT = 2 * np.pi
+
+
+def _shifted(solutions: np.ndarray, q: np.ndarray, limits: bool = True) -> np.ndarray:
+    """Each angle turned by whole turns to its equivalent nearest ``q`` (within ±2π)."""
+    shifted = solutions + _TURN * np.round((q - solutions) / _TURN)
+    if limits:
+        shifted = np.where(shifted > _LIMIT, shifted - _TURN, shifted)
+        shifted = np.where(shifted < -_LIMIT, shifted + _TURN, shifted)
+    return shifted
+
+
+def _nearest(solutions: np.ndarray, q: np.ndarray, limits: bool = True, norm=None):
+    shifted = _shifted(solutions, q, limits)
+    gaps = (norm or (lambda d: np.linalg.norm(d, axis=1)))(shifted - q)
+    return shifted[int(np.argmin(gaps))]
+
+
+def _nearest_hypotheses(solutions: np.ndarray, q: np.ndarray) -> dict:
+    return {
+        "the nearest solution returned wrapped into (−π, π]: shift each angle by whole turns to "
+        "its equivalent nearest q_current": lambda: solutions[
+            int(np.argmin(np.linalg.norm(_shifted(solutions, q) - q, axis=1)))
+        ],
+        "chosen by plain distance to q_current, ignoring that angles a turn apart are the same "
+        "joint position": lambda: solutions[int(np.argmin(np.linalg.norm(solutions - q, axis=1)))],
+        "limits ignored: an equivalent beyond ±2π is not a configuration the arm can reach; "
+        "take the one a turn back": lambda: _nearest(solutions, q, limits=False),
+        "the largest joint difference instead of the Euclidean norm of the difference": lambda: (
+            _nearest(solutions, q, norm=lambda d: np.abs(d).max(axis=1))
+        ),
+        "the first solution, whatever q_current is": lambda: _shifted(solutions[:1], q)[0],
+    }
+
+
+def _pose_solutions(rng) -> tuple[Any, np.ndarray]:
+    """A random UR arm and the closed-form solutions (at least two) of a random pose."""
+    while True:
+        arm = random_arm(rng)
+        solutions = ik_analytic(arm, fk(arm, rng.uniform(-np.pi, np.pi, 6)))
+        if len(solutions) >= 2:
+            return arm, solutions
+
+
+def _nearest_compare(sub, solutions: np.ndarray, q: np.ndarray, what: str, arm) -> None:
+    inputs = {"robot": arm.name, "solutions": solutions, "q_current": q}
+    got = as_array(
+        sub.nearest_solution(solutions.copy(), q.copy()),
+        (6,),
+        "nearest_solution(solutions, q_current)",
+        inputs,
+    )
+    expected = _nearest(solutions, q)
+    if close(got, expected, 1e-12):
+        return
+    hypotheses = {
+        name: compute
+        for name, compute in _nearest_hypotheses(solutions, q).items()
+        if not close(np.asarray(compute(), dtype=float), expected, 1e-9)
+    }
+    mistake = next((n for n, compute in hypotheses.items() if close(got, compute(), 1e-9)), None)
+    raise Mismatch(what, inputs=inputs, expected=expected, got=got, mistake=mistake)
+
+
+def _nearest_random(sub, rng):
+    for _ in range(6):
+        arm, solutions = _pose_solutions(rng)
+        target = solutions[int(rng.integers(len(solutions)))]
+        # near the target turned by whole turns, each joint still well inside ±2π
+        turns = rng.integers(-1, 2, 6)
+        turns[np.abs(target + _TURN * turns) > _LIMIT - 0.4] = 0
+        q = target + _TURN * turns + rng.normal(0, 0.1, 6)
+        _nearest_compare(
+            sub, solutions, q, "the solution nearest q_current, shifted by whole turns", arm
+        )
+
+
+def _nearest_limits(sub, rng):
+    for _ in range(6):
+        arm, solutions = _pose_solutions(rng)
+        q = rng.uniform(-np.pi, np.pi, 6)
+        joints = rng.choice(6, size=2, replace=False)
+        q[joints] = rng.choice([-1.0, 1.0], 2) * rng.uniform(_LIMIT - 0.5, _LIMIT - 0.05, 2)
+        _nearest_compare(
+            sub,
+            solutions,
+            q,
+            "near ±2π the nearest equivalent would pass the limit: the one a turn back is taken",
+            arm,
+        )
+
+
+def _nearest_empty(sub, rng):
+    arm, solutions = _pose_solutions(rng)
+    near = solutions[int(rng.integers(len(solutions)))] + rng.normal(0, 0.01, 6)
+    _nearest_compare(sub, solutions, near, "the solution q_current is next to", arm)
+    empty, q = np.empty((0, 6)), rng.uniform(-np.pi, np.pi, 6)
+    inputs = {"solutions": empty, "q_current": q}
+    try:
+        value = sub.nearest_solution(empty, q)
+    except StudentRaised as exc:
+        if exc.kind == "NotImplementedError" and exc.message.strip().startswith("Exercise "):
+            raise
+        if exc.kind == "ValueError" and re.search(r"\bsolutions\b", exc.message):
+            return
+        raise Mismatch(
+            f"nearest_solution raised {exc.kind} for an empty (0, 6) array: the contract is a "
+            "ValueError whose message names solutions",
+            inputs=inputs,
+            mistake=(
+                "the error is not a ValueError naming solutions (np.argmin of an empty array "
+                "raises a ValueError that does not)"
+            ),
+        ) from None
+    raise Mismatch(
+        "nearest_solution must raise ValueError for an empty (0, 6) array (a pose out of "
+        "reach), and it returned a value",
+        inputs=inputs,
+        got=value if np.shape(value) == (6,) else None,
+        mistake="no solutions and still an answer: check len(solutions) first",
+    )
+
+
 LESSON = Lesson(
     number="07",
     title="Closed-form (geometric) inverse kinematics",
@@ -1079,6 +1448,44 @@ LESSON = Lesson(
                     1,
                     _wrist_near_singular,
                 ),
+            ),
+            answer=concepts.INVERSE_KINEMATICS,
+        ),
+        Exercise(
+            id="7.5",
+            function="solution_count",
+            title="predict, then verify: how many closed-form solutions a pose has",
+            checks=(
+                Check(
+                    "8 in the middle of the workspace, 0 beyond the arm's reach",
+                    1,
+                    _count_middle_and_far,
+                ),
+                Check(
+                    "near the base axis: 0 inside the d4 cylinder, 8 just outside it",
+                    1,
+                    _count_near_axis,
+                ),
+                Check(
+                    "2, 4 or 6 where only some (θ1, θ5) branches close their elbow triangle",
+                    1,
+                    _count_partial,
+                ),
+            ),
+            answer=concepts.INVERSE_KINEMATICS,
+        ),
+        Exercise(
+            id="7.6",
+            function="nearest_solution",
+            title="the solution a robot should move to",
+            checks=(
+                Check(
+                    "the solution nearest q_current, each angle shifted by whole turns",
+                    2,
+                    _nearest_random,
+                ),
+                Check("within ±2π when q_current is near a limit", 1, _nearest_limits),
+                Check("ValueError naming solutions when there are none", 1, _nearest_empty),
             ),
             answer=concepts.INVERSE_KINEMATICS,
         ),
