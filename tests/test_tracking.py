@@ -8,6 +8,7 @@ import pytest
 import urkin
 from urkin import trajectory as tj
 from urkin.tracking import _chase
+from urkin.tracking_report import tracking_report
 from urkin.transforms import pose_error, rot_z, wrap_angles
 
 UR3, UR5 = urkin.robot("ur3"), urkin.robot("ur5")
@@ -121,4 +122,92 @@ def test_chase_follows_the_chain_like_a_loop():
 )
 def test_bad_input_is_refused_with_the_argument_named(call, message):
     with pytest.raises((ValueError, TypeError), match=message):
+        call()
+
+
+# ------------------------------------------------------------------------- the tracking report
+
+
+def _seed_square_poses():
+    """Seed 000's square as the seed samples it: 20 points per side, corners repeated."""
+    c, h = np.array([0.25, 0.1, 0.3]), 0.075
+    corners = c + np.array([[0, -h, -h], [0, h, -h], [0, h, h], [0, -h, h], [0, -h, -h]])
+    points = np.concatenate([np.linspace(corners[k], corners[k + 1], 20) for k in range(4)])
+    return tj.pose_path(points)  # each side's end is the next side's start
+
+
+def test_the_report_counts_the_seed_sampling_errors():
+    poses = _seed_square_poses()
+    q0 = _elbow_up_start(UR3, poses[0])
+    report = tracking_report(UR3, poses, tj.track(UR3, poses, q0).q)
+    assert len(report.repeated) == 3  # three inner corners sampled twice
+    assert report.spacing[0] == 0.0
+    assert report.spacing[2] == pytest.approx(0.15 / 19, rel=1e-9)  # 7.9 mm, not 1 mm
+    assert report.position_error[0] < 1e-9
+    # between two samples 7.9 mm apart the arm strays further from the straight segment
+    exact_poses = tj.pose_path(tj.square((0.25, 0.1, 0.3), 0.15, plane="yz"))
+    exact = tj.track(UR3, exact_poses, q0).report
+    assert exact.midpoint_deviation < report.midpoint_deviation
+    assert len(exact.repeated) == 0 and exact.spacing[2] <= 1e-3
+
+
+def test_the_report_sees_misses_jumps_winding_flips_and_the_plane():
+    rng = np.random.default_rng(5)
+    turns = np.linspace(0, 1, 50)[:, None] * np.array([0, 0, 0, 0, 0, 8 * np.pi])
+    q = np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.5]) + turns  # joint 6 winds four turns
+    q[30:, 2] = -q[30:, 2]  # the elbow flips between samples 29 and 30 (a jump too)
+    poses = urkin.fk(UR5, wrap_angles(q))
+    shifted = q.copy()
+    shifted[10] += rng.normal(0, 1e-3, 6)  # one sample misses its pose
+    report = tracking_report(UR5, poses, shifted, jump=0.5)
+    assert report.position_error[0] > 1e-5
+    assert 29 in report.jumps
+    assert report.branch_flips["elbow"].tolist() == [29]
+    assert report.winding["turns"][5] == pytest.approx(4.0, abs=1e-9)
+    assert report.winding["beyond_limits"].tolist() == [6]
+    # a configuration with a joint origin below the mounting plane
+    low = np.array([0.0, 0.6, -1.5, 0.0, 1.0, 0.0])
+    heights = urkin.fk_frames(UR5, low)[1:, 2, 3]
+    pair = np.stack([low, low])
+    below = tracking_report(UR5, urkin.fk(UR5, pair), pair)
+    assert below.below_base[0] == pytest.approx(heights.min(), abs=1e-15)
+    assert below.below_base[0] < 0 and below.below_base[2] == int(np.argmin(heights)) + 1
+
+
+def test_the_report_measures_speeds_against_limits():
+    t = np.linspace(0, 2.0, 201)
+    q = np.zeros((201, 6)) + np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.5])
+    q[:, 1] += 0.5 * t  # joint 2 turns at 0.5 rad/s
+    q[:, 3] += 0.25 * t**2  # joint 4 accelerates at 0.5 rad/s²
+    limits = [1, 1, 1, 0.25, 1, 1]
+    report = tracking_report(
+        UR5, urkin.fk(UR5, q), q, duration=2.0, max_velocity=1.0, max_acceleration=limits
+    )
+    assert report.limits["peak_velocity"][1] == pytest.approx(0.5, rel=1e-9)
+    assert report.limits["peak_acceleration"][3] == pytest.approx(0.5, rel=1e-6)
+    assert report.limits["bottleneck"] == 4
+    assert report.limits["worst_ratio"] == pytest.approx(2.0, rel=1e-6)
+    assert "bottleneck" in str(report)
+
+
+def test_track_carries_its_report_and_failures():
+    poses = tj.pose_path(tj.line((0.3, 0.1, 0.3), (0.9, 0.1, 0.3)).points(0.01))
+    result = tj.track(UR3, poses, _elbow_up_start(UR3, poses[0]))
+    assert result.failures and result.report.failures == result.failures
+    assert "failed samples" in str(result.report)
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        (lambda: tracking_report(UR3, np.eye(4)[None], np.zeros((1, 6))), "M ≥ 2"),
+        (lambda: tracking_report(UR3, np.stack([np.eye(4)] * 2), np.zeros((3, 6))), "one conf"),
+        (
+            lambda: tracking_report(UR3, np.stack([np.eye(4)] * 2), np.zeros((2, 6)), duration=0),
+            "duration",
+        ),
+    ],
+)
+def test_bad_report_input_is_refused(call, message):
+    with pytest.raises(ValueError, match=message):
         call()

@@ -20,6 +20,7 @@ from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import fk
 from urkin.numerical_ik import ik
 from urkin.robots import Robot, check_robot
+from urkin.tracking_report import TrackingReport, tracking_report
 from urkin.transforms import check_transform, pose_error, wrap_angles
 
 __all__ = ["METHODS", "Tracking", "track"]
@@ -46,12 +47,16 @@ class Tracking:
         Why each failed sample failed (index → reason).
     method : str
         How the samples were solved.
+    report : TrackingReport or None
+        The :func:`urkin.tracking_report.tracking_report` of ``q`` against the poses (None for a
+        single pose); call that function for speeds against limits at a given duration.
     """
 
     q: np.ndarray
     ok: np.ndarray
     failures: dict[int, str] = field(default_factory=dict)
     method: str = "analytic"
+    report: TrackingReport | None = None
 
 
 def _limits(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
@@ -176,10 +181,10 @@ def track(
     Returns
     -------
     Tracking
-        ``q`` (M, 6), ``ok`` (M,) and the reason of every failed sample.  A failed sample
-        leaves the arm where it was.  With the closed form, a sample from which a joint would
-        have to pass its limit fails, and so do all after it (going on would need a turn
-        back).
+        ``q`` (M, 6), ``ok`` (M,), the reason of every failed sample and the tracking
+        report.  A failed sample leaves the arm where it was.  With the closed form, a
+        sample from which a joint would have to pass its limit fails, and so do all after it
+        (going on would need a turn back).
 
     Examples
     --------
@@ -224,4 +229,6 @@ def track(
     # a failed sample leaves the arm where it was
     last = np.maximum.accumulate(np.where(ok, np.arange(len(T)), -1))
     held = np.where((last >= 0)[:, None], q[np.maximum(last, 0)], start)
-    return Tracking(held, ok, dict(sorted(failures.items())), method)
+    failures = dict(sorted(failures.items()))
+    report = tracking_report(robot, T, held, failures=failures) if len(T) > 1 else None
+    return Tracking(held, ok, failures, method, report)
