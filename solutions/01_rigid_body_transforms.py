@@ -13,12 +13,14 @@
 #   invert a transform with Rᵀ instead of `np.linalg.inv` (exercise 1.2);
 # * read roll, pitch and yaw — the numbers on a pose panel — out of a rotation, also at the
 #   *gimbal lock*, where they stop being unique (exercise 1.3);
-# * turn an axis and an angle into a rotation with Rodrigues' formula (exercise 1.4), go back
-#   with the log map, and measure tiny and half-turn angles without losing precision;
+# * turn an axis and an angle into a rotation with Rodrigues' formula (exercise 1.4) and go
+#   back with the log map;
 # * tell a rotation from a reflection and from a matrix that is neither, within a stated
-#   tolerance (exercise 1.5).
+#   tolerance (exercise 1.5);
+# * measure the angle between two orientations without losing precision, from tiny angles,
+#   where arccos of the trace returns 0, to half turns (exercise 1.6).
 #
-# **Time:** about 100 minutes. **You need:** lesson 00, and matrix products in numpy (`A @ B`).
+# **Time:** about 110 minutes. **You need:** lesson 00, and matrix products in numpy (`A @ B`).
 
 # %%
 import matplotlib.pyplot as plt
@@ -998,7 +1000,133 @@ except NotImplementedError:
 # left-handed one: a reflection. And the matrix you see printed with four decimals is not the
 # matrix you computed: pasted back, it is 4e-5 away from orthonormal — a rotation at a tolerance
 # of 1e-3, not at 1e-9. A tolerance is part of the question; state it.
+
+# %% [markdown]
+# ## 8. The angle between two orientations
 #
+# Is the tool where it should be? Besides a position error, every pose test asks how far apart
+# two orientations R1 and R2 are: the angle θ of the rotation that turns one into the other,
+# A = R1ᵀR2. Section 5 ("Measuring a small angle: do not trust arccos") showed how *not* to
+# compute it: arccos((tr A − 1)/2) returns 0 below about 1e-8 rad. Its cure,
+# 2·asin(‖R1 − R2‖_F / 2√2) (urkin's `rotation_angle`), keeps tiny angles, but it has the
+# opposite weakness, noted there too: next to a half turn sin(θ/2) is flat, so a round-off of
+# 1e-16 in ‖R1 − R2‖_F costs about √1e-16 = 1e-8 rad, and arccos is no better there. What is
+# accurate at every angle is the atan2 of a sine and a cosine, the log map's formula of
+# section 5, with both read off A:
+#
+# $$\cos\theta = \tfrac12(\operatorname{tr}A - 1),\qquad
+# \sin\theta = \tfrac12\,\big\|(A - A^\mathsf{T})^\vee\big\|,\qquad
+# \theta = \operatorname{atan2}(\sin\theta,\ \cos\theta) \in [0, \pi].$$
+#
+# The sine carries the angle with full relative precision near 0, and near π too, where
+# sin θ = sin(π − θ) is not flat; the cosine only has to say on which side of π/2 θ lies.
+#
+# ### Exercise 1.6 — `rotation_distance` (4 points)
+#
+# Write `rotation_distance(R1, R2)`: the angle θ of the rotation R1ᵀR2, in radians, in
+# [0, π], as a float. `R1` and `R2` are 3×3 rotation matrices (numpy arrays of float64). It
+# must be accurate at every angle, tiny ones and half turns included: use the atan2 form above,
+# or 2·asin(‖R1 − R2‖_F / 2√2) below π/2 together with a formula through sin θ above it
+# (θ = π − arcsin(sin θ) there). Build it with numpy (`unskew` may help).
+#
+# *Checked*: (2 points) pairs (R1, R1 E) and (R1, E R1), in either order, with E a random turn
+# by θ, one θ in each tenth of [0.05, π − 0.05] rad, to 1e-12 rad; (1 point) tiny angles, one in
+# each decade from 1e-14 to 1e-9 rad, to 1e-6 relative — R1 is then a quarter turn (entries
+# 0 and ±1), so R1ᵀR2 holds no round-off and the angle is known to the last digit — and a
+# rotation compared with itself, which must give 0 or an angle below 1e-15, also for
+# rotations whose computed RᵀR has a trace a hair above 3; (1 point) half turns (θ = π
+# exactly) and turns 1e-9 to 1e-6 rad short of π, to 1e-12 rad. The feedback recognises
+# arccos of the trace (0 or about 1.5e-8 for a tiny angle), a NaN from arccos or arcsin of a
+# number that round-off pushed beyond ±1 (clip it), the arcsin or arccos form used next to π,
+# degrees, ‖R1 − R2‖_F itself, a missing factor 2 or ½, the angle of R1 R2, and swapped atan2
+# arguments. urkin's own `rotation_angle` and `pose_error`, and `so3_log`, `rotation_parts` and
+# `se3_log`, whose rotation vectors have the angle as their length, are hidden while this
+# exercise is graded (and the IK code that uses them).
+
+# %%
+def rotation_distance(R1, R2):
+    """Angle between two orientations: the rotation angle of R1ᵀ R2.
+
+    Parameters
+    ----------
+    R1, R2 : ndarray, shape (3, 3)
+        Rotation matrices.
+
+    Returns
+    -------
+    float
+        θ in radians, in [0, π]: R2 is R1 turned by θ about some axis. Accurate to round-off
+        at every angle, tiny ones and half turns included.
+    """
+    ### BEGIN SOLUTION
+    A = np.asarray(R1, dtype=float).T @ np.asarray(R2, dtype=float)
+    sin_axis = 0.5 * np.array([A[2, 1] - A[1, 2], A[0, 2] - A[2, 0], A[1, 0] - A[0, 1]])
+    cos_theta = 0.5 * (np.trace(A) - 1.0)
+    return float(np.arctan2(np.linalg.norm(sin_axis), cos_theta))
+    ### END SOLUTION
+
+
+# %%
+check("1.6", rotation_distance)
+
+# %% [markdown]
+# **Verify.** The cell below builds pairs whose angle is known to the last digit and compares
+# three formulas with it: yours, arccos of the trace and 2·asin (`rotation_angle`). For the
+# tiny angles R1 is a quarter turn, so R1ᵀR2 = E exactly, the turn that built the pair; next
+# to π, R1 is a random rotation, and the round-off of the stored matrices (about 1e-16) moves
+# the true angle far less than the 1e-12 printed. Errors are relative for the tiny angles,
+# absolute next to π; "above 1e-9" is a bound that holds whatever the round-off: at
+# π − 1e-8 the arccos and arcsin forms can only return π or π − 1.5e-8·√j for whole j.
+
+# %%
+def arccos_angle(R1, R2):
+    """arccos((tr R1ᵀR2 − 1)/2), clipped into [−1, 1]: the formula to avoid."""
+    return float(np.arccos(np.clip((np.trace(R1.T @ R2) - 1.0) / 2.0, -1.0, 1.0)))
+
+
+def error_text(error, bound=None):
+    """An error as text that does not depend on round-off: "below 1e-12", "above" a bound
+    that holds whatever the round-off, or the error itself where it is exact (1 when a tiny
+    angle comes out as 0)."""
+    if error < 1e-12:
+        return "below 1e-12"
+    return f"above {bound:.0e}" if bound is not None and error > bound else f"{error:.1e}"
+
+
+rng = np.random.default_rng(16)
+quarter_turn = np.array([[0.0, -1.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]])
+axis = np.array([2.0, -1.0, 2.0]) / 3.0
+R_random = so3_exp(rng.normal(size=3))
+cases = [
+    ("θ = 1e-12", quarter_turn, quarter_turn @ so3_exp(1e-12 * axis), 1e-12),
+    ("θ = 1e-9", quarter_turn, quarter_turn @ so3_exp(1e-9 * axis), 1e-9),
+    ("θ = π − 1e-8", R_random, R_random @ so3_exp((np.pi - 1e-8) * axis), np.pi - 1e-8),
+    ("θ = π exactly", quarter_turn, quarter_turn @ np.diag([1.0, -1.0, -1.0]), np.pi),
+]
+try:
+    rotation_distance(np.eye(3), np.eye(3))
+    yours = rotation_distance
+except NotImplementedError:
+    yours = None
+    print("(exercise 1.6 is not written yet: only the two closed formulas are shown)")
+for name, R1, R2, theta in cases:
+    tiny = theta < 1e-6
+    scale, bound = (theta, None) if tiny else (1.0, 1e-9)
+    formulas = [("arccos", arccos_angle), ("2·asin", rotation_angle)]
+    if yours is not None:
+        formulas.insert(0, ("yours", yours))
+    texts = [f"{label} {error_text(abs(f(R1, R2) - theta) / scale, bound)}"
+             for label, f in formulas]
+    kind = "relative" if tiny else "absolute"
+    print(f"{name:<14} {kind} error:  " + "   ".join(texts))
+
+# %% [markdown]
+# Arccos returns exactly 0 for both tiny angles: a relative error of 1, all of the angle lost.
+# Next to π both closed formulas are off by more than 1e-9 rad, while the atan2 form keeps
+# every digit; at exactly π all three agree. A test "are these orientations within 1e-9 rad?"
+# needs a formula that is right at every angle, or it cannot see what it claims to test.
+
+# %% [markdown]
 # ## Summary
 #
 # * A rotation matrix's columns are the axes of the turned frame in the fixed frame's
@@ -1011,7 +1139,8 @@ except NotImplementedError:
 # * Roll–pitch–yaw, `R = Rz(y) Ry(p) Rx(r)`, is for display: in radians for code, degrees only
 #   on the panel; at pitch = ±90° only r ∓ y is defined.
 # * The rotation vector ω = θk, Rodrigues' formula and the log map convert between axis–angle
-#   and matrices. Measure small angles with 2·asin(‖R1 − R2‖_F / 2√2), not arccos of a trace.
+#   and matrices. Measure small angles with 2·asin(‖R1 − R2‖_F / 2√2), not arccos of a trace;
+#   at every angle, half turns included, with atan2(½‖(A − Aᵀ)^∨‖, ½(tr A − 1)), A = R1ᵀR2.
 # * At 180° the rotation axis is ambiguous in sign, and the cross-product error sin φ · k
 #   vanishes: use the log map for orientation errors.
 # * A matrix is a rotation when RᵀR = I within a stated tolerance *and* det R = +1: the
@@ -1023,5 +1152,5 @@ except NotImplementedError:
 # rotations and translations, `Rz(θ) Tz(d) Tx(a) Rx(α)` — into the forward kinematics of every
 # UR arm, derives it symbolically with SymPy and tests a published formula against it.
 #
-# Before you move on: restart the kernel and run the whole notebook. All five check cells
+# Before you move on: restart the kernel and run the whole notebook. All six check cells
 # should report full marks.

@@ -22,7 +22,9 @@
 #   independent reference at random configurations (exercise 2.3);
 # * derive `T_0_n` of an arm you have never seen, from its DH table, in SymPy (exercise 2.4);
 # * predict where the flange is in a simple pose from the table alone, before any product
-#   of matrices, and check the prediction (exercise 2.5).
+#   of matrices, and check the prediction (exercise 2.5);
+# * rewrite a standard-DH table for the modified convention, with the tool transform that its
+#   last row leaves over, and check that both describe the same arm (exercise 2.6).
 #
 # **Time:** about 2 hours. **You need:** lesson 01 (rotations, homogeneous transforms and the
 # `T_a_b` naming).
@@ -949,13 +951,127 @@ for name in urkin.ROBOTS:
     print(f"{name:6s} flange {height:.4f} m up, prediction off by {below(miss, 1e-12)}")
 
 # %% [markdown]
+# ## Your turn: any table, rewritten for the modified convention
+#
+# "Four numbers per joint" rewrote the UR3's table for the modified convention by shifting the
+# $a$ and $\alpha$ columns down one row, and noted that this works because UR's last row has
+# $a_6 = \alpha_6 = 0$. For a general arm the last row's $a_n$ and $\alpha_n$ are not zero, and
+# the regrouping leaves them over at the end of the chain:
+#
+# $$\prod_{i=1}^{n} R_z(\theta_i)T_z(d_i)T_x(a_i)R_x(\alpha_i)
+# = \Big[\prod_{i=1}^{n} R_x(\alpha_{i-1})T_x(a_{i-1})R_z(\theta_i)T_z(d_i)\Big]\,
+# T_x(a_n)R_x(\alpha_n), \qquad a_0 = \alpha_0 = 0 .$$
+#
+# The modified chain alone ends at a frame on the last joint's axis; the fixed **tool
+# transform** $T_x(a_n)R_x(\alpha_n)$ carries it on to the standard flange frame.
+#
+# ### Exercise 2.6 — `to_modified` (4 points)
+#
+# Write `to_modified(rows)`. `rows` is a standard-DH table as a numpy array of shape `(n, 3)`,
+# one row $(d_i, a_i, \alpha_i)$ per joint (metres, metres, radians; $1 \le n \le 7$; the
+# row order of exercise 2.4, of `robot.dh_table()` and of `dh_chain`). Return a pair
+# `(modified_rows, T_tool)`:
+#
+# * `modified_rows`, shape `(n, 3)`: row $i$ is $(d_i, a_{i-1}, \alpha_{i-1})$, with
+#   $a_0 = \alpha_0 = 0$ — the row order `dh_chain(..., convention="modified")` reads;
+# * `T_tool`, shape `(4, 4)`: the homogeneous transform $T_x(a_n)R_x(\alpha_n)$ of the last
+#   row's length and twist (the identity for a UR arm);
+#
+# so that for every `q` (θ_i = q_i)
+#
+# ```
+# dh_chain(modified_rows, q, convention="modified") @ T_tool == dh_chain(rows, q)
+# ```
+#
+# Do not change `rows` in place. *Checked* (to 1e-12; a float32 answer to float32's
+# precision), for the seven UR arms and for new arms of 1 to 7 joints with random lengths and
+# twists: (2 points) that the equation above holds at eight random `q` per table; (1 point)
+# the modified table (twists compared modulo $2\pi$); (1 point) `T_tool` ($T_x$ and $R_x$
+# commute, so $R_x(\alpha_n)T_x(a_n)$ is the same matrix). The feedback recognises rows copied
+# unchanged, $a$ and $\alpha$ shifted the wrong way (from row $i+1$), only one of $a$ and
+# $\alpha$ shifted, $d$ shifted with them, and a tool transform that is forgotten, incomplete,
+# inverted or taken from the first row. Nothing is hidden: urkin has no function for this.
+
+# %%
+def to_modified(rows):
+    """Rewrite a standard-DH table for the modified (Craig) convention.
+
+    Parameters
+    ----------
+    rows : ndarray, shape (n, 3)
+        Standard-DH table, one row (d_i, a_i, alpha_i) per joint: metres, metres, radians.
+
+    Returns
+    -------
+    modified_rows : ndarray, shape (n, 3)
+        Row i is (d_i, a_(i-1), alpha_(i-1)), with a_0 = alpha_0 = 0.
+    T_tool : ndarray, shape (4, 4)
+        Tx(a_n) Rx(alpha_n), so that the modified chain times T_tool is the standard chain.
+    """
+    ### BEGIN SOLUTION
+    d, a, alpha = np.asarray(rows, dtype=float).T
+    modified_rows = np.column_stack([d, np.r_[0.0, a[:-1]], np.r_[0.0, alpha[:-1]]])
+    c, s = np.cos(alpha[-1]), np.sin(alpha[-1])
+    T_tool = np.array(
+        [
+            [1.0, 0.0, 0.0, a[-1]],
+            [0.0, c, -s, 0.0],
+            [0.0, s, c, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ]
+    )
+    return modified_rows, T_tool
+    ### END SOLUTION
+
+
+# %%
+check("2.6", to_modified)
+
+# %% [markdown]
+# Verify it on the UR3: its modified table should be the one "Four numbers per joint" built,
+# its tool transform the identity, and the modified chain should agree with `urkin.fk`. Then an
+# arm whose last row has $a_n \ne 0$ and $\alpha_n \ne 0$, where the tool transform matters.
+
+# %%
+try:
+    ur3_modified, ur3_tool = to_modified(ur3.dh_table())
+except NotImplementedError:
+    print("exercise 2.6 is not written yet: nothing to verify")
+else:
+    ur3_modified = np.asarray(ur3_modified, dtype=float)
+    print("UR3, modified rows (d_i, a_(i-1), α_(i-1)), m and rad:")
+    for row in ur3_modified:
+        print("   " + "  ".join(f"{v + 0.0:9.5f}" for v in row))
+    print("same as the table built in 'Four numbers per joint':",
+          np.array_equal(ur3_modified, modified_table))
+    print("T_tool is the identity:", np.array_equal(ur3_tool, np.eye(4)))
+    q_verify = np.random.default_rng(26).uniform(-np.pi, np.pi, (1000, 6))
+    T_modified = dh_chain(ur3_modified, q_verify, convention="modified") @ ur3_tool
+    ur3_gap = np.abs(T_modified - urkin.fk(ur3, q_verify)).max()
+    print(f"modified chain @ T_tool against urkin.fk, 1000 random q: largest difference "
+          f"{below(ur3_gap, 1e-12)}")
+
+    bent_rows = np.array([[0.2, 0.1, np.pi / 2], [0.0, 0.3, 0.0], [0.05, 0.25, -np.pi / 3]])
+    bent_modified, bent_tool = to_modified(bent_rows)
+    q_bent = np.random.default_rng(27).uniform(-np.pi, np.pi, (1000, 3))
+    T_standard = dh_chain(bent_rows, q_bent)
+    T_without = dh_chain(np.asarray(bent_modified, dtype=float), q_bent, convention="modified")
+    with_gap = np.abs(T_without @ bent_tool - T_standard).max()
+    short = np.linalg.norm(T_without[:, :3, 3] - T_standard[:, :3, 3], axis=1)
+    print(f"\na 3-joint arm with a_3 = 0.25 m and α_3 = −60°: with T_tool, largest difference "
+          f"{below(with_gap, 1e-12)}")
+    print(f"without T_tool the chain stops a_3 = 0.25 m short of the flange at every q: "
+          f"largest |distance − 0.25 m| {below(np.abs(short - 0.25).max(), 1e-12)}")
+
+# %% [markdown]
 # ## Summary
 #
 # * A DH table holds four numbers per joint: $\theta$ and $d$ about and along the joint axis
 #   $z_{i-1}$, $a$ and $\alpha$ along and about the common normal $x_i$. The standard link
 #   transform is $R_z(\theta)T_z(d)T_x(a)R_x(\alpha)$; the modified one,
-#   $R_x(\alpha_{i-1})T_x(a_{i-1})R_z(\theta_i)T_z(d_i)$, needs a rewritten table. A table
-#   without its convention is not a robot.
+#   $R_x(\alpha_{i-1})T_x(a_{i-1})R_z(\theta_i)T_z(d_i)$, needs a rewritten table: $a$ and
+#   $\alpha$ move down one row, and the last row's $T_x(a_n)R_x(\alpha_n)$ becomes a fixed
+#   tool transform (exercise 2.6). A table without its convention is not a robot.
 # * Forward kinematics is the product of the link transforms, base first. Derived in SymPy with
 #   symbolic lengths, one formula serves all seven UR arms; its terms depend on $q_1$, $q_2$,
 #   $q_5$, $q_6$ and the sums $q_2+q_3$ and $q_2+q_3+q_4$.
@@ -973,5 +1089,5 @@ for name in urkin.ROBOTS:
 # * **Inverse kinematics**: the way back, from a pose to joint angles — numerically with the
 #   Jacobian, and in closed form, where a UR arm has up to eight answers.
 #
-# Before you move on: restart the kernel and run the whole notebook. All five check cells
+# Before you move on: restart the kernel and run the whole notebook. All six check cells
 # should report full marks.

@@ -24,9 +24,11 @@
 # * compute a UR arm's flange pose by the product of exponentials, in the *space* form and
 #   the *body* form, matching lesson 02's DH forward kinematics (exercises 3.3 and 3.4);
 # * go back from a pose to its twist with the matrix logarithm, including its two special
-#   cases, θ = 0 and θ = π (exercise 3.5).
+#   cases, θ = 0 and θ = π (exercise 3.5);
+# * turn space screw axes into body screw axes with the adjoint of $M^{-1}$, written
+#   yourself (exercise 3.7).
 #
-# **Time:** about 100 minutes. **You need:** lesson 01 (transforms, skew matrices, Rodrigues'
+# **Time:** about 110 minutes. **You need:** lesson 01 (transforms, skew matrices, Rodrigues'
 # formula, the exponential map) and lesson 02 (DH frames and forward kinematics).
 
 # %%
@@ -1241,6 +1243,113 @@ for q, name in ((np.zeros(6), "q = 0"), (q_moved, "q_moved")):
 # axis records the line, not where along it the motor sits.
 
 # %% [markdown]
+# ## 10. Body screw axes by hand
+#
+# Section 6 turned the UR5's space screw axes into body ones in one line,
+# `adjoint(inv_transform(M_ur5)) @ S_ur5`: column by column $B_i = \mathrm{Ad}(M^{-1})\,S_i$,
+# joint i's home axis seen from the end effector's home frame. There urkin's `adjoint` did the
+# work; now you write it. Section 5 gave the adjoint of a rigid motion $T = (R, p)$,
+#
+# $$\mathrm{Ad}(T) = \begin{bmatrix} R & 0 \\ [p]R & R \end{bmatrix} ,$$
+#
+# the 6×6 matrix that carries a twist $(\omega, v)$ through $T$; for the body axes it is taken
+# of $T = M^{-1}$, whose rotation and translation are $R^\mathsf{T}$ and $-R^\mathsf{T}p$ when
+# $M = (R, p)$ (lesson 01's inverse). Section 6's identity $M^{-1}[S]M = [\mathrm{Ad}(M^{-1})S]$
+# gives a second way to the same numbers, handy for checking.
+#
+# ### Exercise 3.7 — `body_from_space` (4 points)
+#
+# Write `body_from_space(S, M)`: the body screw axes `B`, shape `(6, n)`, of an arm with space
+# screw axes `S` (shape `(6, n)`, one per column, each ordered (ω, v), any number of joints
+# n ≥ 1) and home pose `M` (shape `(4, 4)`, the end effector at q = 0, metres): column i of B
+# is $\mathrm{Ad}(M^{-1})$ `S[:, i]`. Build the 6×6 adjoint $[[R, 0], [[p]R, R]]$ of $M^{-1}$
+# yourself — with the rotation and translation of $M^{-1}$, not of M — and apply it to every
+# column (one matrix product does them all). `skew` and `inv_transform` may help; urkin's
+# `adjoint` and `body_screws`, which answer the exercise, are hidden while it is graded.
+#
+# *Checked* (to 1e-12; a float32 answer to float32's precision): (1 point) the body screw
+# axes of random UR arms, from `urkin.poe.space_screws`, some on a random mounting and with a
+# random tool, against `urkin.poe.body_screws`; (2 points) random screw axes, every n from 1
+# to 7, with a random M; (1 point) with your B, urkin's body form `urkin.poe.fk_body(M, B, q)`
+# gives the pose of its space form `urkin.poe.fk_space(M, S, q)` at random q, to 1e-9 — for
+# random UR arms and an arm of six random joints. The feedback recognises Ad(M) in place of
+# Ad(M⁻¹), $[p]R$ in the top-right block, an R left untransposed, the translation of $M^{-1}$
+# taken as −p or with a lost sign, $R[p]$ for $[p]R$, the (v, ω) order, a transposed adjoint
+# or B, S returned unchanged, and six columns hard-coded.
+
+# %%
+def body_from_space(S, M):
+    """Body screw axes B = Ad(M⁻¹) S, from the space screw axes and the home pose.
+
+    Parameters
+    ----------
+    S : array_like, shape (6, n)
+        Space-frame screw axes, one per column, each ordered (ω, v).
+    M : array_like, shape (4, 4)
+        Pose of the end effector at q = 0, in the space frame (metres).
+
+    Returns
+    -------
+    ndarray, shape (6, n)
+        Body-frame screw axes, ordered (ω, v): column i is Ad(M⁻¹) S[:, i], joint i's home
+        axis seen from the end effector's frame at q = 0.
+    """
+    ### BEGIN SOLUTION
+    M = np.asarray(M, dtype=float)
+    R_inv = M[:3, :3].T  # M⁻¹ = (Rᵀ, −Rᵀ p)
+    p_inv = -R_inv @ M[:3, 3]
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R_inv
+    Ad[3:, :3] = skew(p_inv) @ R_inv
+    return Ad @ np.asarray(S, dtype=float)
+    ### END SOLUTION
+
+
+# %%
+check("3.7", body_from_space)
+
+# %% [markdown]
+# **Verify.** The body form with your B must put the end effector exactly where the space
+# form puts it. The cell below takes the UR5 with section 6's tool and mounting, turns its
+# space screw axes into body axes with your `body_from_space` (with urkin's `adjoint` while
+# the exercise is not written yet), and compares urkin's `fk_body` with its `fk_space` at 1000
+# random configurations. It then repeats section 6's observation with your function: the
+# same arm and tool bolted down at the origin has the same B.
+
+# %%
+try:
+    body_from_space(S_ur5, M_ur5)
+    to_body, source = body_from_space, "your body_from_space"
+except NotImplementedError:
+    def to_body(S, M):
+        """Ad(M⁻¹) S with urkin's adjoint, standing in for exercise 3.7 until it is written."""
+        return adjoint(inv_transform(M)) @ S
+
+    source = "urkin's adjoint (exercise 3.7 is not written yet)"
+print(f"body screw axes from {source}")
+
+arm = ur5.with_base(mount).with_tool(tool)
+S_arm, M_arm = urkin.poe.space_screws(arm)
+B_arm = np.asarray(to_body(S_arm, M_arm), dtype=float)
+q_many = np.random.default_rng(37).uniform(-np.pi, np.pi, (1000, 6))
+gap = np.abs(urkin.poe.fk_body(M_arm, B_arm, q_many)
+             - urkin.poe.fk_space(M_arm, S_arm, q_many)).max()
+print(f"mounted UR5 with a tool: body form against space form, 1000 random q, largest entry "
+      f"difference {difference_text(gap)}")
+
+S_home, M_home = urkin.poe.space_screws(ur5.with_tool(tool))  # the same arm, not moved
+moved = np.abs(np.asarray(to_body(S_home, M_home), dtype=float) - B_arm).max()
+print(f"its B against the B of the same arm and tool at the origin: largest difference "
+      f"{difference_text(moved)}")
+print("last body axis, the flange's z axis seen from the tool:", B_arm[:, 5].round(4) + 0.0)
+
+# %% [markdown]
+# The two forms agree to round-off at every configuration, and B did not notice that the arm
+# was bolted somewhere else: seen from the end effector, the joints have not moved. The tool
+# sits 15 cm along the flange's z axis, so the last joint still turns about the tool's own
+# z axis, (0, 0, 1, 0, 0, 0).
+
+# %% [markdown]
 # ## Summary
 #
 # * A **twist** $(\omega, v)$ is a rigid body's angular velocity and the velocity of its point
@@ -1254,9 +1363,10 @@ for q, name in ((np.zeros(6), "q = 0"), (q_moved, "q_moved")):
 # * **Space form:** $T = e^{[S_1]q_1} \cdots e^{[S_n]q_n} M$, with the home axes $S_i$ in the
 #   base frame and **M the end-effector pose at q = 0** (not the base frame). The current axes
 #   are $\mathrm{Ad}(e^{[S_1]q_1}\cdots)S_i$; the home axes never move.
-# * **Body form:** $T = M e^{[B_1]q_1} \cdots e^{[B_n]q_n}$ with $B = \mathrm{Ad}(M^{-1})S$. A new
-#   tool changes M and B (not S); a new mounting changes M and S — only the body screws B are
-#   invariant to it.
+# * **Body form:** $T = M e^{[B_1]q_1} \cdots e^{[B_n]q_n}$ with $B = \mathrm{Ad}(M^{-1})S$,
+#   the adjoint $\mathrm{Ad}(T) = \begin{bmatrix} R & 0 \\ [p]R & R \end{bmatrix}$ taken of
+#   $M^{-1} = (R^\mathsf{T}, -R^\mathsf{T}p)$. A new tool changes M and B (not S); a new
+#   mounting changes M and S — only the body screws B are invariant to it.
 # * From a standard-DH table, $S_i$ is the z axis of frame i−1 through its origin at q = 0
 #   (`urkin.poe.space_screws`); both DH conventions give the same S. Space form, body form and
 #   DH agree to round-off on all seven UR arms.
@@ -1278,5 +1388,5 @@ for q, name in ((np.zeros(6), "q = 0"), (q_moved, "q_moved")):
 # column from the joint axes — the current axes drawn in section 5 — and numerically by finite
 # differences, and it finds the configurations where a UR arm loses a direction of motion.
 #
-# Before you move on: restart the kernel and run the whole notebook. All six check cells
+# Before you move on: restart the kernel and run the whole notebook. All seven check cells
 # should report full marks.

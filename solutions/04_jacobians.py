@@ -16,14 +16,15 @@
 # * compute the geometric Jacobian from DH frames, and a numeric one with a step size you can
 #   justify (exercises 4.1 and 4.2);
 # * compute the space and body Jacobians from screw axes, as *Modern Robotics* does
-#   (exercises 4.3 and 4.4);
+#   (exercises 4.3 and 4.4), and convert the geometric Jacobian into the space one
+#   (exercise 4.10);
 # * say which singular families a configuration is in, and which motion it loses there
 #   (exercises 4.5 and 4.7);
-# * measure how far a configuration is from trouble with manipulability and the condition
-#   number (exercise 4.6 computes the first), and find the joint torques that hold a load
-#   (exercise 4.8).
+# * measure how far a configuration is from trouble with manipulability (exercise 4.6), the
+#   velocity and force ellipsoids and the condition number (exercise 4.9), and find the joint
+#   torques that hold a load (exercise 4.8).
 #
-# **Time:** about 3 hours. **You need:** lesson 01 (rotations, the cross product as a matrix),
+# **Time:** about 3½ hours. **You need:** lesson 01 (rotations, the cross product as a matrix),
 # lesson 02 (DH frames, the UR forward kinematics) and lesson 03 (screw axes $(\omega, v)$,
 # the home pose $M$, space and body forward kinematics).
 
@@ -1132,9 +1133,11 @@ else:
 # torques of length at most 1, $\|J_v^\mathsf{T} f\| \le 1$? With $J_v = U\Sigma V^\mathsf{T}$
 # the answer is again an ellipsoid, with the **same** axes $U$ as the velocity ellipsoid and
 # the **inverse** lengths $1/\sigma_i$ (N per N·m). The two are duals: a direction the flange
-# moves in slowly is one it pushes in strongly. At the elbow singularity the force ellipsoid
-# stretches to infinity along the arm — the straight arm carries a push along itself in its
-# structure, with no torque at all — while the velocity ellipsoid goes flat there.
+# moves in slowly is one it pushes in strongly. At an elbow singularity the force ellipsoid of
+# wrist 1, which lies on the arm's line, stretches to infinity along the arm — the straight arm
+# carries a push along itself in its structure, with no torque at all — while its velocity
+# ellipsoid goes flat. The flange's, with the wrist bent, only grows long: at s = 1 its
+# $\sigma_3$ is still 0.016 m/s per rad/s (section 7), a force semi-axis of about 61 N per N·m.
 
 # %%
 rng = np.random.default_rng(4)
@@ -1153,7 +1156,7 @@ for k in (0, 100):
     torques = (urkin.jacobian(ur5, path[k]).T @ hold).round(2) + 0.0  # + 0.0: no "-0.00"
     print(f"  s = {path_s[k]:.2f}: " + "  ".join(f"{t:7.2f}" for t in torques))
 
-# the force ellipsoid is infinite at s = 1: that arm is left out
+# at s = 1 the force ellipsoid is about 61 N per N·m long (1/σ3): too long to draw, left out
 U_drawn, sigma_drawn = U_shown[:-1], sigma_shown[:-1, None, :]
 urkin.plot.ellipsoid_panels(
     ur5, path[shown[:-1]],
@@ -1263,6 +1266,219 @@ else:
     print(f"largest difference from your holding_torques: {below(gap, 1e-6)} N·m")
 
 # %% [markdown]
+# ### Exercise 4.9 — `ellipsoid_axes` (4 points)
+#
+# Section 7 drew the flange's velocity ellipsoids and followed the condition number towards
+# the elbow singularity, and the statics section drew the force ellipsoids beside them, with
+# the same axes and inverse lengths. Both took the SVD of $J_v$ inline. Now put the method
+# into one function, one that gives an honest answer at a singularity too.
+#
+# Write `ellipsoid_axes(J_v)` for a position Jacobian `J_v` of shape `(3, n)`, $n \ge 3$
+# (m/s per rad/s), returning a tuple `(U, velocity, force, condition)`:
+#
+# * `U`, shape `(3, 3)`: the principal directions as unit columns, column $i$ along the
+#   $i$-th semi-axis. Each column may have either sign; `U` need not be right-handed (and may
+#   be);
+# * `velocity`, shape `(3,)`: the semi-axes $\sigma_1 \ge \sigma_2 \ge \sigma_3$ of the
+#   velocity ellipsoid $\{J_v \dot q : \|\dot q\| \le 1\}$ — the singular values of $J_v$,
+#   largest first (m/s per rad/s);
+# * `force`, shape `(3,)`: the force ellipsoid's semi-axes $1/\sigma_i$ in the same column
+#   order (N per N·m), and `np.inf` where $\sigma_i$ counts as zero;
+# * `condition`, a float: $\sigma_1/\sigma_3$, and `np.inf` when $\sigma_3$ counts as zero.
+#
+# A singular value **counts as zero** when $\sigma_i \le 10^{-12}\,\sigma_1$. At a singularity
+# the SVD returns round-off of order $10^{-16}\sigma_1$, only sometimes an exact 0, and
+# $1/\sigma$ of round-off is a meaningless huge number, not a force the arm can hold. Take the
+# singular values of $J_v$ itself (`np.linalg.svd`): the eigenvalues of $J_v J_v^\mathsf{T}$
+# are $\sigma_i^2$ with round-off of about $10^{-16}\sigma_1^2$, so their square roots cannot
+# resolve any $\sigma$ below about $10^{-8}\sigma_1$.
+#
+# *Checked* in float64 (float32 cannot resolve $10^{-12}\sigma_1$): velocity and `U` to 1e-9,
+# `U` column by column up to sign, force and condition to 1e-9 relative, and `inf` must be
+# `inf`. (2 points) The flange position Jacobians of random UR arms at random configurations
+# (`urkin.position_jacobian`), against the SVD; (1 point) random 3 × 3, 3 × 6 and 3 × 7
+# matrices; (1 point) singular ones — wrist 1's position Jacobian (3 × 3, or 3 × 6 with zero
+# columns for joints 4–6; exercise 4.7) at stretched and folded elbows, where the force
+# semi-axis along the arm and the condition number must be `inf`, not a huge finite number or
+# NaN, and a 3 × 7 matrix of rank 2 — and a 3 × 7 matrix with $\sigma_3 = 10^{-5}\sigma_1$,
+# small but not zero, where everything must be finite. Every test matrix has semi-axes at
+# least 5 % of $\sigma_1$ apart, so its directions are well defined. The feedback recognises
+# $\sigma^2$ (the eigenvalues of $JJ^\mathsf{T}$) for $\sigma$, rows of $V^\mathsf{T}$
+# (directions in joint space) for `U`, semi-axes sorted ascending, force semi-axes equal to
+# $\sigma$ or in descending order, the condition number upside down ($\sigma_3/\sigma_1$) or
+# squared (that of $JJ^\mathsf{T}$), round-off used as a singular value, square roots of
+# eigenvalues at a singularity, a zero threshold far above round-off, and float32. Nothing of
+# urkin is hidden: it has no ellipsoid function.
+
+# %%
+def ellipsoid_axes(J_v):
+    """Principal axes of the velocity and force ellipsoids of a position Jacobian.
+
+    Parameters
+    ----------
+    J_v : array_like, shape (3, n), n ≥ 3
+        A position Jacobian (m/s per rad/s), such as ``urkin.position_jacobian(robot, q)``.
+
+    Returns
+    -------
+    U : ndarray, shape (3, 3)
+        The principal directions as unit columns (each up to its sign), column i along
+        semi-axis i.
+    velocity : ndarray, shape (3,)
+        The semi-axes σ1 ≥ σ2 ≥ σ3 of the velocity ellipsoid {J_v q̇ : ‖q̇‖ ≤ 1}
+        (m/s per rad/s).
+    force : ndarray, shape (3,)
+        The semi-axes 1/σ_i of the force ellipsoid {f : ‖J_vᵀ f‖ ≤ 1}, in the same order
+        (N per N·m); inf where σ_i ≤ 1e-12 σ1.
+    condition : float
+        σ1/σ3; inf when σ3 ≤ 1e-12 σ1.
+    """
+    ### BEGIN SOLUTION
+    U, sigma, _ = np.linalg.svd(np.asarray(J_v, dtype=float))
+    zero = sigma <= 1e-12 * sigma.max()  # round-off, not a semi-axis (σ1 is the largest)
+    force = np.full(3, np.inf)
+    force[~zero] = 1.0 / sigma[~zero]
+    condition = np.inf if zero[2] else float(sigma[0] / sigma[2])
+    return U, sigma, force, condition
+    ### END SOLUTION
+
+
+# %%
+check("4.9", ellipsoid_axes)
+
+# %% [markdown]
+# Verify what the numbers mean without another SVD, on section 7's path. The smallest joint
+# rates that give the flange the velocity $\sigma_i u_i$, $\dot q = J_v^\mathsf{T}(J_v
+# J_v^\mathsf{T})^{-1}\sigma_i u_i$, must have length exactly 1 — the velocity ellipsoid's
+# edge —, and the force $u_i/\sigma_i$ must need joint torques $J_v^\mathsf{T} f$ of length
+# exactly 1 — the force ellipsoid's edge. Then the stretched elbow: the flange at s = 1, and
+# wrist 1 of exercise 4.7's stretched UR5, whose position Jacobian is built from the frames.
+
+# %%
+def edge_gap(J_v, U, velocity, force):
+    """Largest |‖q̇‖ − 1| and |‖τ‖ − 1| over the semi-axes with a finite force."""
+    J_v = np.asarray(J_v, dtype=float)
+    gaps = []
+    for i in np.flatnonzero(np.isfinite(force)):
+        q_dot = J_v.T @ np.linalg.solve(J_v @ J_v.T, velocity[i] * U[:, i])  # smallest q̇
+        torques = J_v.T @ (force[i] * U[:, i])
+        gaps += [abs(np.linalg.norm(q_dot) - 1.0), abs(np.linalg.norm(torques) - 1.0)]
+    return max(gaps)
+
+
+def listed(values, decimals):
+    return ", ".join(f"{v:.{decimals}f}" for v in values)
+
+
+frames_stretched = urkin.fk_frames(ur5, q_stretched)  # exercise 4.7's UR5, q3 = 0
+o3 = frames_stretched[3, :3, 3]
+J_wrist_exact = np.column_stack([np.cross(frames_stretched[i, :3, 2],
+                                          o3 - frames_stretched[i, :3, 3]) for i in range(3)])
+arm_line = o3 - frames_stretched[1, :3, 3]  # shoulder to wrist 1
+try:
+    U_mid, velocity_mid, force_mid, condition_mid = ellipsoid_axes(Jv_path[50])
+except NotImplementedError:
+    print("exercise 4.9 is not written yet: nothing to verify")
+else:
+    _, _, force_end, condition_end = ellipsoid_axes(Jv_path[100])
+    U_w1, _, force_w1, condition_w1 = ellipsoid_axes(J_wrist_exact)
+    U_mid, U_w1 = np.asarray(U_mid, dtype=float), np.asarray(U_w1, dtype=float)
+    print(f"s = 0.50, the flange: velocity semi-axes {listed(velocity_mid, 3)} m/s per rad/s, "
+          f"force semi-axes {listed(force_mid, 3)} N per N·m, condition {condition_mid:.2f}")
+    gap = edge_gap(Jv_path[50], U_mid, np.asarray(velocity_mid), np.asarray(force_mid))
+    print(f"  ‖q̇‖ and ‖τ‖ at the ellipsoids' edges differ from 1 by {below(gap, 1e-12)}")
+    print(f"s = 1.00, the flange: force semi-axes {listed(force_end, 2)} N per N·m, "
+          f"condition {condition_end:.1f}")
+    print(f"stretched elbow, wrist 1: force semi-axes {listed(force_w1, 3)} N per N·m, "
+          f"condition {condition_w1}")
+    angle = np.arctan2(np.linalg.norm(np.cross(U_w1[:, 2], arm_line)), abs(U_w1[:, 2] @ arm_line))
+    print(f"  angle between its infinite force axis and the arm: {below(angle, 1e-9)} rad")
+
+# %% [markdown]
+# The flange at the end of section 7's path is close to trouble — joint torques of length
+# 1 N·m hold a push of 61 N along the arm, and the condition number is about 67 — but it is
+# not singular. Wrist 1, on the arm's line, is: its force ellipsoid is infinite along the arm,
+# and so is its condition number. (At a singularity the SVD returns $\sigma_3 = 0$ exactly or
+# round-off near $10^{-16}\sigma_1$, depending on the arithmetic; the threshold makes the
+# answer `inf` either way.)
+#
+# ### Exercise 4.10 — `space_from_geometric` (3 points)
+#
+# Section 5 related the geometric Jacobian to the space Jacobian of lesson 03: the same
+# $\omega$, the velocity taken at the base origin instead of the flange origin, $v_s = v + p
+# \times \omega$, and the rows in twist order. It left the conversion to
+# `urkin.poe.space_from_geometric`; now write it yourself.
+#
+# Write `space_from_geometric(J, T)`: the space Jacobian of *Modern Robotics*, rows
+# $(\omega;\ v_s)$, shape `(6, n)`, from the geometric Jacobian `J` of shape `(6, n)` — rows
+# $[v;\ \omega]$ of the flange origin, in base coordinates — at the flange pose `T`, shape
+# `(4, 4)`, in the base frame. Column $i$ is $(\omega_i,\ v_i + p \times \omega_i)$ with $p$ =
+# `T[:3, 3]` the flange origin (m). `J` may have any number of columns $n \ge 1$.
+#
+# *Checked* (to 1e-10): (2 points) `urkin.jacobian` and `urkin.fk` of random UR arms at
+# random configurations, against `urkin.poe.jacobian_space(S, q)` with the arm's space screw
+# axes; (1 point) random `J` with 1 to 7 columns and random poses `T`. The feedback recognises
+# rows not reordered, the lever's sign ($v - p \times \omega$), $p$ of the base (zero), from
+# `T`'s third column or in flange coordinates, the body Jacobian ($\mathrm{Ad}_{T^{-1}}J_s$),
+# the conversion run backwards, a transposed result and six columns assumed. urkin's
+# Jacobians and conversions (`urkin.jacobian`, `urkin.poe.jacobian_space`, `jacobian_body`,
+# `space_from_geometric`, `geometric_from_space`, and what uses them) are hidden while it is
+# graded; `np.cross` and `urkin.transforms.adjoint` are not.
+
+# %%
+def space_from_geometric(J, T):
+    """Space Jacobian (ω; v_s) from the geometric Jacobian [v; ω] of the flange origin.
+
+    Parameters
+    ----------
+    J : array_like, shape (6, n)
+        Geometric Jacobian: rows 0–2 the velocity v of the flange origin (m/s per rad/s),
+        rows 3–5 the angular velocity ω (rad/s per rad/s), both in base coordinates.
+    T : array_like, shape (4, 4)
+        The flange pose in the base frame (metres).
+
+    Returns
+    -------
+    ndarray, shape (6, n)
+        Rows (ω; v_s) with v_s = v + p × ω, p = T[:3, 3]: the velocity of the body point at
+        the base origin (twist order, as in Modern Robotics).
+    """
+    ### BEGIN SOLUTION
+    J = np.asarray(J, dtype=float)
+    p = np.asarray(T, dtype=float)[:3, 3]  # the flange origin, base coordinates
+    v, omega = J[:3], J[3:]
+    return np.vstack([omega, v + np.cross(p, omega, axis=0)])
+    ### END SOLUTION
+
+
+# %%
+check("4.10", space_from_geometric)
+
+# %% [markdown]
+# Verify it from the definition, without any Jacobian formula: $v_s$ is the velocity of the
+# point of the flange body that is passing through the base origin. That point sits at
+# $x = T^{-1}(0, 0, 0, 1)$ in flange coordinates; nudge each joint by $\pm h$, see where
+# `urkin.fk` carries it, and divide by $2h$ (the UR5 at `q_demo`).
+
+# %%
+T_demo = urkin.fk(ur5, q_demo)
+x_body = np.linalg.solve(T_demo, [0.0, 0.0, 0.0, 1.0])  # the body point at the base origin
+h_fd = 1e-6
+v_s_moved = np.column_stack([((urkin.fk(ur5, q_demo + h_fd * e) - urkin.fk(ur5, q_demo - h_fd * e))
+                              @ x_body)[:3] / (2 * h_fd) for e in np.eye(6)])
+try:
+    J_s_yours = np.asarray(space_from_geometric(J_demo, T_demo), dtype=float)
+except NotImplementedError:
+    print("exercise 4.10 is not written yet: nothing to compare")
+else:
+    print(f"rows 3–5 (v_s) against the moved body point: largest difference "
+          f"{below(np.abs(J_s_yours[3:] - v_s_moved).max(), 1e-8)} m/s per rad/s")
+    print(f"rows 0–2 (ω) against the geometric J's last rows: largest difference "
+          f"{below(np.abs(J_s_yours[:3] - J_demo[3:]).max(), 1e-12)} rad/s per rad/s")
+    print(f"column 1 (joint 1 turns about the base z axis, through the base origin): |v_s| "
+          f"{below(np.abs(J_s_yours[3:, 0]).max(), 1e-12)} m/s per rad/s")
+
+# %% [markdown]
 # ## Summary
 #
 # * The geometric Jacobian maps joint rates to the flange's $[v;\ \omega]$ in the base frame,
@@ -1292,5 +1508,5 @@ else:
 # use the pseudo-inverse, **damped least squares** $J^\mathsf{T}(JJ^\mathsf{T} +
 # \lambda^2 I)^{-1}$ and Levenberg–Marquardt, and watch the condition number.
 #
-# Before you move on: restart the kernel and run the whole notebook. All eight check cells
+# Before you move on: restart the kernel and run the whole notebook. All ten check cells
 # should report full marks.

@@ -14,8 +14,9 @@
 #   error as a twist and pairs it with the matching Jacobian.
 #
 # You will also audit the solvers of seed reports 000 and 001 — one line that would crash, one
-# update with a minus sign where a product belongs, a loop condition the wrong way round — and
-# finish with a race between all four of urkin's methods on 1000 random poses.
+# update with a minus sign where a product belongs, a loop condition the wrong way round —, run
+# a race between all four of urkin's methods on 1000 random poses, and finish by writing the
+# body-frame twin of the matrix-log solver.
 #
 # **What you will be able to do**
 #
@@ -25,7 +26,8 @@
 # * write Levenberg–Marquardt IK that adapts its damping, rejects steps that raise the error
 #   and restarts when it is trapped, even from the singular home pose (exercise 6.3);
 # * write *Modern Robotics*' matrix-log solver, pairing the space error twist with the space
-#   Jacobian (exercise 6.4);
+#   Jacobian (exercise 6.4), and its body-frame twin, pairing the body error twist with the
+#   body Jacobian (exercise 6.6);
 # * choose the damping that guarantees a bound on the step length, and show that no smaller
 #   damping does (exercise 6.5);
 # * compare IK methods fairly, with every success verified by forward kinematics, and explain
@@ -1210,7 +1212,155 @@ for method in ["nr", "poe"]:
 # All of this is on targets drawn uniformly in joint space; the histograms show the long
 # tails of the restarts. `bench/ik.py` in the repository runs the same comparison against
 # Robotics Toolbox for Python's `ik_LM` and *Modern Robotics*' `IKinSpace`.
+
+# %% [markdown]
+# ## 8. Your turn: the body-frame solver
 #
+# Section 5 showed two matched pairings, the space twist with the space Jacobian and the body
+# twist $[V_b] = \log(T^{-1}T_\text{target})$ with the body Jacobian $J_b$, and ran both in
+# `twist_newton`; exercise 6.4 asked you to write only the first, *Modern Robotics'*
+# `IKinSpace`. The second is `IKinBody`. Everything in it lives in the current flange frame:
+# the arm is given by its **body screw axes** $B_i$ (`urkin.poe.body_screws`), the forward
+# kinematics is $T(q) = M\,e^{[B_1]q_1}\cdots e^{[B_n]q_n}$ (`urkin.poe.fk_body`), and the body
+# Jacobian (`urkin.poe.jacobian_body`) maps joint rates to the body twist of the flange.
+#
+# ### Exercise 6.6 — `ik_poe_body` (4 points)
+#
+# Write `ik_poe_body(M, B, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50)`,
+# Modern Robotics' `IKinBody`, for an arm given by its home pose `M` (4 × 4) and body screw
+# axes `B` (6 × n) — the arguments of `ik_poe`, in the same order, with `B` where `S` was:
+# starting from `q0` (n,), repeat
+#
+# * the error twist $[V_b] = \log(T(q)^{-1}\,T_\text{target})$, with
+#   $T(q) = M\,e^{[B_1]q_1}\cdots e^{[B_n]q_n}$ (`urkin.poe.fk_body(M, B, q)`) and the log of
+#   lesson 03 (your `twist_log`, or `urkin.transforms.se3_log`);
+# * stop when $\|\omega_b\| \le$ `tol_omega` and $\|v_b\| \le$ `tol_v`, or after
+#   `max_iterations` steps;
+# * $q \leftarrow q + J_b^{+}(q)\,V_b$ with the body Jacobian at the current $q$
+#   (`urkin.poe.jacobian_body(B, q)`, or your `jacobian_body` of lesson 04), recomputed at
+#   every iteration, and `np.linalg.pinv`: full steps, no limit, no wrapping;
+#
+# and return $q$ (n,).
+#
+# *Checked* (to 1e-9; the target to 1e-8 m and 1e-8 rad; a float32 answer to float32's
+# precision): (1 point) that `max_iterations=1` returns exactly one step $q_0 + J_b^{+}V_b$,
+# and (1 point) that `max_iterations=2` returns exactly two, the second with $V_b$ and $J_b$
+# computed at the new $q$ — both on UR arms and on random arms of 2 to 7 joints, some starting
+# with an angle beyond $\pm\pi$; the feedback recognises the space twist with the body
+# Jacobian, the body twist with the space Jacobian, 6.4's space pairing (with fewer than six
+# joints its least-squares step is a different one), the twist of the inverse motion,
+# (v, ω) order, `fk_space` used with body screws, a Jacobian that is not recomputed and
+# wrapped angles; (1 point) that it reaches targets on UR arms from 0.3 rad away on every
+# joint; (1 point) and on random arms of 2 to 7 joints (fewer than six: reachable targets
+# only). urkin's IK solvers are hidden while it is graded; `fk_body`, `jacobian_body` and
+# `se3_log` are not.
+
+# %%
+def ik_poe_body(M, B, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    """Inverse kinematics by Newton–Raphson on the body error twist (IKinBody).
+
+    Parameters
+    ----------
+    M : array_like, shape (4, 4)
+        End-effector pose at q = 0.
+    B : array_like, shape (6, n)
+        Body screw axes (in the end-effector frame at q = 0), one per column, ordered (ω, v).
+    T_target : array_like, shape (4, 4)
+        Target end-effector pose.
+    q0 : array_like, shape (n,)
+        Initial guess, radians.
+    tol_omega, tol_v : float
+        Stop when the error twist's angular part is at most tol_omega (rad) and its linear
+        part at most tol_v (m).
+    max_iterations : int
+        Largest number of Newton steps.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The joint angles after the last step.
+    """
+    ### BEGIN SOLUTION
+    M, B, T_target = (np.asarray(x, dtype=float) for x in (M, B, T_target))
+    q = np.asarray(q0, dtype=float).copy()
+    for _ in range(max_iterations):
+        V = se3_log(inv_transform(urkin.poe.fk_body(M, B, q)) @ T_target)
+        if np.linalg.norm(V[:3]) <= tol_omega and np.linalg.norm(V[3:]) <= tol_v:
+            break
+        q = q + np.linalg.pinv(urkin.poe.jacobian_body(B, q)) @ V
+    return q
+    ### END SOLUTION
+
+
+# %%
+check("6.6", ik_poe_body)
+
+# %% [markdown]
+# Verify it against your space solver of exercise 6.4, from the same start. Section 5 showed
+# that where $J$ is invertible the two steps are one, $J_s^{-1}V_s = J_b^{-1}V_b$: on the UR5
+# both solvers should take the same iterates. With fewer than six joints $J$ is not square and
+# `pinv` gives the least-squares step, which depends on the frame the error is measured in: on
+# a four-joint arm the iterates should part ways, and both solvers should still reach a
+# reachable target. Every answer is verified with forward kinematics.
+
+# %%
+def pose_miss(T_found, T_goal):
+    """max(position error in m, rotation angle in rad) between two poses."""
+    return max(np.linalg.norm(T_found[:3, 3] - T_goal[:3, 3]),
+               rotation_angle(T_found[:3, :3], T_goal[:3, :3]))
+
+
+def iterates_apart(M, S, B, T_goal, q_start, steps):
+    """Largest difference between the body and the space solver after `steps` iterations."""
+    body = ik_poe_body(M, B, T_goal, q_start, max_iterations=steps)
+    space = ik_poe(M, S, T_goal, q_start, max_iterations=steps)
+    return np.abs(np.asarray(body, dtype=float) - np.asarray(space, dtype=float)).max()
+
+
+try:
+    q_body = np.asarray(ik_poe_body(M_ur5, B_ur5, T_twist_goal, q_twist_start), dtype=float)
+    q_space = np.asarray(ik_poe(M_ur5, S_ur5, T_twist_goal, q_twist_start), dtype=float)
+except NotImplementedError:
+    print("exercises 6.4 and 6.6 must both be written: nothing to verify yet")
+else:
+    print("UR5, section 5's target, start 0.3 rad away on every joint:")
+    for steps in (1, 2, 3):
+        apart = iterates_apart(M_ur5, S_ur5, B_ur5, T_twist_goal, q_twist_start, steps)
+        print(f"  after {steps} iteration{'s' * (steps > 1)} the body and space iterates differ "
+              f"by {below(apart, 1e-9)} rad")
+    for name, q_found in (("body", q_body), ("space", q_space)):
+        miss = pose_miss(urkin.fk(ur5, q_found), T_twist_goal)
+        print(f"  {name:>5} solver: urkin.fk of its answer misses the target by {below(miss)}")
+
+    rng = np.random.default_rng(66)
+    axes_4 = rng.normal(size=(4, 3))
+    axes_4 /= np.linalg.norm(axes_4, axis=1, keepdims=True)
+    S_4 = urkin.poe.screw_axis(axes_4, rng.uniform(-0.4, 0.4, (4, 3))).T  # 4 joints, (6, 4)
+    M_4 = urkin.transforms.make_transform(p=[0.3, 0.1, 0.4])
+    B_4 = urkin.transforms.adjoint(inv_transform(M_4)) @ S_4
+    q_4_true = np.array([0.7, -0.4, 1.1, 0.5])
+    T_4_goal = urkin.poe.fk_space(M_4, S_4, q_4_true)  # reachable: the arm reaches it here
+    q_4_start = q_4_true + 0.3
+    print("\na four-joint arm, a reachable target, start 0.3 rad away on every joint:")
+    apart = iterates_apart(M_4, S_4, B_4, T_4_goal, q_4_start, 1)
+    print(f"  after 1 iteration the body and space iterates differ by more than 1e-3 rad: "
+          f"{bool(apart > 1e-3)}")
+    q_4_body = np.asarray(ik_poe_body(M_4, B_4, T_4_goal, q_4_start), dtype=float)
+    q_4_space = np.asarray(ik_poe(M_4, S_4, T_4_goal, q_4_start), dtype=float)
+    for name, q_found in (("body", q_4_body), ("space", q_4_space)):
+        miss = pose_miss(urkin.poe.fk_space(M_4, S_4, q_found), T_4_goal)
+        print(f"  {name:>5} solver: fk_space of its answer misses the target by "
+              f"{below(miss, 1e-9)}")
+    print(f"  the two answers differ by {below(np.abs(q_4_body - q_4_space).max(), 1e-9)} rad")
+
+# %% [markdown]
+# On the UR5 the two solvers are one iteration written in two frames. On the four-joint arm
+# they take different paths — each step is the least-squares step in its own frame's twist
+# coordinates — and still meet at the same joint angles, because the target is reachable and
+# both errors vanish exactly there. Which frame to use is then a matter of convenience: the
+# one in which the arm's screw axes are at hand (`urkin.poe` gives both).
+
+# %% [markdown]
 # ## Summary
 #
 # * Newton's step divides the error along each singular direction by $\sigma_i$; near a
@@ -1232,8 +1382,8 @@ for method in ["nr", "poe"]:
 # * $(J^\mathsf{T}J)^{-1}J^\mathsf{T}$ is the pseudo-inverse only for full column rank; the
 #   SVD and the damped forms work at any rank.
 # * The **matrix-log error** $V_s = \log(T_\text{target}T^{-1})$ is a space twist and pairs
-#   with the space Jacobian; $V_b = \log(T^{-1}T_\text{target})$ pairs with the body Jacobian.
-#   Mixing them points the step the wrong way.
+#   with the space Jacobian; $V_b = \log(T^{-1}T_\text{target})$ pairs with the body Jacobian
+#   (exercises 6.4 and 6.6). Mixing them points the step the wrong way.
 # * On 1000 random UR5 poses, every method but fixed-λ DLS reaches (nearly) every target with
 #   restarts; LM does it with the fewest iterations and restarts.
 #
@@ -1246,5 +1396,5 @@ for method in ["nr", "poe"]:
 # inverse kinematics: all eight solutions, exactly, in microseconds, including at the singular
 # poses where iterative solvers struggle.
 #
-# Before you move on: restart the kernel and run the whole notebook. All five check cells
+# Before you move on: restart the kernel and run the whole notebook. All six check cells
 # should report full marks.

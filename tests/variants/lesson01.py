@@ -452,6 +452,49 @@ CORRECT = [
         "        return VERDICTS[0]\n"
         "    return VERDICTS[1] if np.linalg.det(R) > 0 else VERDICTS[2]\n",
     ),
+    # ------------------------------------------------------------ 1.6 rotation_distance
+    Variant(
+        "1.6",
+        "2·asin below π/2, π − arcsin(sin θ) above",
+        """
+def rotation_distance(R1, R2):
+    R1, R2 = np.asarray(R1, dtype=float), np.asarray(R2, dtype=float)
+    half_sine = min(np.linalg.norm(R1 - R2) / (2 * np.sqrt(2)), 1.0)  # sin(θ/2)
+    if half_sine < np.sqrt(0.5):  # θ < π/2
+        return 2 * np.arcsin(half_sine)
+    A = R1.T @ R2
+    sine = np.linalg.norm(unskew(A - A.T)) / 2
+    return np.pi - np.arcsin(min(sine, 1.0))
+""",
+    ),
+    Variant(
+        "1.6",
+        "seed 000's cross products of the columns, and their dot products",
+        """
+def rotation_distance(R1, R2):
+    columns_1, columns_2 = np.asarray(R1).T, np.asarray(R2).T
+    sine = np.linalg.norm(0.5 * np.cross(columns_1, columns_2).sum(axis=0))
+    cosine = 0.5 * (np.sum(columns_1 * columns_2) - 1.0)
+    return np.arctan2(sine, cosine)
+""",
+    ),
+    Variant(
+        "1.6",
+        "a log map of its own, as a 0-d array",
+        """
+def rotation_log(R):
+    sin_axis = unskew(0.5 * (R - R.T))
+    s = np.linalg.norm(sin_axis)
+    theta = np.arctan2(s, 0.5 * (np.trace(R) - 1.0))
+    if s == 0.0:
+        return np.zeros(3) if theta < 1.0 else np.array([theta, 0.0, 0.0])
+    return theta * sin_axis / s
+
+
+def rotation_distance(R1, R2):
+    return np.linalg.norm(rotation_log(np.transpose(R1) @ R2), keepdims=False)
+""",
+    ),
 ]
 
 WRONG = [
@@ -1206,5 +1249,114 @@ WRONG = [
     ),
     Variant(
         "1.5", "a constant", "def rotation_verdict(R, tol=1e-9):\n    return 'rotation'\n", points=0
+    ),
+    # ------------------------------------------------------------ 1.6 rotation_distance
+    Variant(
+        "1.6",
+        "arccos of the trace, clipped",
+        "def rotation_distance(R1, R2):\n"
+        "    cosine = (np.trace(R1.T @ R2) - 1) / 2\n"
+        "    return np.arccos(np.clip(cosine, -1.0, 1.0))\n",
+        points=2,
+        mistake="arccos((tr R1ᵀR2 − 1)/2)",
+    ),
+    Variant(
+        "1.6",
+        "arccos of the trace, not clipped",
+        "def rotation_distance(R1, R2):\n    return np.arccos((np.trace(R1.T @ R2) - 1) / 2)\n",
+        points=2,
+        mistake="clip it into [−1, 1]",
+    ),
+    Variant(
+        "1.6",
+        "2·asin everywhere (urkin's rotation_angle written out)",
+        "def rotation_distance(R1, R2):\n"
+        "    ratio = np.linalg.norm(R1 - R2) / (2 * np.sqrt(2))\n"
+        "    return 2 * np.arcsin(min(ratio, 1.0))\n",
+        points=3,
+        mistake="used near π",
+    ),
+    Variant(
+        "1.6",
+        "2·asin below π/2, arccos above",
+        "def rotation_distance(R1, R2):\n"
+        "    ratio = np.linalg.norm(R1 - R2) / (2 * np.sqrt(2))\n"
+        "    if ratio < np.sqrt(0.5):\n"
+        "        return 2 * np.arcsin(ratio)\n"
+        "    return np.arccos(np.clip((np.trace(R1.T @ R2) - 1) / 2, -1, 1))\n",
+        points=3,
+        mistake="used near π",
+    ),
+    Variant(
+        "1.6",
+        "degrees",
+        "def rotation_distance(R1, R2):\n"
+        "    A = R1.T @ R2\n"
+        "    s = np.linalg.norm(unskew(A - A.T)) / 2\n"
+        "    return np.degrees(np.arctan2(s, (np.trace(A) - 1) / 2))\n",
+        points=0,
+        mistake="degrees",
+    ),
+    Variant(
+        "1.6",
+        "the Frobenius norm itself",
+        "def rotation_distance(R1, R2):\n    return np.linalg.norm(R1 - R2)\n",
+        points=0,
+        mistake="is not the angle itself",
+    ),
+    Variant(
+        "1.6",
+        "asin without the factor 2",
+        "def rotation_distance(R1, R2):\n"
+        "    return np.arcsin(min(np.linalg.norm(R1 - R2) / (2 * np.sqrt(2)), 1.0))\n",
+        points=0,
+        mistake="the factor 2 is missing",
+    ),
+    Variant(
+        "1.6",
+        "the angle of R1 @ R2",
+        "def rotation_distance(R1, R2):\n"
+        "    A = R1 @ R2\n"
+        "    s = np.linalg.norm(unskew(A - A.T)) / 2\n"
+        "    return np.arctan2(s, (np.trace(A) - 1) / 2)\n",
+        points=0,
+        mistake="the angle of R1 R2",
+    ),
+    Variant(
+        "1.6",
+        "atan2's arguments swapped",
+        "def rotation_distance(R1, R2):\n"
+        "    A = R1.T @ R2\n"
+        "    s = np.linalg.norm(unskew(A - A.T)) / 2\n"
+        "    return np.arctan2((np.trace(A) - 1) / 2, s)\n",
+        points=0,
+        mistake="atan2's arguments swapped",
+    ),
+    Variant(
+        "1.6",
+        "sin θ without the ½",
+        "def rotation_distance(R1, R2):\n"
+        "    A = R1.T @ R2\n"
+        "    return np.arctan2(np.linalg.norm(unskew(A - A.T)), (np.trace(A) - 1) / 2)\n",
+        points=0,
+        mistake="the ½ is missing",
+    ),
+    Variant(
+        "1.6",
+        "urkin's so3_log (hidden)",
+        "def rotation_distance(R1, R2):\n    return np.linalg.norm(so3_log(R1.T @ R2))\n",
+        points=0,
+    ),
+    Variant(
+        "1.6",
+        "urkin's rotation_angle (hidden)",
+        "def rotation_distance(R1, R2):\n    return urkin.transforms.rotation_angle(R1, R2)\n",
+        points=0,
+    ),
+    Variant(
+        "1.6",
+        "a constant",
+        "def rotation_distance(R1, R2):\n    return 0.0\n",
+        points=0,
     ),
 ]

@@ -10,6 +10,24 @@ _UR5_CLOSED_FORM = """
     reach = a2 * np.cos(q2) + a3 * np.cos(q2 + q3)
 """
 
+_TO_MODIFIED = """
+def to_modified(rows):
+    d, a, alpha = np.asarray(rows, dtype=float).T
+    table = np.column_stack([{d}, {a}, {alpha}])
+    return table, {tool}
+"""
+
+
+def _to_modified(
+    d="d",
+    a="np.r_[0.0, a[:-1]]",
+    alpha="np.r_[0.0, alpha[:-1]]",
+    tool="make_transform(p=[a[-1], 0, 0]) @ make_transform(rot_x(alpha[-1]))",
+):
+    """A to_modified whose table columns and tool are the given expressions."""
+    return _TO_MODIFIED.format(d=d, a=a, alpha=alpha, tool=tool)
+
+
 CORRECT = [
     Variant(
         "2.1",
@@ -162,6 +180,48 @@ def symbolic_fk(rows):
 def upright_flange(robot):
     up = robot.d1 + abs(robot.a2) + abs(robot.a3) + robot.d5
     return [0, -robot.d4 - robot.d6, up]
+""",
+    ),
+    Variant(
+        "2.6",
+        "a loop over rows, lists returned, Rx(α_n) before Tx(a_n)",
+        """
+def to_modified(rows):
+    previous_a, previous_alpha = 0.0, 0.0
+    table = []
+    for d_i, a_i, alpha_i in rows:
+        table.append([d_i, previous_a, previous_alpha])
+        previous_a, previous_alpha = a_i, alpha_i
+    tool = make_transform(rot_x(previous_alpha)) @ make_transform(p=[previous_a, 0.0, 0.0])
+    return table, tool.tolist()
+""",
+    ),
+    Variant(
+        "2.6",
+        "np.roll with the first row zeroed, urkin's dh_transform for the tool",
+        """
+from urkin.kinematics import dh_transform as link_transform
+
+
+def to_modified(rows):
+    table = np.array(rows, dtype=float)
+    table[:, 1:] = np.roll(table[:, 1:], 1, axis=0)
+    table[0, 1:] = 0.0
+    return table, link_transform(0.0, 0.0, rows[-1][1], rows[-1][2])
+""",
+    ),
+    Variant(
+        "2.6",
+        "float32",
+        """
+def to_modified(rows):
+    rows = np.asarray(rows, dtype=np.float32)
+    table = rows.copy()
+    table[1:, 1:], table[0, 1:] = rows[:-1, 1:], 0
+    c, s = np.cos(rows[-1, 2]), np.sin(rows[-1, 2])
+    tool = np.array([[1, 0, 0, rows[-1, 1]], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1]],
+                    dtype=np.float32)
+    return table, tool
 """,
     ),
 ]
@@ -397,5 +457,56 @@ def upright_flange(robot):
 """,
         points=2,
         mistake="instead of predicted",
+    ),
+    Variant(
+        "2.6",
+        "rows copied unchanged, no tool",
+        _to_modified(a="a", alpha="alpha", tool="np.eye(4)"),
+        points=0,
+        mistake="copied unchanged",
+    ),
+    Variant(
+        "2.6",
+        "a and α shifted up (a_(i+1))",
+        _to_modified(a="np.r_[a[1:], 0.0]", alpha="np.r_[alpha[1:], 0.0]"),
+        points=1,
+        mistake="shifted the wrong way",
+    ),
+    Variant(
+        "2.6",
+        "α shifted, a kept",
+        _to_modified(a="a"),
+        points=1,
+        mistake="α shifted but not a",
+    ),
+    Variant(
+        "2.6",
+        "a shifted, α kept, Tx(a_n) as the tool",
+        _to_modified(alpha="alpha", tool="make_transform(p=[a[-1], 0, 0])"),
+        points=0,
+        mistake="a shifted but not α",
+    ),
+    Variant(
+        "2.6",
+        "d shifted with a and α",
+        _to_modified(d="np.r_[0.0, d[:-1]]"),
+        points=1,
+        mistake="d shifted too",
+    ),
+    Variant(
+        "2.6",
+        "the tool transform forgotten",
+        _to_modified(tool="np.eye(4)"),
+        points=1,
+        mistake="tool transform forgotten",
+    ),
+    Variant(
+        "2.6",
+        "the tool transform inverted",
+        _to_modified(
+            tool="np.linalg.inv(make_transform(p=[a[-1], 0, 0]) @ make_transform(rot_x(alpha[-1])))"
+        ),
+        points=1,
+        mistake="T_tool inverted",
     ),
 ]

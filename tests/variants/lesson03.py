@@ -371,6 +371,61 @@ def screw_to_joint(S):
     return (point - (point @ w) * w).astype(np.float32)
 """,
     ),
+    # ------------------------------------------------------------------------------ 3.7
+    Variant(
+        "3.7",
+        "the matrix form M⁻¹ [S] M, column by column",
+        """
+def body_from_space(S, M):
+    S = np.asarray(S, dtype=float)
+    M = np.asarray(M, dtype=float)
+    M_inv = inv_transform(M)
+    B = np.empty_like(S)
+    for i in range(S.shape[1]):
+        conjugated = M_inv @ twist_matrix(S[:, i]) @ M  # = [Ad(M⁻¹) S_i]
+        W = conjugated[:3, :3]
+        B[:, i] = [W[2, 1], W[0, 2], W[1, 0], *conjugated[:3, 3]]
+    return B
+""",
+    ),
+    Variant(
+        "3.7",
+        "np.block with np.linalg.inv(M), a list of columns",
+        """
+def body_from_space(S, M):
+    T = np.linalg.inv(M)
+    R, p = T[:3, :3], T[:3, 3]
+    P = np.array([[0, -p[2], p[1]], [p[2], 0, -p[0]], [-p[1], p[0], 0]])
+    Ad = np.block([[R, np.zeros((3, 3))], [P @ R, R]])
+    columns = [Ad @ np.asarray(S)[:, i] for i in range(np.shape(S)[1])]
+    return np.column_stack(columns)
+""",
+    ),
+    Variant(
+        "3.7",
+        "solving Ad(M) B = S",
+        """
+def body_from_space(S, M):
+    R, p = M[:3, :3], M[:3, 3]
+    Ad_M = np.zeros((6, 6))
+    Ad_M[:3, :3] = Ad_M[3:, 3:] = R
+    Ad_M[3:, :3] = skew(p) @ R
+    return np.linalg.solve(Ad_M, S)
+""",
+    ),
+    Variant(
+        "3.7",
+        "cross products: (Rᵀω, Rᵀ(v + ω × p)), float32",
+        """
+def body_from_space(S, M):
+    S = np.asarray(S, dtype=float)
+    R, p = M[:3, :3], M[:3, 3]
+    w, v = S[:3], S[3:]
+    w_body = R.T @ w
+    v_body = R.T @ (v + np.cross(w.T, p).T)
+    return np.vstack([w_body, v_body]).astype(np.float32)
+""",
+    ),
 ]
 
 _TWIST_V_THETA = """
@@ -1065,6 +1120,157 @@ def screw_to_joint(S):
         "3.6",
         "refuses every screw axis",
         "def screw_to_joint(S):\n    raise ValueError('S is not accepted')\n",
+        points=0,
+    ),
+    # ------------------------------------------------------------------------------ 3.7
+    Variant(
+        "3.7",
+        "Ad(M) instead of Ad(M⁻¹)",
+        """
+def body_from_space(S, M):
+    R, p = M[:3, :3], M[:3, 3]
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R
+    Ad[3:, :3] = skew(p) @ R
+    return Ad @ S
+""",
+        points=0,
+        mistake="Ad(M) S instead of Ad(M⁻¹) S",
+    ),
+    Variant(
+        "3.7",
+        "[p]R in the top-right block",
+        """
+def body_from_space(S, M):
+    T = inv_transform(M)
+    R, p = T[:3, :3], T[:3, 3]
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R
+    Ad[:3, 3:] = skew(p) @ R
+    return Ad @ S
+""",
+        points=0,
+        mistake="in the top-right block",
+    ),
+    Variant(
+        "3.7",
+        "B returned as (v, ω)",
+        """
+def body_from_space(S, M):
+    T = inv_transform(M)
+    R, p = T[:3, :3], T[:3, 3]
+    w, v = R @ S[:3], skew(p) @ R @ S[:3] + R @ S[3:]
+    return np.vstack([v, w])
+""",
+        points=0,
+        mistake="(v, ω) order",
+    ),
+    Variant(
+        "3.7",
+        "np.linalg.inv(M) for p, but M's own R",
+        """
+def body_from_space(S, M):
+    R = M[:3, :3]
+    p = np.linalg.inv(M)[:3, 3]
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R
+    Ad[3:, :3] = skew(p) @ R
+    return Ad @ S
+""",
+        points=0,
+        mistake="R not transposed",
+    ),
+    Variant(
+        "3.7",
+        "the translation of M⁻¹ taken as −p",
+        """
+def body_from_space(S, M):
+    R, p = M[:3, :3].T, -M[:3, 3]
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R
+    Ad[3:, :3] = skew(p) @ R
+    return Ad @ S
+""",
+        points=0,
+        mistake="taken as −p",
+    ),
+    Variant(
+        "3.7",
+        "R[p] instead of [p]R",
+        """
+def body_from_space(S, M):
+    T = inv_transform(M)
+    R, p = T[:3, :3], T[:3, 3]
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R
+    Ad[3:, :3] = R @ skew(p)
+    return Ad @ S
+""",
+        points=0,
+        mistake="R[p] in the bottom-left block",
+    ),
+    Variant(
+        "3.7",
+        "six columns hard-coded",
+        """
+def body_from_space(S, M):
+    T = inv_transform(M)
+    R, p = T[:3, :3], T[:3, 3]
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R
+    Ad[3:, :3] = skew(p) @ R
+    B = np.zeros((6, 6))
+    for i in range(6):
+        B[:, i] = Ad @ S[:, i]
+    return B
+""",
+        points=2,
+        mistake="six columns hard-coded",
+    ),
+    Variant(
+        "3.7",
+        "six columns hard-coded, into an array shaped like S",
+        """
+def body_from_space(S, M):
+    T = inv_transform(M)
+    R, p = T[:3, :3], T[:3, 3]
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R
+    Ad[3:, :3] = skew(p) @ R
+    B = np.zeros_like(S)
+    for i in range(min(6, S.shape[1])):
+        B[:, i] = Ad @ S[:, i]
+    return B
+""",
+        points=2,
+        mistake="six columns hard-coded",
+    ),
+    Variant(
+        "3.7",
+        "the adjoint itself returned",
+        """
+def body_from_space(S, M):
+    T = inv_transform(M)
+    R, p = T[:3, :3], T[:3, 3]
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R
+    Ad[3:, :3] = skew(p) @ R
+    return Ad
+""",
+        points=0,
+        mistake="the 6 × 6 adjoint itself",
+    ),
+    Variant(
+        "3.7",
+        "S returned unchanged",
+        "def body_from_space(S, M):\n    return np.array(S, dtype=float)\n",
+        points=0,
+        mistake="S returned unchanged",
+    ),
+    Variant(
+        "3.7",
+        "urkin's adjoint (hidden)",
+        "def body_from_space(S, M):\n    return adjoint(inv_transform(M)) @ S\n",
         points=0,
     ),
 ]

@@ -462,6 +462,84 @@ def holding_torques(robot, q, mass, r_com):
     return Jc.T @ np.array([0.0, 0.0, 9.81 * mass])
 """,
     ),
+    # ------------------------------------------------------------------------------ 4.9
+    Variant(
+        "4.9",
+        "eigh of J Jᵀ, σ as |J_vᵀ u|",
+        """
+def ellipsoid_axes(J_v):
+    J = np.asarray(J_v, dtype=float)
+    _, vectors = np.linalg.eigh(J @ J.T)
+    U = vectors[:, ::-1]  # eigh sorts ascending: largest first
+    sigma = np.linalg.norm(J.T @ U, axis=0)  # |J_vᵀ u_i| = σ_i, exact to round-off of σ1
+    zero = sigma <= 1e-12 * sigma[0]
+    with np.errstate(divide="ignore"):
+        force = np.where(zero, np.inf, 1.0 / sigma)
+    condition = np.inf if zero[2] else sigma[0] / sigma[2]
+    return U, sigma, force, condition
+""",
+    ),
+    Variant(
+        "4.9",
+        "right-handed U, lists, np.linalg.cond",
+        """
+def ellipsoid_axes(J_v):
+    U, s, _ = np.linalg.svd(np.array(J_v, dtype=float), full_matrices=False)
+    if np.linalg.det(U) < 0:
+        U[:, 2] = -U[:, 2]  # right-handed
+    force = [float("inf") if x <= 1e-12 * s[0] else 1 / x for x in s]
+    condition = np.linalg.cond(J_v) if s[2] > 1e-12 * s[0] else float("inf")
+    return [U, list(s), force, condition]
+""",
+    ),
+    Variant(
+        "4.9",
+        "columns negated, rank counted",
+        """
+def ellipsoid_axes(J_v):
+    U, s, _ = np.linalg.svd(J_v)
+    rank = int(np.sum(s > 1e-12 * s[0]))
+    force = np.array([1 / s[i] if i < rank else np.inf for i in range(3)])
+    return -U, s, force, s[0] / s[2] if rank == 3 else np.inf
+""",
+    ),
+    # ------------------------------------------------------------------------------ 4.10
+    Variant(
+        "4.10",
+        "adjoint of a pure translation",
+        """
+def space_from_geometric(J, T):
+    J = np.asarray(J, dtype=float)
+    shift = np.eye(4)
+    shift[:3, 3] = np.asarray(T)[:3, 3]
+    return urkin.transforms.adjoint(shift) @ np.vstack([J[3:], J[:3]])
+""",
+    ),
+    Variant(
+        "4.10",
+        "through the body Jacobian and Ad_T",
+        """
+def space_from_geometric(J, T):
+    J, T = np.asarray(J, dtype=float), np.asarray(T, dtype=float)
+    R = T[:3, :3]
+    J_body = np.vstack([R.T @ J[3:], R.T @ J[:3]])
+    return urkin.transforms.adjoint(T) @ J_body
+""",
+    ),
+    Variant(
+        "4.10",
+        "column by column with a skew matrix",
+        """
+def space_from_geometric(J, T):
+    p = [T[0][3], T[1][3], T[2][3]]
+    P = np.array([[0, -p[2], p[1]], [p[2], 0, -p[0]], [-p[1], p[0], 0]])
+    columns = []
+    for column in np.asarray(J, dtype=float).T:
+        v, w = column[:3], column[3:]
+        columns.append(np.concatenate([w, v + P @ w]))
+    return np.array(columns).T
+""",
+    ),
 ]
 
 WRONG = [
@@ -985,7 +1063,7 @@ def singularities(robot, q, tol=1e-9):
         mistake="exactly 'shoulder'",
     ),
     Variant(
-        "4.3", "always none", "def singularities(robot, q, tol=1e-9):\n    return set()\n", points=0
+        "4.5", "always none", "def singularities(robot, q, tol=1e-9):\n    return set()\n", points=0
     ),
     Variant(
         "4.5",
@@ -1093,5 +1171,205 @@ def holding_torques(robot, q, mass, r_com):
 """,
         points=0,
         mistake="TRANSPOSED",
+    ),
+    # ------------------------------------------------------------------------------ 4.9
+    Variant(
+        "4.9",
+        "eigenvalues of J Jᵀ",
+        """
+def ellipsoid_axes(J_v):
+    J = np.asarray(J_v, dtype=float)
+    values, vectors = np.linalg.eigh(J @ J.T)
+    values, U = values[::-1], vectors[:, ::-1]
+    return U, values, 1.0 / values, values[0] / values[2]
+""",
+        points=0,
+        mistake="σ² instead of σ",
+    ),
+    Variant(
+        "4.9",
+        "rows of Vᵀ",
+        """
+def ellipsoid_axes(J_v):
+    _, s, Vt = np.linalg.svd(J_v)
+    zero = s <= 1e-12 * s[0]
+    with np.errstate(divide="ignore"):
+        force = np.where(zero, np.inf, 1.0 / s)
+    return Vt, s, force, np.inf if zero[2] else s[0] / s[2]
+""",
+        points=0,
+        mistake="rows of Vᵀ",
+    ),
+    Variant(
+        "4.9",
+        "force not inverted",
+        """
+def ellipsoid_axes(J_v):
+    U, s, _ = np.linalg.svd(J_v)
+    return U, s, s.copy(), np.inf if s[2] <= 1e-12 * s[0] else s[0] / s[2]
+""",
+        points=0,
+        mistake="force semi-axes equal to σ",
+    ),
+    Variant(
+        "4.9",
+        "condition upside down",
+        """
+def ellipsoid_axes(J_v):
+    U, s, _ = np.linalg.svd(J_v)
+    zero = s <= 1e-12 * s[0]
+    with np.errstate(divide="ignore"):
+        force = np.where(zero, np.inf, 1.0 / s)
+    return U, s, force, s[2] / s[0]
+""",
+        points=0,
+        mistake="upside down",
+    ),
+    Variant(
+        "4.9",
+        "condition of J Jᵀ",
+        """
+def ellipsoid_axes(J_v):
+    U, s, _ = np.linalg.svd(J_v)
+    zero = s <= 1e-12 * s[0]
+    with np.errstate(divide="ignore"):
+        force = np.where(zero, np.inf, 1.0 / s)
+    return U, s, force, np.linalg.cond(J_v @ J_v.T)
+""",
+        points=0,
+        mistake="the condition number of J Jᵀ",
+    ),
+    Variant(
+        "4.9",
+        "sorted ascending",
+        """
+def ellipsoid_axes(J_v):
+    J = np.asarray(J_v, dtype=float)
+    values, U = np.linalg.eigh(J @ J.T)
+    sigma = np.linalg.norm(J.T @ U, axis=0)
+    zero = sigma <= 1e-12 * sigma[-1]
+    with np.errstate(divide="ignore"):
+        force = np.where(zero, np.inf, 1.0 / sigma)
+    return U, sigma, force, np.inf if zero[0] else sigma[-1] / sigma[0]
+""",
+        points=0,
+        mistake="sorted ascending",
+    ),
+    Variant(
+        "4.9",
+        "round-off used as it is",
+        """
+def ellipsoid_axes(J_v):
+    U, s, _ = np.linalg.svd(J_v)
+    with np.errstate(divide="ignore"):
+        force = np.where(s == 0, np.inf, 1.0 / s)
+        return U, s, force, s[0] / s[2]
+""",
+        points=3,
+        mistake="used as it is",
+    ),
+    Variant(
+        "4.9",
+        "square roots of the eigenvalues",
+        """
+def ellipsoid_axes(J_v):
+    J = np.asarray(J_v, dtype=float)
+    values, vectors = np.linalg.eigh(J @ J.T)
+    sigma, U = np.sqrt(values[::-1]), vectors[:, ::-1]
+    zero = sigma <= 1e-12 * sigma[0]
+    with np.errstate(divide="ignore"):
+        force = np.where(zero, np.inf, 1.0 / sigma)
+    return U, sigma, force, np.inf if zero[2] else sigma[0] / sigma[2]
+""",
+        points=3,
+        mistake="square root",
+    ),
+    Variant(
+        "4.9",
+        "a zero threshold too large",
+        """
+def ellipsoid_axes(J_v):
+    U, s, _ = np.linalg.svd(J_v)
+    zero = s <= 1e-4 * s[0]
+    with np.errstate(divide="ignore"):
+        force = np.where(zero, np.inf, 1.0 / s)
+    return U, s, force, np.inf if zero[2] else s[0] / s[2]
+""",
+        points=3,
+        mistake="threshold far above round-off",
+    ),
+    Variant(
+        "4.9",
+        "float32",
+        """
+def ellipsoid_axes(J_v):
+    U, s, _ = np.linalg.svd(np.asarray(J_v, dtype=np.float32))
+    zero = s <= 1e-12 * s[0]
+    force = np.where(zero, np.inf, 1.0 / s)
+    return U, s, force, np.inf if zero[2] else s[0] / s[2]
+""",
+        points=0,
+        mistake="computed in float32",
+    ),
+    # ------------------------------------------------------------------------------ 4.10
+    Variant(
+        "4.10",
+        "rows not reordered",
+        """
+def space_from_geometric(J, T):
+    J, p = np.asarray(J, dtype=float), np.asarray(T)[:3, 3]
+    return np.vstack([J[:3] + np.cross(p, J[3:], axis=0), J[3:]])
+""",
+        points=0,
+        mistake="rows not reordered",
+    ),
+    Variant(
+        "4.10",
+        "v − p × ω",
+        """
+def space_from_geometric(J, T):
+    J, p = np.asarray(J, dtype=float), np.asarray(T)[:3, 3]
+    return np.vstack([J[3:], J[:3] + np.cross(J[3:], p, axis=0)])
+""",
+        points=0,
+        mistake="the lever's sign",
+    ),
+    Variant(
+        "4.10",
+        "p of the base",
+        """
+def space_from_geometric(J, T):
+    J = np.asarray(J, dtype=float)
+    p = np.zeros(3)  # the base origin
+    return np.vstack([J[3:], J[:3] + np.cross(p, J[3:], axis=0)])
+""",
+        points=0,
+        mistake="p of the base",
+    ),
+    Variant(
+        "4.10",
+        "the body Jacobian",
+        """
+def space_from_geometric(J, T):
+    J, R = np.asarray(J, dtype=float), np.asarray(T)[:3, :3]
+    return np.vstack([R.T @ J[3:], R.T @ J[:3]])
+""",
+        points=0,
+        mistake="the body Jacobian",
+    ),
+    Variant(
+        "4.10",
+        "six columns assumed",
+        """
+def space_from_geometric(J, T):
+    p = np.asarray(T)[:3, 3]
+    J_s = np.zeros((6, 6))
+    for i in range(np.shape(J)[1]):
+        v, w = np.asarray(J)[:3, i], np.asarray(J)[3:, i]
+        J_s[:, i] = np.r_[w, v + np.cross(p, w)]
+    return J_s
+""",
+        points=2,
+        mistake="six joints assumed",
     ),
 ]

@@ -425,6 +425,22 @@ def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
     return q
 """
 
+# ---------------------------------------------------------------------------- 6.6 ik_poe_body
+
+_BODY = """
+def ik_poe_body(M, B, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    q = np.array(q0, dtype=float)
+    for _ in range(max_iterations):
+        T = urkin.poe.fk_body(M, B, q)
+        V = se3_log(inv_transform(T) @ T_target)
+        if np.linalg.norm(V[:3]) <= tol_omega and np.linalg.norm(V[3:]) <= tol_v:
+            break
+        q = q + np.linalg.pinv(urkin.poe.jacobian_body(B, q)) @ V
+    return q
+"""
+
+_BODY_STEP = "q = q + np.linalg.pinv(urkin.poe.jacobian_body(B, q)) @ V"
+
 # ----------------------------------------------------------------------- 6.5 damping_for_step
 
 _DAMPING = """
@@ -580,9 +596,166 @@ def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
     ),
     Variant("6.3", "ties accepted (<=), max-abs error, ×4 and ÷2, floor 1e-7", _IK_LM_TIES),
     Variant("6.3", "restarts after 20 iterations without progress, norm limit", _IK_LM_PATIENCE),
+    # ------------------------------------------------------------------------------ 6.6
+    Variant(
+        "6.6",
+        "Modern Robotics' IKinBody: np.linalg.inv, (θ, success) returned",
+        """
+def ik_poe_body(M, B, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    theta = np.array(q0, dtype=float)
+    for i in range(max_iterations + 1):
+        V_b = se3_log(np.linalg.inv(urkin.poe.fk_body(M, B, theta)) @ T_target)
+        done = np.linalg.norm(V_b[:3]) <= tol_omega and np.linalg.norm(V_b[3:]) <= tol_v
+        if done or i == max_iterations:
+            return theta, done
+        theta = theta + np.linalg.pinv(urkin.poe.jacobian_body(B, theta)) @ V_b
+""",
+    ),
+    Variant(
+        "6.6",
+        "body twist and Jacobian from the space ones through Ad(T⁻¹)",
+        """
+from urkin.transforms import adjoint
+
+
+def ik_poe_body(M, B, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    M, B = np.asarray(M, dtype=float), np.asarray(B, dtype=float)
+    S = adjoint(M) @ B
+    q = np.array(q0, dtype=float)
+    for _ in range(max_iterations):
+        T = urkin.poe.fk_space(M, S, q)
+        to_body = adjoint(inv_transform(T))
+        V = to_body @ se3_log(T_target @ inv_transform(T))
+        if np.linalg.norm(V[:3]) <= tol_omega and np.linalg.norm(V[3:]) <= tol_v:
+            break
+        q = q + np.linalg.pinv(to_body @ urkin.poe.jacobian_space(S, q)) @ V
+    return q
+""",
+    ),
+    Variant(
+        "6.6",
+        "own body Jacobian and product of exponentials, a while loop",
+        """
+from urkin.transforms import adjoint, se3_exp
+
+
+def ik_poe_body(M, B, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    B = np.asarray(B, dtype=float)
+    n = B.shape[1]
+    q = np.array(q0, dtype=float)
+
+    def pose(q):
+        T = np.array(M, dtype=float)
+        for i in range(n):
+            T = T @ se3_exp(B[:, i] * q[i])
+        return T
+
+    def body_jacobian(q):
+        J = np.zeros((6, n))
+        T = np.eye(4)
+        for i in reversed(range(n)):
+            J[:, i] = adjoint(T) @ B[:, i]
+            T = T @ se3_exp(-B[:, i] * q[i])
+        return J
+
+    V = se3_log(inv_transform(pose(q)) @ T_target)
+    k = 0
+    while k < max_iterations and (
+        np.linalg.norm(V[:3]) > tol_omega or np.linalg.norm(V[3:]) > tol_v
+    ):
+        q = q + np.linalg.pinv(body_jacobian(q)) @ V
+        V = se3_log(inv_transform(pose(q)) @ T_target)
+        k += 1
+    return q
+""",
+    ),
 ]
 
 WRONG = [
+    # ------------------------------------------------------------------------------ 6.6
+    Variant(
+        "6.6",
+        "space twist with the body Jacobian",
+        _BODY.replace(
+            "se3_log(inv_transform(T) @ T_target)", "se3_log(T_target @ inv_transform(T))"
+        ),
+        points=0,
+        mistake="space twist log(T_target T⁻¹) with the body Jacobian",
+    ),
+    Variant(
+        "6.6",
+        "body twist with the space Jacobian",
+        _BODY.replace(
+            "urkin.poe.jacobian_body(B, q)",
+            "urkin.poe.jacobian_space(urkin.transforms.adjoint(M) @ B, q)",
+        ),
+        points=0,
+        mistake="body twist with the space Jacobian",
+    ),
+    Variant(
+        "6.6",
+        "the inverse motion's twist",
+        _BODY.replace(
+            "se3_log(inv_transform(T) @ T_target)", "se3_log(inv_transform(T_target) @ T)"
+        ),
+        points=0,
+        mistake="inverse motion",
+    ),
+    Variant(
+        "6.6",
+        "(v, ω) order",
+        _BODY.replace(
+            "        if np.linalg.norm(V[:3])",
+            "        V = np.r_[V[3:], V[:3]]\n        if np.linalg.norm(V[:3])",
+        ),
+        points=0,
+        mistake="(v, ω)",
+    ),
+    Variant(
+        "6.6",
+        "fk_space with the body screws",
+        _BODY.replace("urkin.poe.fk_body(M, B, q)", "urkin.poe.fk_space(M, B, q)"),
+        points=0,
+        mistake="fk_space with body screws",
+    ),
+    Variant(
+        "6.6",
+        "the Jacobian computed once, at q0",
+        _BODY.replace(
+            "    q = np.array(q0, dtype=float)\n",
+            "    q = np.array(q0, dtype=float)\n"
+            "    J_plus = np.linalg.pinv(urkin.poe.jacobian_body(B, q))\n",
+        ).replace(_BODY_STEP, "q = q + J_plus @ V"),
+        points=None,
+        mistake="Jacobian not recomputed",
+    ),
+    Variant(
+        "6.6",
+        "angles wrapped after each step",
+        _BODY.replace(_BODY_STEP, _BODY_STEP + "\n        q = (q + np.pi) % (2 * np.pi) - np.pi"),
+        points=2,
+        mistake="wrapped",
+    ),
+    Variant(
+        "6.6",
+        "exercise 6.4's ik_poe with S = Ad(M) B",
+        """
+def ik_poe_body(M, B, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    S = urkin.transforms.adjoint(M) @ B
+    return ik_poe(M, S, T_target, q0, tol_omega, tol_v, max_iterations)
+""",
+        points=2,
+        mistake="the space pairing",
+    ),
+    Variant(
+        "6.6",
+        "urkin.ik",
+        """
+def ik_poe_body(M, B, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
+    return urkin.ik(urkin.robot("UR5"), T_target, q0=q0, method="poe").q
+""",
+        points=0,
+    ),
     # ------------------------------------------------------------------------------ 6.4
     Variant(
         "6.4",

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import ast
+import itertools
 import re
 
 import numpy as np
@@ -24,13 +25,16 @@ from urkin.course.submission import StudentRaised
 from urkin.transforms import (
     inv_transform,
     make_transform,
+    pose_error,
     rot_x,
     rot_y,
     rot_z,
+    rotation_angle,
     rotation_to_rpy,
     rpy_to_rotation,
     skew,
     so3_exp,
+    so3_log,
     wrap_angles,
 )
 
@@ -1065,6 +1069,230 @@ def _verdict_bad_input(sub, rng):
         )
 
 
+# -------------------------------------------------------------------- 1.6 rotation_distance
+
+
+def _quarter_turns() -> tuple[np.ndarray, ...]:
+    """The 24 rotations with entries 0 and ±1 (turns by multiples of 90° about the axes)."""
+    found = []
+    for order in itertools.permutations(range(3)):
+        for signs in itertools.product((1.0, -1.0), repeat=3):
+            P = np.zeros((3, 3))
+            P[range(3), order] = signs
+            if np.linalg.det(P) > 0:
+                found.append(P)
+    return tuple(found)
+
+
+# Products with these are exact in floating point: a pair (P, P E) has exactly Pᵀ(P E) = E.
+_QUARTER_TURNS = _quarter_turns()
+# What arccos gives next to 1: arccos(1 − j·2⁻⁵³), the only angles a trace can say below 1e-7.
+_ARCCOS_STEPS = np.arccos(1.0 - np.arange(0, 65) * 2.0**-53)
+
+_TRACE_TINY = (
+    "arccos((tr R1ᵀR2 − 1)/2), or another formula through the trace: cos θ = 1 − θ²/2 rounds "
+    "to 1 below about 1e-8 rad, so the angle comes out 0 or about 1.5e-8; use 2·asin(‖R1 − "
+    "R2‖_F / 2√2) there, or the atan2 of the log map"
+)
+_BEYOND_ONE = (
+    "arccos or arcsin of a number that round-off pushed just beyond ±1 gives NaN: (tr R1ᵀR2 − "
+    "1)/2 is 1 + 2.2e-16 for some rotations compared with themselves, and ‖R1 − R2‖_F / 2√2 "
+    "can exceed 1 next to a half turn; clip it into [−1, 1] (np.clip) first"
+)
+_FLAT_NEAR_PI = (
+    "2·asin(‖R1 − R2‖_F / 2√2) or arccos((tr − 1)/2) used near π: sin(θ/2) and cos θ are flat "
+    "at a half turn, so their round-off of 1e-16 costs about √1e-16 = 1e-8 rad there; sin θ is "
+    "not flat: use atan2(½‖vee(A − Aᵀ)‖, ½(tr A − 1)) with A = R1ᵀR2 (at least above π/2)"
+)
+_DISTANCE_SHAPES = {
+    (3,): "three numbers came back (a rotation vector?): the distance is one angle, its length",
+    (3, 3): "a 3×3 matrix came back (R1ᵀR2?): the distance is the angle of that rotation",
+    (1,): "an array holding one number: return the angle itself, a float",
+}
+
+
+def _unit_vector(rng) -> np.ndarray:
+    k = rng.normal(size=3)
+    return k / np.linalg.norm(k)
+
+
+def _turned_pair(rng, R, E):
+    """R with R E or E R (both are turned by E's angle from R), in random order."""
+    R2 = R @ E if rng.random() < 0.5 else E @ R
+    return (R, R2) if rng.random() < 0.5 else (R2, R)
+
+
+def _distance_value(sub, R1, R2, inputs) -> float:
+    """The student's angle as a float (NaN passes through, for :func:`_refuse_nan`)."""
+    value = sub.rotation_distance(R1.copy(), R2.copy())
+    try:
+        raw = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raw = None
+    if raw is not None and raw.shape == () and np.isnan(raw):
+        return float("nan")
+    return float(as_array(value, (), "rotation_distance(R1, R2)", inputs, _DISTANCE_SHAPES))
+
+
+def _refuse_nan(answers) -> None:
+    """A Mismatch for the first NaN among ``answers``: (inputs, got, …) tuples."""
+    for inputs, got, *_ in answers:
+        if np.isnan(got):
+            raise Mismatch(
+                "rotation_distance(R1, R2) returned NaN",
+                inputs=inputs,
+                got="nan",
+                mistake=_BEYOND_ONE,
+            )
+
+
+def _distance_hypotheses(R1, R2, theta):
+    frobenius = float(np.linalg.norm(R1 - R2))
+    return {
+        "degrees: angles are radians here (np.degrees is for display only)": lambda: np.degrees(
+            theta
+        ),
+        "‖R1 − R2‖_F is not the angle itself: θ = 2·asin(‖R1 − R2‖_F / 2√2)": lambda: frobenius,
+        "the factor 2 is missing: asin(‖R1 − R2‖_F / 2√2) is θ/2": lambda: theta / 2,
+        "‖R1 − R2‖_F divided by 2 instead of 2√2 = ‖R − I‖_F at a half turn": lambda: (
+            2 * np.arcsin(frobenius / 2)
+        ),
+        "the angle of R1 R2: the rotation from R1 to R2 is R1ᵀR2": lambda: np.linalg.norm(
+            so3_log(R1 @ R2)
+        ),
+        "atan2's arguments swapped: atan2(sin θ, cos θ), the sine first": lambda: np.arctan2(
+            np.cos(theta), np.sin(theta)
+        ),
+        "sin θ is half the length of vee(A − Aᵀ): the ½ is missing": lambda: np.arctan2(
+            2 * np.sin(theta), np.cos(theta)
+        ),
+        "cos θ is (tr A − 1)/2: the ½ is missing": lambda: np.arctan2(
+            np.sin(theta), 2 * np.cos(theta)
+        ),
+    }
+
+
+def _distance_random_pairs(sub, rng):
+    low, high = 0.05, np.pi - 0.05
+    answers = []
+    for j in rng.permutation(10):  # one angle in each tenth of [0.05, π − 0.05]
+        theta = low + (j + rng.uniform()) * (high - low) / 10
+        R1, R2 = _turned_pair(rng, random_rotation(rng), so3_exp(theta * _unit_vector(rng)))
+        inputs = {"R1": R1, "R2": R2}
+        answers.append((inputs, _distance_value(sub, R1, R2, inputs), R1, R2, theta))
+    _refuse_nan(answers)
+    for inputs, got, R1, R2, theta in answers:
+        compare(
+            np.asarray(got),
+            theta,
+            what="the angle θ of R1ᵀR2, in radians in [0, π], to 1e-12",
+            inputs=inputs,
+            hypotheses=_distance_hypotheses(R1, R2, theta),
+            atol=1e-12,
+        )
+
+
+def _tiny_mistake(got, theta, R1, R2) -> str | None:
+    if got == 0.0 or np.any(np.abs(got - _ARCCOS_STEPS[1:]) <= 1e-6 * _ARCCOS_STEPS[1:]):
+        return _TRACE_TINY
+    for name, compute in _distance_hypotheses(R1, R2, theta).items():
+        with np.errstate(all="ignore"):
+            value = float(compute())
+        if abs(got - value) <= 1e-6 * abs(value):
+            return name
+    return _TRACE_TINY if got > 1e-8 else None
+
+
+def _distance_tiny_and_zero(sub, rng):
+    answers = []
+    for exponent in range(10, 15):  # one angle in each decade from 1e-14 to 1e-9 rad
+        theta = 10.0**-exponent * rng.uniform(1.0, 10.0)
+        P = _QUARTER_TURNS[int(rng.integers(len(_QUARTER_TURNS)))]
+        R1, R2 = _turned_pair(rng, P, so3_exp(theta * _unit_vector(rng)))
+        inputs = {"R1": R1, "R2": R2, "θ (rad)": f"{theta:.3e}"}
+        answers.append((inputs, _distance_value(sub, R1, R2, inputs), R1, R2, theta))
+    same = [np.eye(3), _QUARTER_TURNS[int(rng.integers(len(_QUARTER_TURNS)))]]
+    for beyond in (True, True, False, False):  # RᵀR's trace rounds above 3, and below it
+        while True:
+            R = random_rotation(rng)
+            cosine = (np.trace(R.T @ R) - 1.0) / 2.0
+            if (cosine > 1.0) if beyond else (cosine < 1.0):
+                break
+        same.append(R)
+    for R in same:
+        inputs = {"R1 = R2": R}
+        answers.append((inputs, _distance_value(sub, R, R.copy(), inputs), R, R, 0.0))
+    _refuse_nan(answers)
+    for inputs, got, R1, R2, theta in answers:
+        if theta == 0.0 and not abs(got) <= 1e-15:
+            raise Mismatch(
+                "a rotation compared with itself is 0 rad away (0, or below 1e-15)",
+                inputs=inputs,
+                expected="0 rad",
+                got=f"{got:.3e} rad",
+                mistake=_TRACE_TINY
+                if np.any(np.abs(abs(got) - _ARCCOS_STEPS[1:]) <= 1e-6 * _ARCCOS_STEPS[1:])
+                else None,
+            )
+        if theta > 0.0 and not abs(got - theta) <= 1e-6 * theta:
+            raise Mismatch(
+                "a tiny angle (1e-14 to 1e-9 rad) to 1e-6 relative: R1 is a quarter turn "
+                "(entries 0, ±1), so R1ᵀR2 holds no round-off and the angle is known to the "
+                "last digit",
+                inputs=inputs,
+                expected=f"{theta:.6e} rad",
+                got=f"{got:.6e} rad",
+                mistake=_tiny_mistake(got, theta, R1, R2),
+            )
+
+
+def _near_pi_mistake(got, theta) -> str | None:
+    """The mistake behind an angle a little off next to π, read from how far it is from π.
+
+    Through cos θ or sin(θ/2), a number within round-off of ∓1, the angle can only come out
+    as π − d with d² / 2⁻⁵² a whole number (d = √(2 m ε) for the m-th double next to ∓1).
+    """
+    deficit, true_deficit = np.pi - got, np.pi - theta
+    steps = deficit**2 / 2.0**-52
+    if got == np.pi or (steps >= 0.5 and abs(steps - round(steps)) < 1e-3):
+        return _FLAT_NEAR_PI  # (got == π is wrong here: θ < π)
+    if true_deficit > 0.0 and abs(deficit - 2.0 * true_deficit) <= 1e-3 * true_deficit:
+        return "sin θ is half the length of vee(A − Aᵀ): the ½ is missing"
+    if true_deficit > 0.0 and abs(deficit - 0.5 * true_deficit) <= 1e-3 * true_deficit:
+        return "cos θ is (tr A − 1)/2: the ½ is missing"
+    return None
+
+
+def _distance_near_half_turn(sub, rng):
+    cases = []
+    for _ in range(2):  # exact half turns about a coordinate axis, from a quarter turn
+        P = _QUARTER_TURNS[int(rng.integers(len(_QUARTER_TURNS)))]
+        cases.append((_turned_pair(rng, P, np.diag(rng.permutation([1.0, -1.0, -1.0]))), np.pi))
+    k = _unit_vector(rng)
+    cases.append((_turned_pair(rng, random_rotation(rng), 2 * np.outer(k, k) - np.eye(3)), np.pi))
+    for low in (-9.0, -8.0, -7.0, rng.uniform(-9.0, -7.0)):  # π − 1e-9 … π − 1e-6
+        theta = np.pi - 10.0 ** rng.uniform(low, low + 1.0)
+        E = so3_exp(theta * _unit_vector(rng))
+        cases.append((_turned_pair(rng, random_rotation(rng), E), theta))
+    answers = []
+    for (R1, R2), theta in cases:
+        inputs = {"R1": R1, "R2": R2, "π − θ (rad)": f"{np.pi - theta:.3e}"}
+        answers.append((inputs, _distance_value(sub, R1, R2, inputs), R1, R2, theta))
+    _refuse_nan(answers)
+    for inputs, got, R1, R2, theta in answers:
+        if abs(got - theta) <= 1e-12:
+            continue
+        mistake = identify_mistake(got, _distance_hypotheses(R1, R2, theta), right=theta)
+        raise Mismatch(
+            "next to a half turn (θ within 1e-6 of π, or π exactly) the angle to 1e-12",
+            inputs=inputs,
+            expected=f"{theta:.15f} rad",
+            got=f"{got:.15f} rad",
+            difference=f"difference {abs(got - theta):.1e} rad; the tolerance is 1e-12",
+            mistake=mistake or _near_pi_mistake(got, theta),
+        )
+
+
 LESSON = Lesson(
     number="01",
     title="Rigid-body transforms",
@@ -1177,6 +1405,29 @@ LESSON = Lesson(
                     _verdict_bad_input,
                 ),
             ),
+        ),
+        Exercise(
+            id="1.6",
+            function="rotation_distance",
+            title="the angle between two orientations, accurate at every size",
+            checks=(
+                Check(
+                    "the angle of R1ᵀR2 for random pairs from 0.05 to π − 0.05 rad, to 1e-12",
+                    2,
+                    _distance_random_pairs,
+                ),
+                Check(
+                    "tiny angles, 1e-14 to 1e-9 rad, to 1e-6 relative; a rotation and itself: 0",
+                    1,
+                    _distance_tiny_and_zero,
+                ),
+                Check(
+                    "next to a half turn (within 1e-6 of π, and π exactly), to 1e-12",
+                    1,
+                    _distance_near_half_turn,
+                ),
+            ),
+            answer=(*concepts.ROTATION_LOG, rotation_angle, pose_error),
         ),
     ),
 )

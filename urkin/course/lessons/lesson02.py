@@ -11,9 +11,11 @@ from urkin.course import concepts
 from urkin.course.compare import (
     Mismatch,
     as_array,
+    close,
     compare,
     require_transform,
     require_varying,
+    tolerance,
 )
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import negated_a, random_arm, random_q
@@ -466,6 +468,165 @@ def _upright_is_predicted(sub, rng):
         )
 
 
+# ---------------------------------------------------------------------------- 2.6 to_modified
+
+
+def _tool(a, alpha):
+    """Tx(a) Rx(α): what is left of the last standard row once a and α have moved down."""
+    return dh_transform(0.0, 0.0, a, alpha)
+
+
+def _down(column):
+    """A column moved down one row, with 0 at the top: entry i holds entry i − 1."""
+    return np.r_[0.0, column[:-1]]
+
+
+def _up(column):
+    """A column moved up one row, with 0 at the bottom: entry i holds entry i + 1."""
+    return np.r_[column[1:], 0.0]
+
+
+def _modified_right(rows):
+    """The modified table (d_i, a_(i−1), α_(i−1)) with a_0 = α_0 = 0, and Tx(a_n) Rx(α_n)."""
+    d, a, alpha = rows.T
+    return np.column_stack([d, _down(a), _down(alpha)]), _tool(a[-1], alpha[-1])
+
+
+def _table_hypotheses(rows):
+    d, a, alpha = rows.T
+    return {
+        "rows copied unchanged: in the modified table row i holds a and α of row i − 1 "
+        "(a_0 = α_0 = 0)": rows,
+        "a and α shifted the wrong way (row i holds a_(i+1), α_(i+1)): they move down one "
+        "row, to the next joint's transform": np.column_stack([d, _up(a), _up(alpha)]),
+        "α shifted but not a: Tx(a_i) and Rx(α_i) move down together": np.column_stack(
+            [d, a, _down(alpha)]
+        ),
+        "a shifted but not α: Tx(a_i) and Rx(α_i) move down together": np.column_stack(
+            [d, _down(a), alpha]
+        ),
+        "d shifted too: d_i runs along z_(i−1), joint i's own axis, and stays in row i": (
+            np.column_stack([_down(d), _down(a), _down(alpha)])
+        ),
+    }
+
+
+def _tool_hypotheses(rows):
+    _, a, alpha = rows.T
+    return {
+        "the tool transform forgotten (the identity): a_n and α_n of the last row are left "
+        "over, T_tool = Tx(a_n) Rx(α_n)": np.eye(4),
+        "T_tool = Rx(α_n) only: a_n of the last row is left over too": _tool(0.0, alpha[-1]),
+        "T_tool = Tx(a_n) only: α_n of the last row is left over too": _tool(a[-1], 0.0),
+        "T_tool inverted: it follows the modified chain, T_0_n = (modified chain) Tx(a_n) "
+        "Rx(α_n)": np.linalg.inv(_tool(a[-1], alpha[-1])),
+        "T_tool from the first row (a_1, α_1): what is left over is the last row's": _tool(
+            a[0], alpha[0]
+        ),
+    }
+
+
+def _same_table(got, expected) -> bool:
+    """Equal to 1e-12, twists compared modulo 2π."""
+    gap = np.asarray(got, dtype=float) - expected
+    gap[:, 2] = (gap[:, 2] + np.pi) % (2 * np.pi) - np.pi
+    return bool(np.abs(gap).max() <= tolerance(1e-12, got, 1.0))
+
+
+def _modified_mistake(rows, table, tool) -> str | None:
+    """The named mistakes the answer (table, tool) makes, joined, or None."""
+    right_table, right_tool = _modified_right(rows)
+    found = []
+    if not _same_table(table, right_table):
+        found += [
+            name
+            for name, h in _table_hypotheses(rows).items()
+            if not _same_table(h, right_table) and _same_table(table, h)
+        ][:1]
+    if not close(tool, right_tool, 1e-12):
+        found += [
+            name
+            for name, h in _tool_hypotheses(rows).items()
+            if not close(h, right_tool, 1e-12) and close(tool, h, 1e-12)
+        ][:1]
+    return "; and ".join(found) or None
+
+
+def _modified_answer(sub, rows, inputs) -> tuple[np.ndarray, np.ndarray]:
+    """The student's (modified_rows, T_tool), checked for shape."""
+    what = "to_modified(rows)"
+    got = sub.to_modified(rows.copy())
+    if not (isinstance(got, (tuple, list)) and len(got) == 2):
+        raise Mismatch(
+            f"{what} must return a pair (modified_rows, T_tool); got {type(got).__name__}"
+            + (f" of length {len(got)}" if isinstance(got, (tuple, list)) else ""),
+            inputs=inputs,
+        )
+    n = len(rows)
+    table = as_array(got[0], (n, 3), f"{what}[0], the modified table,", inputs)
+    tool = as_array(got[1], (4, 4), f"{what}[1], T_tool,", inputs)
+    return table, tool
+
+
+def _modified_tables(rng):
+    """(name, rows): the seven UR arms, then random tables of 1 to 7 joints."""
+    for name in urkin.ROBOTS:
+        yield f"the {name}'s table", urkin.robot(name).dh_table()
+    for n in (1, 2, 3, 5, 7, int(rng.integers(1, 8))):
+        yield f"a new arm of {n} joint(s)", np.array(_random_rows(rng, n))
+
+
+def _modified_chain(sub, rng):
+    for name, rows in _modified_tables(rng):
+        inputs = {"arm": name, "rows": rows}
+        table, tool = _modified_answer(sub, rows, inputs)
+        q = rng.uniform(-np.pi, np.pi, (8, len(rows)))
+        got = dh_chain(table.astype(float), q, convention="modified") @ tool.astype(float)
+        expected = dh_chain(rows, q)
+        if not close(got, expected, 1e-12, like=table):
+            raise Mismatch(
+                "the modified chain times T_tool must equal the standard chain at every q: "
+                "dh_chain(modified_rows, q, convention='modified') @ T_tool = dh_chain(rows, q) "
+                "(to 1e-12); shown at the first of 8 random q",
+                inputs={**inputs, "q": q[0]},
+                expected=expected[0],
+                got=got[0],
+                mistake=_modified_mistake(rows, table, tool),
+            )
+
+
+def _modified_table(sub, rng):
+    for name, rows in _modified_tables(rng):
+        inputs = {"arm": name, "rows": rows}
+        table, tool = _modified_answer(sub, rows, inputs)
+        right, _ = _modified_right(rows)
+        if not _same_table(table, right):
+            raise Mismatch(
+                "the modified table has rows (d_i, a_(i−1), α_(i−1)): d stays, a and α move "
+                "down one row, with a_0 = α_0 = 0",
+                inputs=inputs,
+                expected=right,
+                got=table,
+                mistake=_modified_mistake(rows, table, tool),
+            )
+
+
+def _modified_tool(sub, rng):
+    for name, rows in _modified_tables(rng):
+        inputs = {"arm": name, "rows": rows}
+        table, tool = _modified_answer(sub, rows, inputs)
+        _, right = _modified_right(rows)
+        if not close(tool, right, 1e-12):
+            raise Mismatch(
+                "T_tool = Tx(a_n) Rx(α_n), with a_n and α_n from the last row of the standard "
+                "table (the identity when both are 0, as on UR arms)",
+                inputs=inputs,
+                expected=right,
+                got=tool,
+                mistake=_modified_mistake(rows, table, tool),
+            )
+
+
 LESSON = Lesson(
     number="02",
     title="Denavit–Hartenberg forward kinematics",
@@ -557,6 +718,21 @@ LESSON = Lesson(
                 ),
             ),
             answer=concepts.FORWARD_KINEMATICS,
+        ),
+        Exercise(
+            id="2.6",
+            function="to_modified",
+            title="a standard-DH table rewritten for the modified convention",
+            checks=(
+                Check(
+                    "modified chain × T_tool = standard chain, for the UR arms and new arms of "
+                    "1 to 7 joints at random q",
+                    2,
+                    _modified_chain,
+                ),
+                Check("the modified table (d_i, a_(i−1), α_(i−1))", 1, _modified_table),
+                Check("the tool transform Tx(a_n) Rx(α_n)", 1, _modified_tool),
+            ),
         ),
     ),
 )

@@ -22,11 +22,11 @@ from urkin.course.compare import (
     unless_right,
 )
 from urkin.course.exercise import Check, Exercise, Lesson
-from urkin.course.inputs import random_arm, random_q
+from urkin.course.inputs import random_arm, random_pose, random_q, random_screw_axes
 from urkin.course.submission import StudentRaised
 from urkin.kinematics import dh_chain
 from urkin.poe import body_screws, jacobian_space, screw_axis, space_screws
-from urkin.transforms import inv_transform, se3_exp, se3_log, skew
+from urkin.transforms import adjoint, inv_transform, se3_exp, se3_log, skew
 
 _fk = urkin.fk
 
@@ -942,6 +942,172 @@ def _joint_refuses_non_unit(sub, rng):
         )
 
 
+# ------------------------------------------------------------------------ 3.7 body_from_space
+
+_SIX_COLUMNS = (
+    "six columns hard-coded (range(6), or a (6, 6) array of zeros): S has one column per joint, "
+    "n of them; loop over S.shape[1] columns, or multiply Ad(M⁻¹) @ S at once"
+)
+
+
+def _adjoint_of(R, p, layout="right") -> np.ndarray:
+    """[[R, 0], [[p]R, R]], or another arrangement of its blocks (``layout``)."""
+    P = skew(p)
+    Ad = np.zeros((6, 6))
+    Ad[:3, :3] = Ad[3:, 3:] = R
+    if layout == "right":
+        Ad[3:, :3] = P @ R
+    elif layout == "top right":
+        Ad[:3, 3:] = P @ R
+    elif layout == "R[p]":
+        Ad[3:, :3] = R @ P
+    return Ad
+
+
+def _body_hypotheses(S, M):
+    R, p = M[:3, :3], M[:3, 3]
+    right_Ad = _adjoint_of(R.T, -R.T @ p)
+    swap = [3, 4, 5, 0, 1, 2]
+    n = S.shape[1]
+    hypotheses = {
+        "Ad(M) S instead of Ad(M⁻¹) S: the adjoint of M maps body twists to space ones; "
+        "B = Ad(M⁻¹) S goes the other way": lambda: _adjoint_of(R, p) @ S,
+        "[p]R in the top-right block: for twists ordered (ω, v) the adjoint is [[R, 0], "
+        "[[p]R, R]] (the top-right layout is for (v, ω) twists)": lambda: (
+            _adjoint_of(R.T, -R.T @ p, "top right") @ S
+        ),
+        "B returned in (v, ω) order: screw axes are (ω, v), angular part first": lambda: (
+            right_Ad @ S
+        )[swap],
+        "S read as (v, ω): its rows are (ω, v), angular part first": lambda: right_Ad @ S[swap],
+        "R not transposed: M⁻¹ = (Rᵀ, −Rᵀp), so Ad(M⁻¹) has Rᵀ where Ad(M) has R": lambda: (
+            _adjoint_of(R, -R.T @ p) @ S
+        ),
+        "the translation of M⁻¹ taken as −p: it is −Rᵀp": lambda: _adjoint_of(R.T, -p) @ S,
+        "a sign lost: the translation of M⁻¹ is −Rᵀp, and [p] is the skew matrix with "
+        "[p]v = p × v": lambda: _adjoint_of(R.T, R.T @ p) @ S,
+        "R[p] in the bottom-left block: it is [p]R, the skew matrix first": lambda: (
+            _adjoint_of(R.T, -R.T @ p, "R[p]") @ S
+        ),
+        "Ad(M⁻¹)ᵀ S: the adjoint transposed (or applied to the rows of S)": lambda: right_Ad.T @ S,
+        "the 6 × 6 adjoint itself came back: B = Ad(M⁻¹) S, one column per joint": lambda: right_Ad,
+        "B transposed: one screw axis per column, B[:, i] = Ad(M⁻¹) S[:, i]": lambda: (
+            (right_Ad @ S).T
+        ),
+        "S returned unchanged: those are the axes seen from the base; B = Ad(M⁻¹) S sees them "
+        "from the end effector at q = 0": lambda: S,
+    }
+    if n > 6:
+        hypotheses[_SIX_COLUMNS] = lambda: np.c_[right_Ad @ S[:, :6], np.zeros((6, n - 6))]
+    return unless_right(hypotheses, right_Ad @ S)
+
+
+def _body_call(sub, S, M, inputs) -> np.ndarray:
+    n = S.shape[1]
+    try:
+        value = sub.body_from_space(S.copy(), M.copy())
+    except StudentRaised as exc:
+        if exc.kind != "IndexError" or n >= 6:
+            raise
+        raise Mismatch(
+            exc.describe().splitlines()[0] + f" for {n} screw axes",
+            inputs=inputs,
+            mistake=_SIX_COLUMNS,
+        ) from None
+    shapes = (
+        {}
+        if n == 6
+        else {(6, 6): _SIX_COLUMNS, (n, 6): "B transposed: one screw axis per column, shape (6, n)"}
+    )
+    return as_array(value, (6, n), "body_from_space(S, M)", inputs, shapes)
+
+
+def _body_compare(sub, S, M, what, inputs) -> np.ndarray:
+    got = _body_call(sub, S, M, inputs)
+    R, p = M[:3, :3], M[:3, 3]
+    compare(
+        got,
+        _adjoint_of(R.T, -R.T @ p) @ S,
+        what=what,
+        inputs=inputs,
+        hypotheses=_body_hypotheses(S, M),
+        atol=1e-12,
+    )
+    return got
+
+
+def _arm_name(arm) -> str:
+    """The arm's name, and whether it is mounted elsewhere or carries a tool."""
+    extras = [
+        text
+        for text, T in (("on a random mounting", arm.base), ("with a random tool", arm.tool))
+        if not np.array_equal(T, np.eye(4))
+    ]
+    return " ".join([arm.name, *extras[:1], *(f"and {e}" for e in extras[1:])])
+
+
+def _mounted_arm(rng):
+    """A random UR arm, on a random mounting and with a random tool now and then."""
+    arm = random_arm(rng)
+    if rng.random() < 0.5:
+        arm = arm.with_base(random_pose(rng))
+    if rng.random() < 0.5:
+        arm = arm.with_tool(random_pose(rng))
+    return arm
+
+
+def _body_ur_arms(sub, rng):
+    for _ in range(4):
+        arm = _mounted_arm(rng)
+        S, M = space_screws(arm)
+        B, _ = body_screws(arm)
+        inputs = {"robot": _arm_name(arm), "S": S, "M": M}
+        got = _body_call(sub, S, M, inputs)
+        compare(
+            got,
+            B,
+            what=f"the body screw axes of the {_arm_name(arm)}, B = Ad(M⁻¹) S, to 1e-12",
+            inputs=inputs,
+            hypotheses=_body_hypotheses(S, M),
+            atol=1e-12,
+        )
+
+
+def _body_any_axes(sub, rng):
+    for n in rng.permutation(np.arange(1, 8)):  # every n from 1 to 7, in random order
+        S = random_screw_axes(rng, int(n))
+        M = random_pose(rng)
+        _body_compare(
+            sub,
+            S,
+            M,
+            f"B = Ad(M⁻¹) S for {n} random screw axes (one per column) and a random M, to 1e-12",
+            {"S": S, "M": M},
+        )
+
+
+def _body_fk_agrees(sub, rng):
+    arms = [_mounted_arm(rng) for _ in range(3)]
+    cases = [(_arm_name(arm), *space_screws(arm)) for arm in arms]
+    cases.append(("6 random joints", random_screw_axes(rng, 6), random_pose(rng)))
+    for name, S, M in cases:
+        inputs = {"robot": name, "S": S, "M": M}
+        B = _body_call(sub, S, M, inputs)
+        q = rng.uniform(-np.pi, np.pi, (5, S.shape[1]))
+        T_space = urkin.poe.fk_space(M, S, q)
+        T_body = urkin.poe.fk_body(M, B.astype(float), q)
+        worst = int(np.argmax(np.abs(T_body - T_space).max(axis=(1, 2))))
+        if not close(T_body[worst], T_space[worst], 1e-9, like=B):
+            raise Mismatch(
+                "with your B, the body form M e^[B1]q1 ⋯ e^[Bn]qn (urkin.poe.fk_body) must give "
+                "the pose of the space form e^[S1]q1 ⋯ e^[Sn]qn M (urkin.poe.fk_space), to 1e-9",
+                inputs={**inputs, "q": q[worst]},
+                expected=T_space[worst],
+                got=T_body[worst],
+                mistake=identify_mistake(B, _body_hypotheses(S, M)),
+            )
+
+
 LESSON = Lesson(
     number="03",
     title="The product of exponentials",
@@ -1021,6 +1187,29 @@ LESSON = Lesson(
                     _joint_refuses_non_unit,
                 ),
             ),
+        ),
+        Exercise(
+            id="3.7",
+            function="body_from_space",
+            title="body screw axes from space screw axes, B = Ad(M⁻¹) S",
+            checks=(
+                Check(
+                    "the body screw axes of random UR arms, mounted and tooled at random",
+                    1,
+                    _body_ur_arms,
+                ),
+                Check(
+                    "B = Ad(M⁻¹) S for 1 to 7 random screw axes and a random M",
+                    2,
+                    _body_any_axes,
+                ),
+                Check(
+                    "with your B, the body-form FK gives the space-form pose at random q",
+                    1,
+                    _body_fk_agrees,
+                ),
+            ),
+            answer=(adjoint, body_screws),
         ),
     ),
 )

@@ -19,11 +19,18 @@ from urkin.course.compare import (
     unless_right,
 )
 from urkin.course.exercise import Check, Exercise, Lesson
-from urkin.course.inputs import negated_a, random_arm, random_q, random_screw_axes
+from urkin.course.inputs import (
+    negated_a,
+    random_arm,
+    random_pose,
+    random_q,
+    random_screw_axes,
+)
 from urkin.kinematics import SINGULARITIES, dh_transform, singularity_factors
 from urkin.poe import (
     body_screws,
     fk_space,
+    geometric_from_space,
     jacobian_body,
     jacobian_space,
     space_from_geometric,
@@ -1310,6 +1317,396 @@ def _hold_cases(sub, rng, offset: bool):
         )
 
 
+# ------------------------------------------------------------------------ 4.9 ellipsoid_axes
+
+_ZERO = 1e-12  # a singular value at most _ZERO · σ1 counts as zero: round-off, not reach
+_ROUND_OFF = (
+    "σ3 is round-off here (below 1e-12 σ1) and was used as it is — compared with 0 exactly, "
+    "or np.linalg.cond(J_v) —, which gives a huge finite number: count σ ≤ 1e-12 σ1 as zero "
+    "(force semi-axis inf, condition inf)"
+)
+_SQUARE_ROOTS = (
+    "σ as square roots of the eigenvalues of J Jᵀ: those carry round-off of about 1e-16 σ1², "
+    "so a zero σ3 comes out near 1e-8 σ1 (or NaN, when the round-off is negative) — take the "
+    "singular values of J_v itself (np.linalg.svd)"
+)
+_VT_ROWS = (
+    "rows of Vᵀ: they are directions in joint space, one entry per joint; the ellipsoid's axes "
+    "are the columns of U, in task space (3 × 3)"
+)
+_TOO_LARGE = (
+    "a zero threshold far above round-off: σ3 = 1e-5 σ1 is small but real, and only σ ≤ "
+    "1e-12 σ1 counts as zero"
+)
+
+
+def _ellipsoid_expected(J):
+    """(U, σ, force semi-axes, condition) of a 3 × n matrix, by the SVD."""
+    U, sigma, _ = np.linalg.svd(J)
+    zero = sigma <= _ZERO * sigma[0]
+    force = np.full(3, np.inf)
+    force[~zero] = 1.0 / sigma[~zero]
+    condition = np.inf if zero[2] else float(sigma[0] / sigma[2])
+    return U, sigma, force, condition
+
+
+def _distinct(J) -> bool:
+    """Whether the semi-axes of J's ellipsoid are distinct (5 % of σ1 apart) and σ3 ≥ 1 % of
+    σ1: its principal directions are then defined to far better than 1e-9."""
+    sigma = np.linalg.svd(J, compute_uv=False)
+    return bool(min(-np.diff(sigma)) >= 0.05 * sigma[0] and sigma[2] >= 0.01 * sigma[0])
+
+
+def _distinct_pair(J) -> bool:
+    """For a J of rank 2: whether σ1 − σ2 ≥ 5 % of σ1 and σ2 ≥ 10 % of σ1."""
+    sigma = np.linalg.svd(J, compute_uv=False)
+    return bool(sigma[0] - sigma[1] >= 0.05 * sigma[0] and sigma[1] >= 0.1 * sigma[0])
+
+
+def _with_signs(got, expected) -> np.ndarray:
+    """``got`` with each column's sign flipped where that brings it closer to ``expected``."""
+    return got * np.where(np.sum(got * expected, axis=0) < 0, -1.0, 1.0)
+
+
+def _matches(got, candidate, rtol=1e-6) -> bool:
+    """Equal shapes, infinities in the same places, finite entries equal to ``rtol`` relative
+    (1 absolute below 1)."""
+    got, candidate = np.asarray(got, dtype=float), np.asarray(candidate, dtype=float)
+    if got.shape != candidate.shape or np.isnan(got).any() or np.isnan(candidate).any():
+        return False
+    if not np.array_equal(np.isposinf(got), np.isposinf(candidate)):
+        return False
+    if np.isneginf(got).any() or np.isneginf(candidate).any():
+        return False
+    finite = np.isfinite(candidate)
+    gap = np.abs(got[finite] - candidate[finite])
+    return bool(np.all(gap <= rtol * np.maximum(1.0, np.abs(candidate[finite]))))
+
+
+def _named(got, hypotheses: dict, right, signs=False) -> str | None:
+    """The first hypothesis that reproduces ``got`` and not the ``right`` answer."""
+    for name, compute in hypotheses.items():
+        try:
+            with np.errstate(all="ignore"):
+                candidate = np.asarray(compute(), dtype=float)
+        except Exception:  # a hypothesis that cannot be evaluated names nothing
+            continue
+        if _matches(candidate, right) or (
+            signs
+            and candidate.shape == np.shape(right)
+            and _matches(_with_signs(candidate, right), right)
+        ):
+            continue
+        shown = _with_signs(got, candidate) if signs and np.shape(got) == candidate.shape else got
+        if _matches(shown, candidate):
+            return name
+    return None
+
+
+def _small_as_zero(got_force, force, sigma1: float) -> bool:
+    """Whether the answer has +inf where a small (≤ 1e-3 σ1) but real σ gives a finite 1/σ."""
+    wrong = np.isposinf(got_force) & np.isfinite(force)
+    return bool(wrong.any() and np.all(force[wrong] * sigma1 >= 1e3))
+
+
+def _small_sigma(got_sigma3: float, sigma1: float) -> str | None:
+    """Name the mistake that turns a zero σ3 (round-off) into ``got_sigma3``."""
+    if not np.isfinite(got_sigma3) or got_sigma3 < 0:
+        return None
+    if got_sigma3 <= _ZERO * sigma1:
+        return _ROUND_OFF
+    if got_sigma3 <= 1e-6 * sigma1:
+        return _SQUARE_ROOTS
+    return None
+
+
+def _numbers(value, shape, what, inputs, *, finite=True, wrong_shapes=None) -> np.ndarray:
+    """``value`` as real float64 numbers of ``shape``; NaN never, inf only if not ``finite``."""
+    if value is None:
+        raise Mismatch(f"{what} is None", inputs=inputs)
+    try:
+        array = np.asarray(value)
+        if np.iscomplexobj(array):
+            if np.abs(array.imag).max(initial=0.0) > 1e-12:
+                raise Mismatch(f"{what} has complex entries", inputs=inputs, got=array.real)
+            array = array.real
+        if np.issubdtype(array.dtype, np.floating) and array.dtype.itemsize < 8:
+            raise Mismatch(
+                f"{what} is {array.dtype}: the semi-axes are compared to 1e-9 and σ ≤ 1e-12 σ1 "
+                "counts as zero, which only float64 can resolve",
+                inputs=inputs,
+                mistake=f"computed in {array.dtype}: use float64 (np.asarray(J_v, dtype=float))",
+            )
+        array = array.astype(float)
+    except (TypeError, ValueError):
+        raise Mismatch(
+            f"{what} must be numbers; got {type(value).__name__}", inputs=inputs
+        ) from None
+    if array.shape != shape:
+        raise Mismatch(
+            f"{what} must have shape {shape}; got shape {array.shape}",
+            inputs=inputs,
+            mistake=(wrong_shapes or {}).get(array.shape),
+        )
+    if np.isnan(array).any():
+        raise Mismatch(f"{what} contains NaN", inputs=inputs, got=array, mistake=_NAN)
+    if finite and np.isinf(array).any():
+        raise Mismatch(f"{what} contains infinity", inputs=inputs, got=array)
+    return array
+
+
+_NAN = (
+    "NaN where σ is zero: the square root of a negative round-off eigenvalue of J Jᵀ, 0 · inf "
+    "or inf / inf — take the singular values of J_v itself (np.linalg.svd), and give inf where "
+    "σ ≤ 1e-12 σ1"
+)
+
+
+def _ellipsoid_call(sub, J, inputs):
+    """The student's (U, velocity, force, condition), each as float numbers of its shape."""
+    n = J.shape[1]
+    what = "ellipsoid_axes(J_v)"
+    value = sub.ellipsoid_axes(J.copy())
+    if value is None:
+        raise Mismatch(f"{what} returned None: is a `return` statement missing?", inputs=inputs)
+    if not isinstance(value, (tuple, list)) or len(value) != 4:
+        size = f" of length {len(value)}" if isinstance(value, (tuple, list)) else ""
+        raise Mismatch(
+            f"{what} must return a tuple (U, velocity, force, condition); got "
+            f"{type(value).__name__}{size}",
+            inputs=inputs,
+            mistake="np.linalg.svd's (U, σ, Vᵀ) returned as they are"
+            if size == " of length 3"
+            else None,
+        )
+    rows = _VT_ROWS
+    values = (
+        f"{n} values: the eigenvalues of J_vᵀ J_v ({n} × {n}, joint space); the ellipsoid's "
+        "semi-axes are the 3 singular values of J_v"
+    )
+    U = _numbers(
+        value[0], (3, 3), f"U (item 0 of {what})", inputs, wrong_shapes={(n, n): rows, (3, n): rows}
+    )
+    velocity = _numbers(
+        value[1], (3,), f"velocity (item 1 of {what})", inputs, wrong_shapes={(n,): values}
+    )
+    force = _numbers(value[2], (3,), f"force (item 2 of {what})", inputs, finite=False)
+    condition = _numbers(value[3], (), f"condition (item 3 of {what})", inputs, finite=False)
+    return U, velocity, force, float(condition)
+
+
+def _judge_ellipsoid(sub, J, inputs, *, where=""):
+    U, sigma, force, condition = _ellipsoid_expected(J)
+    got_U, got_v, got_f, got_c = _ellipsoid_call(sub, J, inputs)
+    singular = bool(sigma[2] <= _ZERO * sigma[0])
+    velocity_hypotheses = {
+        "σ² instead of σ: the eigenvalues of J Jᵀ are the squares of the semi-axes; take their "
+        "square roots, or the singular values of J_v": lambda: sigma**2,
+        "sorted ascending: list the semi-axes largest first, σ1 ≥ σ2 ≥ σ3": lambda: sigma[::-1],
+        "the force semi-axes 1/σ in place of the velocity ones σ": lambda: 1.0 / sigma,
+    }
+    if not close(got_v, sigma, 1e-9):
+        mistake = _named(got_v, velocity_hypotheses, sigma)
+        if mistake is None and singular:
+            mistake = _small_sigma(float(got_v[2]), float(sigma[0]))
+        gap = float(np.abs(got_v - sigma).max())
+        raise Mismatch(
+            f"velocity{where}: the semi-axes σ1 ≥ σ2 ≥ σ3 of the velocity ellipsoid, the singular "
+            "values of J_v, largest first (to 1e-9)",
+            inputs=inputs,
+            expected=sigma,
+            got=got_v,
+            mistake=mistake,
+            difference=f"largest difference {gap:.1e}; the tolerance is 1e-09"
+            if gap < 1e-3
+            else None,
+        )
+    _, _, Vt = np.linalg.svd(J)
+    direction_hypotheses = {
+        "sorted ascending: column i of U pairs with σ_i, largest first": lambda: U[:, ::-1],
+        "the directions as rows (U transposed): they are the columns of U": lambda: U.T,
+        "the columns scaled by σ (U Σ, the semi-axes as vectors): return unit directions, the "
+        "lengths go in velocity": lambda: U * sigma,
+    }
+    if J.shape[1] == 3:
+        direction_hypotheses[_VT_ROWS] = lambda: Vt
+        direction_hypotheses[
+            "columns of V (directions in joint space): the ellipsoid's axes are the columns of U"
+        ] = lambda: Vt.T
+    if not close(_with_signs(got_U, U), U, 1e-9):
+        raise Mismatch(
+            f"U{where}: column i is the unit direction of the semi-axis σ_i, the i-th left "
+            "singular vector of J_v (each column up to its sign, to 1e-9)",
+            inputs=inputs,
+            expected=_with_signs(U, got_U),
+            got=got_U,
+            mistake=_named(got_U, direction_hypotheses, U, signs=True),
+        )
+    force_hypotheses = {
+        "the force semi-axes equal to σ: they are the inverses, 1/σ — a direction the flange "
+        "moves in slowly is one it pushes in strongly": lambda: sigma,
+        "the force semi-axes in descending order: keep U's column order, force[i] = 1/σ_i "
+        "belongs to the direction U[:, i]": lambda: force[::-1],
+        "1/σ²: the inverses of the eigenvalues of J Jᵀ; the semi-axes are 1/σ": lambda: (
+            1.0 / sigma**2
+        ),
+    }
+    if not _matches(got_f, force, 1e-9):
+        mistake = _named(got_f, force_hypotheses, force)
+        if mistake is None and singular and np.isfinite(got_f[2]) and got_f[2] > 0:
+            mistake = _small_sigma(1.0 / float(got_f[2]), float(sigma[0]))
+        if mistake is None and _small_as_zero(got_f, force, float(sigma[0])):
+            mistake = _TOO_LARGE
+        raise Mismatch(
+            f"force{where}: the force ellipsoid's semi-axes 1/σ_i in U's column order, inf where "
+            "σ_i ≤ 1e-12 σ1 (to 1e-9, relative)",
+            inputs=inputs,
+            expected=force,
+            got=got_f,
+            mistake=mistake,
+        )
+    condition_hypotheses = {
+        "σ3/σ1, upside down: the condition number σ1/σ3 is at least 1": lambda: sigma[2] / sigma[0],
+        "(σ1/σ3)², the condition number of J Jᵀ (np.linalg.cond(J @ J.T)): J's own is σ1/σ3": (
+            lambda: (sigma[0] / sigma[2]) ** 2
+        ),
+    }
+    if not _matches(np.array(got_c), np.array(condition), 1e-9):
+        mistake = _named(np.array(got_c), condition_hypotheses, np.array(condition))
+        if mistake is None and singular and np.isfinite(got_c) and got_c > 0:
+            mistake = _small_sigma(float(sigma[0]) / got_c, float(sigma[0]))
+        if mistake is None and np.isposinf(got_c) and condition >= 1e3:
+            mistake = _TOO_LARGE
+        raise Mismatch(
+            f"condition{where}: σ1/σ3, inf where σ3 ≤ 1e-12 σ1 (to 1e-9, relative)",
+            inputs=inputs,
+            expected=condition,
+            got=got_c,
+            mistake=mistake,
+        )
+
+
+def _ellipsoid_arms(sub, rng):
+    cases = 0
+    while cases < 6:
+        arm, q = random_arm(rng), random_q(rng)
+        J = urkin.position_jacobian(arm, q)
+        if not _distinct(J):
+            continue
+        cases += 1
+        _judge_ellipsoid(sub, J, {"J_v": J}, where=f" (the {arm.name}'s position Jacobian)")
+
+
+def _ellipsoid_matrices(sub, rng):
+    for n in (3, 6, 7, 7, 6, 3):
+        J = rng.normal(size=(3, n)) * rng.uniform(0.2, 2.0)
+        while not _distinct(J):
+            J = rng.normal(size=(3, n)) * rng.uniform(0.2, 2.0)
+        _judge_ellipsoid(sub, J, {"J_v": J}, where=f" (a random 3 × {n} matrix)")
+
+
+def _ellipsoid_singular(sub, rng):
+    for k, q3 in enumerate((0.0, np.pi, 0.0, -np.pi, 2 * np.pi, 0.0)):
+        while True:  # σ1 and σ2 distinct, so that all three directions are well defined
+            arm, q = _elbow_singular(rng, q3)
+            J = _wrist1_jacobian(arm, q)
+            if _distinct_pair(J):
+                break
+        if k % 2:
+            J = np.c_[J, np.zeros((3, 3))]  # joints 4-6 do not move wrist 1
+        kind = "stretched" if np.cos(q3) > 0 else "folded"
+        _judge_ellipsoid(
+            sub,
+            J,
+            {"J_v": J, "robot": arm.name, "q": q},
+            where=f" (wrist 1's position Jacobian, 3 × {J.shape[1]}, at a {kind} elbow, q3 = "
+            f"{q3:.4f}: σ3 is round-off, the force semi-axis along the arm is inf)",
+        )
+    J = rng.normal(size=(3, 2)) @ rng.normal(size=(2, 7))  # rank 2 by construction
+    while not _distinct_pair(J):
+        J = rng.normal(size=(3, 2)) @ rng.normal(size=(2, 7))
+    _judge_ellipsoid(sub, J, {"J_v": J}, where=" (a 3 × 7 matrix of rank 2: σ3 is round-off)")
+    U = np.linalg.qr(rng.normal(size=(3, 3)))[0]
+    V = np.linalg.qr(rng.normal(size=(7, 7)))[0]
+    sigma = np.array([1.0, rng.uniform(0.2, 0.8), 1e-5]) * rng.uniform(0.5, 2.0)
+    J = U @ np.diag(sigma) @ V[:, :3].T
+    _judge_ellipsoid(
+        sub, J, {"J_v": J}, where=" (a 3 × 7 matrix with σ3 = 1e-5 σ1: small, but not zero)"
+    )
+
+
+# ------------------------------------------------------------------ 4.10 space_from_geometric
+
+
+def _space_hypotheses(J, T) -> dict:
+    p, R = T[:3, 3], T[:3, :3]
+    Jv, Jw = J[:3], J[3:]
+    lever = np.cross(p, Jw, axis=0)
+    return {
+        "rows not reordered ([v_s; ω]): the space Jacobian is in twist order (ω; v_s), angular "
+        "rows first": lambda: np.vstack([Jv + lever, Jw]),
+        "v − p × ω (or v + ω × p), the lever's sign reversed: the body point at the base origin "
+        "moves with v_s = v + ω × (0 − p) = v + p × ω": lambda: np.vstack([Jw, Jv - lever]),
+        "p of the base (its origin, 0) instead of the flange origin p = T[:3, 3]: the rows are "
+        "only reordered": lambda: np.vstack([Jw, Jv]),
+        "p taken from the third column of T (the flange's z axis): the flange origin is the last "
+        "column, T[:3, 3]": lambda: np.vstack([Jw, Jv + np.cross(T[:3, 2], Jw, axis=0)]),
+        "p in flange coordinates (Rᵀ p): p, v and ω are all in base coordinates": lambda: np.vstack(
+            [Jw, Jv + np.cross(R.T @ p, Jw, axis=0)]
+        ),
+        "the body Jacobian Ad_(T⁻¹) J_s = (Rᵀ ω; Rᵀ v), in flange coordinates: the space "
+        "Jacobian is in base coordinates": lambda: np.vstack([R.T @ Jw, R.T @ Jv]),
+        "the conversion run backwards (geometric_from_space): J is the geometric Jacobian "
+        "[v; ω]; the space one is (ω; v + p × ω)": lambda: np.vstack(
+            [Jw - np.cross(p, Jv, axis=0), Jv]
+        ),
+    }
+
+
+def _space_call(sub, J, T, inputs) -> np.ndarray:
+    n = J.shape[1]
+    shapes = {(n, 6): f"the transpose, ({n}, 6): one column per joint, shape (6, {n})"}
+    if n != 6:
+        shapes[(6, 6)] = f"six joints assumed: J has {n} columns, and so has the answer"
+    value = sub.space_from_geometric(J.copy(), T.copy())
+    return as_array(value, (6, n), "space_from_geometric(J, T)", inputs, shapes)
+
+
+def _space_arms(sub, rng):
+    for _ in range(6):
+        arm, q = random_arm(rng), random_q(rng)
+        J, T = _jacobian(arm, q), _fk(arm, q)
+        inputs = {"J": J, "T": T, "robot": arm.name, "q": q}
+        got = _space_call(sub, J, T, inputs)
+        compare(
+            got,
+            jacobian_space(space_screws(arm)[0], q),
+            what=f"the space Jacobian (ω; v_s) of the {arm.name} at q, as "
+            "jacobian_space(S, q) gives it: v_s = v + p × ω, p the flange origin (to 1e-10)",
+            inputs=inputs,
+            hypotheses=_space_hypotheses(J, T),
+            atol=1e-10,
+        )
+
+
+def _space_any(sub, rng):
+    sizes = [int(rng.integers(1, 6)), *(rng.permutation(7)[:4] + 1)]  # the first below six
+    for n in sizes:
+        J, T = rng.normal(size=(6, n)), random_pose(rng)
+        inputs = {"J": J, "T": T}
+        p = T[:3, 3]
+        expected = np.vstack([J[3:], J[:3] + np.cross(p, J[3:], axis=0)])
+        compare(
+            _space_call(sub, J, T, inputs),
+            expected,
+            what=f"(ω; v + p × ω) for a 6 × {n} J and a random flange pose T, p = T[:3, 3] "
+            "(to 1e-10)",
+            inputs=inputs,
+            hypotheses=_space_hypotheses(J, T),
+            atol=1e-10,
+        )
+
+
 LESSON = Lesson(
     number="04",
     title="Jacobians and singularities",
@@ -1420,6 +1817,39 @@ LESSON = Lesson(
                     partial(_hold_cases, offset=True),
                 ),
             ),
+        ),
+        Exercise(
+            id="4.9",
+            function="ellipsoid_axes",
+            title="the axes of the velocity and force ellipsoids, and the condition number",
+            checks=(
+                Check(
+                    "directions, semi-axes and condition of UR arms' position Jacobians",
+                    2,
+                    _ellipsoid_arms,
+                ),
+                Check(
+                    "the same for random 3 × 3, 3 × 6 and 3 × 7 matrices", 1, _ellipsoid_matrices
+                ),
+                Check(
+                    "inf, not a huge number or NaN, where σ3 is round-off (elbow singularities, "
+                    "rank 2), and finite where it is merely small",
+                    1,
+                    _ellipsoid_singular,
+                ),
+            ),
+        ),
+        Exercise(
+            id="4.10",
+            function="space_from_geometric",
+            title="the space Jacobian from the geometric one",
+            checks=(
+                Check(
+                    "matches jacobian_space for random UR arms and configurations", 2, _space_arms
+                ),
+                Check("any number of columns (1 to 7) and any flange pose", 1, _space_any),
+            ),
+            answer=(*concepts.JACOBIAN, space_from_geometric, geometric_from_space),
         ),
     ),
 )

@@ -23,13 +23,21 @@ from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_arm, random_q, random_regular_q, random_screw_axes
 from urkin.course.submission import StudentRaised
 from urkin.numerical_ik import orientation_error
-from urkin.poe import fk_space, jacobian_body, jacobian_space, space_screws
+from urkin.poe import (
+    body_screws,
+    fk_body,
+    fk_space,
+    jacobian_body,
+    jacobian_space,
+    space_screws,
+)
 from urkin.transforms import (
     adjoint,
     inv_transform,
     make_transform,
     rotation_angle,
     se3_log,
+    so3_exp,
     wrap_angles,
 )
 
@@ -1119,6 +1127,183 @@ def _damping_edges(sub, rng):
         _expect_value_error(sub, broken, max_step, None, _NO_E_CHECK)
 
 
+# ----------------------------------------------------------------------------- 6.6 ik_poe_body
+
+
+def _body_problem(rng, n: int | None = None, away: float = 0.3, beyond_pi: bool = False):
+    """(M, B, T_target, q0): a UR arm's body screws (or, with ``n``, a random arm of n joints:
+    screws of random joints through random points, seen from a home pose that is turned and
+    moved), a target reached at random angles and a start ``away`` rad from them on every
+    joint, that the plain body iteration itself solves within 12 steps, although the answer
+    gets 50: a start from which Newton wanders for longer is one where round-off decides the
+    path (about 8 % of UR draws), and a correct answer whose arithmetic differs must not lose
+    points on it.  With ``beyond_pi``, one joint of the start is 2π further on (the same pose,
+    an angle outside [−π, π])."""
+    while True:
+        if n is None:
+            B, M = body_screws(random_arm(rng))
+            q_true = random_regular_q(rng)
+        else:
+            B = random_screw_axes(rng, n)
+            M = make_transform(so3_exp(rng.uniform(-1.0, 1.0, 3)), rng.uniform(-0.5, 0.5, 3))
+            q_true = rng.uniform(-np.pi, np.pi, n)
+        q0 = q_true + away * rng.choice([-1.0, 1.0], len(q_true))
+        if beyond_pi:
+            joint = int(rng.integers(len(q0)))
+            q0[joint] += 2 * np.pi if q0[joint] >= 0 else -2 * np.pi
+        T_target = fk_body(M, B, q_true)
+        if _body_miss(M, B, T_target, _body_iterate(M, B, T_target, q0, 12)) < 1e-10:
+            return M, B, T_target, q0
+
+
+def _body_miss(M, B, T_target, q) -> float:
+    """Position (m) or angle (rad) by which ``q`` misses the target, whichever is larger."""
+    T = fk_body(M, B, q)
+    return max(
+        float(np.linalg.norm(T[:3, 3] - T_target[:3, 3])),
+        float(rotation_angle(T[:3, :3], T_target[:3, :3])),
+    )
+
+
+def _body_call(sub, M, B, T_target, q0, **kwargs) -> np.ndarray:
+    inputs = {"M": M, "B": B, "T_target": T_target, "q0": q0, **kwargs}
+    value = sub.ik_poe_body(M, B, T_target, q0, **kwargs)
+    if isinstance(value, tuple) and len(value) == 2 and np.ndim(value[1]) == 0:
+        value = value[0]  # Modern Robotics' (θ, success) is fine too
+    return as_array(value, (B.shape[1],), "ik_poe_body", inputs)
+
+
+def _body_iterate(
+    M,
+    B,
+    T_target,
+    q0,
+    steps: int,
+    twist="body",
+    jacobian="body",
+    swap=False,
+    fk="body",
+    frozen=False,
+    wrap=False,
+):
+    """``steps`` Newton steps on the log error twist, each part swappable for a mistake: the
+    twist's frame ("body", "space", or "back" for log(T_target⁻¹ T)), the Jacobian's frame,
+    (v, ω) order, T(q) as fk_space with the body screws, the Jacobian frozen at q0, the angles
+    wrapped after each step."""
+    q = np.array(q0, dtype=float)
+    J0 = None
+    for _ in range(steps):
+        T = fk_body(M, B, q) if fk == "body" else fk_space(M, B, q)
+        if twist == "body":
+            V = se3_log(inv_transform(T) @ T_target)
+        elif twist == "space":
+            V = se3_log(T_target @ inv_transform(T))
+        else:
+            V = se3_log(inv_transform(T_target) @ T)
+        if swap:
+            V = np.r_[V[3:], V[:3]]
+        if jacobian == "body":
+            J = jacobian_body(B, q)
+        else:
+            J = jacobian_space(adjoint(M) @ B, q)
+        if frozen:
+            J0 = J if J0 is None else J0
+            J = J0
+        q = q + np.linalg.pinv(J) @ V
+        if wrap:
+            q = wrap_angles(q)
+    return q
+
+
+def _body_step_hypotheses(M, B, T_target, q0, steps: int) -> dict:
+    right = _body_iterate(M, B, T_target, q0, steps)
+
+    def wrong(**mistake):
+        return lambda: _body_iterate(M, B, T_target, q0, steps, **mistake)
+
+    hypotheses = {
+        "the space twist log(T_target T⁻¹) with the body Jacobian: pair the body twist "
+        "log(T⁻¹ T_target) with J_b": wrong(twist="space"),
+        "the body twist with the space Jacobian J_s: the body twist pairs with J_b": wrong(
+            jacobian="space"
+        ),
+        "the space pairing J_s⁺ V_s of exercise 6.4: with fewer than six joints its "
+        "least-squares step differs; the exercise asks for J_b⁺ V_b": wrong(
+            twist="space", jacobian="space"
+        ),
+        "the twist of the inverse motion, log(T_target⁻¹ T): the error twist carries T to the "
+        "target, log(T⁻¹ T_target)": wrong(twist="back"),
+        "the twist read as (v, ω): se3_log returns (ω, v), the order the body Jacobian's rows "
+        "have": wrong(swap=True),
+        "T(q) = e^[B1]q1 ⋯ e^[Bn]qn M, fk_space with body screws: with body screws "
+        "T(q) = M e^[B1]q1 ⋯ e^[Bn]qn (fk_body)": wrong(fk="space"),
+        "the angles wrapped into one turn: the exercise asks for plain steps, no wrapping": (
+            wrong(wrap=True)
+        ),
+    }
+    if steps > 1:
+        hypotheses[
+            "the Jacobian not recomputed: J_b(q0) used at every iteration; J_b "
+            "depends on q, so recompute it at each new q"
+        ] = wrong(frozen=True)
+    return unless_right(hypotheses, right)
+
+
+def _body_steps(sub, rng, steps: int):
+    problems = [
+        _body_problem(rng, away=0.6, beyond_pi=True),
+        _body_problem(rng, away=0.6),
+        _body_problem(rng, n=int(rng.integers(2, 6)), away=0.6, beyond_pi=True),
+        _body_problem(rng, n=7, away=0.6),
+    ]
+    what = {
+        1: "one iteration (max_iterations=1) is q0 + J_b⁺ V_b with [V_b] = log(T(q0)⁻¹ "
+        "T_target), T(q0) = M e^[B1]q1 ⋯ e^[Bn]qn and J_b the body Jacobian at q0",
+        2: "two iterations (max_iterations=2): the second step is q1 + J_b(q1)⁺ V_b(q1), with "
+        "the twist and the body Jacobian recomputed at q1, the result of the first",
+    }[steps]
+    for M, B, T_target, q0 in problems:
+        compare(
+            _body_call(sub, M, B, T_target, q0, max_iterations=steps),
+            _body_iterate(M, B, T_target, q0, steps),
+            what=what,
+            inputs={"M": M, "B": B, "T_target": T_target, "q0": q0, "max_iterations": steps},
+            hypotheses=_body_step_hypotheses(M, B, T_target, q0, steps),
+        )
+
+
+def _body_first_step(sub, rng):
+    _body_steps(sub, rng, 1)
+
+
+def _body_second_step(sub, rng):
+    _body_steps(sub, rng, 2)
+
+
+def _body_reaches(sub, rng, any_arm: bool):
+    for _ in range(3 if any_arm else 5):
+        n = int(rng.integers(2, 8)) if any_arm else None
+        M, B, T_target, q0 = _body_problem(rng, n=n)
+        got = _body_call(sub, M, B, T_target, q0)
+        miss = _body_miss(M, B, T_target, got.astype(float))
+        if not miss < tolerance(1e-8, got, 1.0):
+            raise Mismatch(
+                "the answer must reach the target: M e^[B1]q1 ⋯ e^[Bn]qn = T_target within "
+                f"1e-8 m and 1e-8 rad (it misses by {miss:.2g})",
+                inputs={"M": M, "B": B, "T_target": T_target, "q0": q0},
+                expected=T_target,
+                got=fk_body(M, B, got.astype(float)),
+            )
+
+
+def _body_ur_arms(sub, rng):
+    _body_reaches(sub, rng, any_arm=False)
+
+
+def _body_any_arm(sub, rng):
+    _body_reaches(sub, rng, any_arm=True)
+
+
 LESSON = Lesson(
     number="06",
     title="Damped least squares, Levenberg–Marquardt and the PoE solver",
@@ -1206,6 +1391,26 @@ LESSON = Lesson(
                 ),
                 Check("e = 0 gives λ = 0; bad max_step or e raise ValueError", 1, _damping_edges),
             ),
+        ),
+        Exercise(
+            id="6.6",
+            function="ik_poe_body",
+            title="matrix-log IK: the body twist with the body Jacobian",
+            checks=(
+                Check(
+                    "one iteration is q0 + J_b⁺ V_b, V_b = log(T⁻¹ T_target)",
+                    1,
+                    _body_first_step,
+                ),
+                Check(
+                    "the second iteration recomputes V_b and J_b at the new q",
+                    1,
+                    _body_second_step,
+                ),
+                Check("reaches targets on UR arms from 0.3 rad away", 1, _body_ur_arms),
+                Check("works for arms of 2 to 7 joints", 1, _body_any_arm),
+            ),
+            answer=concepts.INVERSE_KINEMATICS,
         ),
     ),
 )
