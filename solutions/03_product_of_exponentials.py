@@ -26,9 +26,11 @@
 # * go back from a pose to its twist with the matrix logarithm, including its two special
 #   cases, θ = 0 and θ = π (exercise 3.5);
 # * turn space screw axes into body screw axes with the adjoint of $M^{-1}$, written
-#   yourself (exercise 3.7).
+#   yourself (exercise 3.7);
+# * read the space screw axes and the home pose $M$ of any arm straight off its DH table
+#   (exercise 3.8).
 #
-# **Time:** about 110 minutes. **You need:** lesson 01 (transforms, skew matrices, Rodrigues'
+# **Time:** about two hours. **You need:** lesson 01 (transforms, skew matrices, Rodrigues'
 # formula, the exponential map) and lesson 02 (DH frames and forward kinematics).
 
 # %%
@@ -38,7 +40,7 @@ import numpy as np
 import urkin
 import urkin.plot
 import urkin.poe
-from urkin.course import check
+from urkin.course import below, check
 from urkin.transforms import (
     adjoint,
     inv_transform,
@@ -1350,6 +1352,127 @@ print("last body axis, the flange's z axis seen from the tool:", B_arm[:, 5].rou
 # z axis, (0, 0, 1, 0, 0, 0).
 
 # %% [markdown]
+# ## 11. Screw axes from any DH table
+#
+# Section 5 read the UR5's screw axes straight off its DH frames at $q = 0$: joint i turns
+# about the z axis of frame i−1, through that frame's origin, so
+# $S_i = (z_{i-1},\ -z_{i-1} \times p_{i-1})$, and $M = T_{0,6}(0)$ is the last frame. The
+# frames came from `urkin.fk_frames`, which knows only UR arms. Any arm with a standard-DH
+# table works the same way: build its frames at $q = 0$ one link at a time,
+# $T_{0,i} = T_{0,i-1}\,T_{i-1,i}$ with lesson 02's link transform at θ = 0, and read each
+# joint's axis from the frame *before* it.
+#
+# ### Exercise 3.8 — `screws_from_dh` (4 points)
+#
+# Write `screws_from_dh(rows)`: the space screw axes `S` and the home pose `M` of the revolute
+# arm whose standard-DH table is `rows`, a numpy array of shape `(n, 3)` with one row
+# $(d_i, a_i, \alpha_i)$ per joint (metres, metres, radians; any n ≥ 1; the row order of
+# exercises 2.4 and 2.6, of `robot.dh_table()` and of `dh_chain`). Return a pair `(S, M)`:
+#
+# * `S`, shape `(6, n)`: column i − 1 is joint i's screw axis $(z_{i-1},\ -z_{i-1} \times
+#   p_{i-1})$, ordered (ω, v), where $z_{i-1}$ and $p_{i-1}$ are the z axis and the origin of
+#   DH frame i − 1 at q = 0 (frame 0 is the base: z = (0, 0, 1) through the origin);
+# * `M`, shape `(4, 4)`: the end effector's pose at q = 0, DH frame n, $T_{0,n}(0)$.
+#
+# `urkin.kinematics.dh_transform` (lesson 02's exercise 2.1) gives the links, and your own
+# `screw_axis` of exercise 3.1 may build the columns; urkin's `screw_axis`, `space_screws` and
+# `body_screws`, which answer the exercise, are hidden while it is graded.
+#
+# *Checked* (to 1e-12; a float32 answer to float32's precision): (1 point) S and M of random
+# UR arms' tables, `arm.dh_table()`, against `urkin.poe.space_screws(arm)`; (2 points) new arms
+# of every n from 1 to 7 joints, with random lengths and twists; (1 point) with your S and M,
+# the space form $e^{[S_1]q_1}\cdots e^{[S_n]q_n}M$ (`urkin.poe.fk_space`) gives the table's
+# DH chain `dh_chain(rows, q)` at random q, to 1e-9 — for a UR arm and new arms of 1 to 7
+# joints. The feedback recognises the frames taken one too late ($z_i$ through $p_i$: the
+# modified-DH recipe), v = +z × p, the (v, ω) order, the axis of one frame with the origin of
+# the next (or the other way round), the origin itself as v, the axis from the wrong column or
+# row of the frame, rows read as (a, d, α), S transposed, M forgotten, inverted or taken one
+# frame early, (M, S) returned in that order, and six joints hard-coded.
+
+# %%
+def screws_from_dh(rows):
+    """Space screw axes and home pose of a revolute arm, from its standard-DH table.
+
+    Parameters
+    ----------
+    rows : array_like, shape (n, 3)
+        Standard-DH table, one row (d_i, a_i, α_i) per joint: metres, metres, radians.
+
+    Returns
+    -------
+    S : ndarray, shape (6, n)
+        Space-frame screw axes, one per column, each ordered (ω, v): joint i turns about the
+        z axis z_(i−1) of DH frame i − 1 at q = 0, through its origin p_(i−1), so
+        S[:, i − 1] = (z_(i−1), −z_(i−1) × p_(i−1)).
+    M : ndarray, shape (4, 4)
+        Pose of the end effector (DH frame n) at q = 0 in the base frame, T_0n(0) (metres).
+    """
+    ### BEGIN SOLUTION
+    table = np.asarray(rows, dtype=float)
+    T = np.eye(4)  # DH frame i at q = 0, starting with the base, frame 0
+    S = np.zeros((6, len(table)))
+    for i, (d, a, alpha) in enumerate(table):
+        z, p = T[:3, 2], T[:3, 3]  # joint i + 1 turns about z of frame i, through its origin
+        S[:3, i], S[3:, i] = z, -np.cross(z, p)
+        T = T @ urkin.kinematics.dh_transform(0.0, d, a, alpha)
+    return S, T
+    ### END SOLUTION
+
+
+# %%
+check("3.8", screws_from_dh)
+
+# %% [markdown]
+# **Verify.** Two arms. The UR5's table must give back section 5's `S_ur5` and `M_ur5`. Then
+# an arm urkin has no model of: seven joints, every $a_i = 0$ and twists of ±90°, the layout of
+# many seven-joint arms (the lengths are made up). Its screw axes and M must reproduce its DH
+# chain, `dh_chain`, at 1000 random configurations. The cell uses your `screws_from_dh`, or
+# urkin's `space_screws` while the exercise is not written yet.
+
+# %%
+try:
+    screws_from_dh(ur5.dh_table())
+    from_table, source = screws_from_dh, "your screws_from_dh"
+except NotImplementedError:
+    from_table = urkin.poe.space_screws
+    source = "urkin.poe.space_screws (exercise 3.8 is not written yet)"
+print(f"screw axes from {source}")
+
+S_table, M_table = (np.asarray(x, dtype=float) for x in from_table(ur5.dh_table()))
+table_gap = max(np.abs(S_table - S_ur5).max(), np.abs(M_table - M_ur5).max())
+print(f"UR5 table against section 5's S and M: largest difference {below(table_gap)}")
+
+seven_rows = np.array(  # rows (d, a, α) of a made-up seven-joint arm: metres and radians
+    [
+        [0.36, 0.0, -np.pi / 2],
+        [0.0, 0.0, np.pi / 2],
+        [0.42, 0.0, np.pi / 2],
+        [0.0, 0.0, -np.pi / 2],
+        [0.40, 0.0, -np.pi / 2],
+        [0.0, 0.0, np.pi / 2],
+        [0.13, 0.0, 0.0],
+    ]
+)
+S_seven, M_seven = (np.asarray(x, dtype=float) for x in from_table(seven_rows))
+print("seven-joint arm, S (columns = joints 1 … 7):")
+print(S_seven.round(4) + 0.0)
+print("M, the flange at q = 0:")
+print(M_seven.round(4) + 0.0)
+q_seven = np.random.default_rng(38).uniform(-np.pi, np.pi, (1000, 7))
+seven_gap = np.abs(urkin.poe.fk_space(M_seven, S_seven, q_seven)
+                   - urkin.kinematics.dh_chain(seven_rows, q_seven)).max()
+print(f"space form against dh_chain, 1000 random q: largest entry difference {below(seven_gap)}")
+
+# %% [markdown]
+# At $q = 0$ the seven-joint arm stands straight up. Its joints 1, 3, 5 and 7 all turn about
+# the vertical line through the base origin, so all four have S = (0, 0, 1, 0, 0, 0); joints
+# 2, 4 and 6 turn about horizontal lines along ±y at the heights h = 0.36, 0.78 and 1.18 m,
+# and their $v = -\omega \times p = (-\omega_y h, 0, 0)$ carries the height. M is the flange
+# 1.31 m above the base, turned like it. urkin has no model of this arm, and its space form
+# is still its DH chain to round-off at every configuration: the recipe needs nothing but the
+# table.
+
+# %% [markdown]
 # ## Summary
 #
 # * A **twist** $(\omega, v)$ is a rigid body's angular velocity and the velocity of its point
@@ -1367,8 +1490,9 @@ print("last body axis, the flange's z axis seen from the tool:", B_arm[:, 5].rou
 #   the adjoint $\mathrm{Ad}(T) = \begin{bmatrix} R & 0 \\ [p]R & R \end{bmatrix}$ taken of
 #   $M^{-1} = (R^\mathsf{T}, -R^\mathsf{T}p)$. A new tool changes M and B (not S); a new
 #   mounting changes M and S — only the body screws B are invariant to it.
-# * From a standard-DH table, $S_i$ is the z axis of frame i−1 through its origin at q = 0
-#   (`urkin.poe.space_screws`); both DH conventions give the same S. Space form, body form and
+# * From a standard-DH table, $S_i$ is the z axis of frame i−1 through its origin at q = 0,
+#   and M the last frame (`urkin.poe.space_screws`, exercise 3.8, for any number of joints);
+#   both DH conventions give the same S. Space form, body form and
 #   DH agree to round-off on all seven UR arms.
 # * Seed 001's screw axes and M describe a UR3 to within its 1 mm rounding, once its zero pose,
 #   world frame and end-effector frame are matched to the DH model.
@@ -1388,5 +1512,5 @@ print("last body axis, the flange's z axis seen from the tool:", B_arm[:, 5].rou
 # column from the joint axes — the current axes drawn in section 5 — and numerically by finite
 # differences, and it finds the configurations where a UR arm loses a direction of motion.
 #
-# Before you move on: restart the kernel and run the whole notebook. All seven check cells
+# Before you move on: restart the kernel and run the whole notebook. All eight check cells
 # should report full marks.

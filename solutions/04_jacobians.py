@@ -14,7 +14,8 @@
 # **What you will be able to do**
 #
 # * compute the geometric Jacobian from DH frames, and a numeric one with a step size you can
-#   justify (exercises 4.1 and 4.2);
+#   justify (exercises 4.1 and 4.2) or, by the complex step, exact to round-off (exercise
+#   4.11);
 # * compute the space and body Jacobians from screw axes, as *Modern Robotics* does
 #   (exercises 4.3 and 4.4), and convert the geometric Jacobian into the space one
 #   (exercise 4.10);
@@ -1479,6 +1480,103 @@ else:
           f"{below(np.abs(J_s_yours[3:, 0]).max(), 1e-12)} m/s per rad/s")
 
 # %% [markdown]
+# ### Exercise 4.11 — `complex_step_jacobian` (3 points)
+#
+# Section 4 measured the complex step on the UR5's flange position: evaluate the function at
+# $q + \mathrm{i}h e_j$ and keep $\operatorname{Im} f / h$ — no subtraction, so nothing
+# cancels, and below $h \approx 10^{-8}$ it matched the exact Jacobian to machine precision,
+# far beyond the best central difference. There it was one vectorised line through
+# `urkin.fk`; exercise 4.2 turned central differences into a function of any `f`. Now do the
+# same for the complex step.
+#
+# Write `complex_step_jacobian(position, q, h=1e-20)`: the Jacobian of `position` at `q` by the
+# complex step, as a float array of shape `(m, n)`, where `q` has `n` real entries (an array
+# or a list) and `position(x)` returns `m` numbers. `position` accepts complex arguments, as
+# `lambda q: urkin.fk(robot, q)[:3, 3]` does. Column `j` is
+# $\operatorname{Im} f(q + \mathrm{i}h e_j) / h$: build each nudged point as a new *complex*
+# array (`q + 1j * h * e_j`; assigning `1j * h` into an entry of a float array silently drops
+# the imaginary part).
+#
+# *Checked* in float64 (the complex step's whole point is float64's last digits): (1 point) the
+# Jacobians of random polynomials $Ax + (Bx) \circ (Cx) + b$ and of $\sin(Ax) \circ \exp(Bx)$
+# with $m \ne n$, against their exact derivatives, with the default step, to 1e-8, once with
+# `q` a plain list; (1 point) the flange position of random UR arms through `urkin.fk`,
+# against urkin's exact $\partial p/\partial q$ to 1e-12 — beyond central differences at any
+# step (about 1e-11 at their best, 1e-10 at $h = 10^{-6}$); (1 point) the step `h` you are
+# given: at $h = 0.4$, $2^{-3}$ and $0.25$ the complex step differs from the derivative by
+# $O(h^2)$, and $\operatorname{Im} f(q + \mathrm{i}h e_j)/h$ must come out to 1e-12. The
+# feedback recognises real-step central or forward differences, the real part for the
+# imaginary one, a missing or doubled division by h, a flipped sign, a step that was lost (all
+# zeros), every entry nudged at once or steps piling up, a transposed result, complex numbers
+# returned, an ignored `h`, and float32. urkin's Jacobians (`urkin.jacobian`,
+# `urkin.kinematics.position_jacobian` and the ones built on them) are hidden while this
+# exercise is graded; `urkin.fk` is not.
+
+# %%
+def complex_step_jacobian(position, q, h=1e-20):
+    """Jacobian of an analytic function by the complex step.
+
+    Parameters
+    ----------
+    position : callable
+        ``position(x)`` takes an array of shape ``(n,)``, complex entries included, and returns
+        ``m`` numbers (array_like, shape ``(m,)``), for example
+        ``lambda q: urkin.fk(robot, q)[:3, 3]``.
+    q : array_like, shape (n,)
+        The real point at which to differentiate (for a UR arm: joint angles in radians).
+    h : float
+        Imaginary step size, in the units of ``q``.
+
+    Returns
+    -------
+    ndarray, shape (m, n)
+        Entry ``[k, j]`` is Im f_k(q + i h e_j) / h ≈ ∂f_k/∂q_j, with an error of order h²
+        and no cancellation: one row per output, one column per input.
+    """
+    ### BEGIN SOLUTION
+    q = np.asarray(q, dtype=float)
+    columns = []
+    for j in range(q.size):
+        step = np.zeros(q.size, dtype=complex)
+        step[j] = 1j * h
+        columns.append(np.imag(np.asarray(position(q + step))).ravel() / h)
+    return np.column_stack(columns)
+    ### END SOLUTION
+
+
+# %%
+check("4.11", complex_step_jacobian)
+
+# %% [markdown]
+# Verify it at section 4's configuration `q_fd` of the UR5, against urkin's exact
+# $\partial p/\partial q$ there (`exact`), next to a central difference at the default step of
+# exercise 4.2. Then hand it a position function that quietly drops the imaginary part, as
+# most numeric code does (here by `np.real`): the complex step cannot notice that, and every
+# entry comes out zero.
+
+# %%
+def ur5_position(q):
+    """The UR5's flange position (m); urkin.fk accepts complex joint angles."""
+    return urkin.fk(ur5, q)[:3, 3]
+
+
+central_default = np.column_stack([(ur5_position(q_fd + 1e-6 * e) - ur5_position(q_fd - 1e-6 * e))
+                                   / 2e-6 for e in np.eye(6)])
+try:
+    J_complex = np.asarray(complex_step_jacobian(ur5_position, q_fd), dtype=float)
+except NotImplementedError:
+    print("exercise 4.11 is not written yet: nothing to compare")
+else:
+    print(f"your complex step against the exact ∂p/∂q: largest difference "
+          f"{below(np.abs(J_complex - exact).max(), 1e-14)} m/rad")
+    print(f"central differences at h = 1e-6, for comparison: "
+          f"{below(np.abs(central_default - exact).max(), 1e-9)} m/rad")
+    J_dropped = np.asarray(complex_step_jacobian(lambda q: ur5_position(np.real(q)), q_fd),
+                           dtype=float)
+    print("through a function that drops the imaginary part, every entry is zero:",
+          bool(np.all(J_dropped == 0.0)))
+
+# %% [markdown]
 # ## Summary
 #
 # * The geometric Jacobian maps joint rates to the flange's $[v;\ \omega]$ in the base frame,
@@ -1490,7 +1588,9 @@ else:
 #   kind of pose at which its $p$ is right.
 # * Finite differences check any Jacobian. Central differences are second order; with
 #   $h \approx 10^{-6}$ to $10^{-5}$ they are accurate to about $10^{-10}$ or better, while
-#   forward differences stop near $10^{-8}$. The complex step avoids cancellation altogether.
+#   forward differences stop near $10^{-8}$. The complex step avoids cancellation altogether
+#   and is exact to round-off for any function built of analytic operations that accepts
+#   complex numbers (exercise 4.11).
 # * Space and body Jacobians map to twists $(\omega, v)$; $J_s = \mathrm{Ad}_T J_b$, and
 #   $v_s = v + p \times \omega$ connects the space Jacobian to the geometric one.
 # * For every UR arm, $\det J = a_2 a_3 \sin q_3 \sin q_5\,(a_2 c_2 + a_3 c_{23} + d_5 s_{234})$:
@@ -1508,5 +1608,5 @@ else:
 # use the pseudo-inverse, **damped least squares** $J^\mathsf{T}(JJ^\mathsf{T} +
 # \lambda^2 I)^{-1}$ and Levenberg–Marquardt, and watch the condition number.
 #
-# Before you move on: restart the kernel and run the whole notebook. All ten check cells
+# Before you move on: restart the kernel and run the whole notebook. All eleven check cells
 # should report full marks.

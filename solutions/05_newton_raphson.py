@@ -13,13 +13,14 @@
 # a step limit; finds out why seed 002's square came out wrong (it was not its initial
 # guess); spends the three joints a position-only task leaves free on a secondary objective,
 # in the Jacobian's null space; measures how far from a solution the method still finds one;
-# and takes apart seed 000's start at "home", a triple singularity with an orientation error
-# that reads zero when the tool is half a turn away.
+# takes apart seed 000's start at "home", a triple singularity with an orientation error
+# that reads zero when the tool is half a turn away; and ends by following a path the way a
+# controller must, keeping the arm where it was when a point fails.
 #
 # **What you will be able to do**
 #
 # * write position-only Newton–Raphson IK with a step limit and wrapped angles
-#   (exercise 5.1), and see why a path is tracked with warm starts;
+#   (exercise 5.1);
 # * write the 6-vector error between two poses with the log map, right at and near a half
 #   turn where the seeds' cross-product error goes blind (exercise 5.2);
 # * write full-pose Newton–Raphson IK on top of that error, with separate position and
@@ -28,7 +29,9 @@
 #   from linear — Newton's method near and away from a singular solution, a gradient method
 #   (exercise 5.4);
 # * spend an arm's spare joints on a secondary objective with a null-space projector, without
-#   disturbing the task (exercise 5.5).
+#   disturbing the task (exercise 5.5);
+# * follow a path of positions with warm starts, checking each answer with forward kinematics
+#   and leaving the arm where it was when a point fails (exercise 5.6).
 #
 # **Time:** about 3 hours. **You need:** lesson 01 (the log map; the cross-product error
 # and its blind spot at 180°), lesson 02 (forward kinematics; seed 002's position formula)
@@ -1325,6 +1328,155 @@ for form in ("cross", "log"):
 # for small errors, and wrong in exactly the situation — a large reorientation — where an IK
 # solver most needs to know which way to turn.
 #
+# ## 7. Following a path: warm starts, and what a failure leaves alone
+#
+# This lesson has tracked paths without stopping at the method. Section 2 followed seed 002's
+# square point by point, each solve starting from the answer of the point before — a **warm
+# start** — so that the far 20° guess was paid for once, at the first point. Section 5 showed
+# why it works: from a close start Newton–Raphson almost always converges, and to the
+# solution nearby, so a finely sampled path keeps the arm on one branch. Section 6 met seed
+# 000's loop, which warm-starts from the robot's current state as well, and writes every
+# answer into that state, whether the solve succeeded or not. A solve that fails has found
+# no configuration: its answer is wherever the iteration gave up. Keeping it moves the arm
+# there, and the next solve starts from it.
+#
+# ### Exercise 5.6 — `track_positions` (4 points)
+#
+# Write `track_positions(robot, points, q0, solve, tol=1e-9)`. `points`, shape `(M, 3)`, are
+# the path's target positions of the flange in the base frame (metres), in order; `q0`, shape
+# `(6,)`, is the arm's configuration *before* the first point (radians; it need not reach any
+# point); `solve(robot, p, q_guess)` is a position-only IK function that returns joint angles,
+# shape `(6,)` — the convention of your `ik_position` (exercise 5.1), which you can pass as it
+# is. Its answers are not taken on trust: point $k$ counts as reached when `urkin.fk` puts the
+# flange within `tol` metres of it. Solve the first point from `q0` and every later one from
+# the last *reached* answer. Return `(Q, ok)`: `Q`, shape `(M, 6)`, the arm's configuration
+# after each point — the answer where the point is reached, otherwise the previous row (`q0`
+# for the first), because the arm stays where it was — and `ok`, shape `(M,)`, booleans: which
+# points were reached. A failed answer is thrown away: neither stored nor used as a guess.
+#
+# *Checked* (rows to 1e-9 rad, angles compared modulo 2π): (2 points) with a stand-in `solve`
+# that returns its guess plus a step fixed for each point, on paths whose points lie exactly
+# where those steps take the arm from the previous answer — so each answer shows which guess
+# it started from, and only warm starts reach the points; (1 point) the same with points out
+# of reach (4 m away), among them the first point and two in a row: there `ok` is False and
+# the row repeats the previous one, and the next point starts from the last reached answer;
+# (1 point) a square of side 3 cm sampled at most 1 mm apart on a UR5, with
+# `urkin.ik(robot, p, q0=q_guess, method="nr", max_restarts=0).q` as `solve`: every point
+# reached, each row checked with `urkin.fk`. The feedback recognises a cold start from `q0` for
+# every point, a failed answer that overwrites the arm's configuration (seed 000's bug) or
+# becomes the next guess, every answer taken as reached, an `ok` that is not recorded, and
+# two off-by-ones: `q0` taken as the answer for the first point, and each row stored before
+# its point is solved.
+
+# %%
+def track_positions(robot, points, q0, solve, tol=1e-9):
+    """Joint angles that follow a path of positions: warm-started IK, holding on failure.
+
+    Parameters
+    ----------
+    robot : urkin.Robot
+        The arm.
+    points : array_like, shape (M, 3)
+        Target positions of the flange origin in the base frame, metres, in path order.
+    q0 : array_like, shape (6,)
+        The arm's joint angles before the first point, radians.
+    solve : callable
+        ``solve(robot, p, q_guess)``: position-only IK that returns joint angles, shape (6,)
+        (``ik_position`` of exercise 5.1, for one).
+    tol : float
+        A point is reached when ``urkin.fk`` puts the flange within ``tol`` metres of it.
+
+    Returns
+    -------
+    Q : ndarray, shape (M, 6)
+        The joint angles after each point: the solver's answer where the point was reached,
+        the previous row (``q0`` before the first) where it was not.
+    ok : ndarray of bool, shape (M,)
+        Whether each point was reached.
+    """
+    ### BEGIN SOLUTION
+    points = np.asarray(points, dtype=float)
+    q = np.array(q0, dtype=float)  # where the arm is: the guess for the next point
+    Q = np.empty((len(points), 6))
+    ok = np.zeros(len(points), dtype=bool)
+    for k, p in enumerate(points):
+        answer = np.asarray(solve(robot, p, q.copy()), dtype=float)
+        ok[k] = np.linalg.norm(urkin.fk(robot, answer)[:3, 3] - p) <= tol
+        if ok[k]:
+            q = answer  # a failed answer is thrown away: the arm stays where it was
+        Q[k] = q
+    return Q, ok
+    ### END SOLUTION
+
+
+# %%
+check("5.6", track_positions)
+
+# %% [markdown]
+# Verify it on section 2's square: with `urkin.ik` as `solve`, it must give section 2's
+# answers. Then spoil one sample the way seed 002 would have written it, in millimetres, and
+# solve with section 2's Newton loop on the true kinematics (`newton_on_model`), which does not
+# notice that a target is out of reach and returns wherever its 100 iterations ended. The
+# last lines run the spoiled path once more with every answer kept, as seed 000's loop keeps
+# them (they do not need your function).
+
+# %%
+def urkin_solve(robot, p, q_guess):
+    """urkin's plain position-only Newton–Raphson, as section 2 used it."""
+    return urkin.ik(robot, p, q0=q_guess, method="nr", max_restarts=0).q
+
+
+def model_solve(robot, p, q_guess):
+    """Section 2's Newton loop on the true kinematics of SEED002_ARM (the only arm it
+    knows): it returns its last iterate, reached or not."""
+    return newton_on_model(true_position, true_jacobian, p, q_guess)[0]
+
+
+def largest_change(Q):
+    """The largest change of any joint between neighbouring rows of Q (rad)."""
+    return np.abs(wrapped(np.diff(Q, axis=0))).max()
+
+
+spoiled = square.copy()
+spoiled[30] = 1000 * square[30]  # one sample in millimetres: 616 m away
+try:
+    Q_square, ok_square = track_positions(SEED002_ARM, square, guess_20, urkin_solve)
+    Q_spoiled, ok_spoiled = track_positions(SEED002_ARM, spoiled, guess_20, model_solve)
+except NotImplementedError:
+    print("exercise 5.6 is not written yet: nothing to compare")
+else:
+    Q_square, Q_spoiled = np.asarray(Q_square, dtype=float), np.asarray(Q_spoiled, dtype=float)
+    print(f"section 2's square: {int(np.sum(ok_square))} of {len(square)} points reached, "
+          f"{below(np.abs(wrapped(Q_square - solved)).max(), 1e-9)} rad from section 2's answers")
+    missed = np.flatnonzero(~np.asarray(ok_spoiled, dtype=bool)).tolist()
+    print(f"one sample in mm, yours: points not reached {missed}, largest joint change "
+          f"between rows {below(largest_change(Q_spoiled), 0.1)} rad")
+
+q, kept = guess_20, []
+for point in spoiled:  # every answer kept, reached or not
+    q = model_solve(SEED002_ARM, point, q)
+    kept.append(q)
+kept = np.array(kept)
+miss_after = np.linalg.norm(urkin.fk(SEED002_ARM, wrapped(kept[31:]))[:, :3, 3]
+                            - spoiled[31:], axis=1).max()
+apart = np.abs(wrapped(kept[31:] - solved[31:])).max(axis=1)  # largest joint difference
+print(f"one sample in mm, every answer kept: largest joint change between rows "
+      f"{largest_change(kept):.1f} rad")
+print(f"  points 31 to 80: largest miss {below(miss_after, 1e-9)} m; every row more than "
+      f"2.5 rad from section 2's answer in some joint: {bool(np.all(apart > 2.5))}")
+
+# %% [markdown]
+# Held, the spoiled sample costs one point and nothing else: the arm waits at point 29 and
+# goes on to point 31, 20 mm along, without a joint moving more than 0.1 rad between rows.
+# Kept, the failed answer swings the arm by more than two radians within one 10 mm step of the
+# path, and the next solve, starting from there, converges — to another branch, on which the
+# rest of the square is followed. Every later point is reached, so nothing after the bad
+# sample gives it away. (`urkin.ik` would have refused this target at once, since it checks
+# the arm's reach, and returned its guess; a solver that gives up wherever its iterations
+# ended is the common case.) That is why a tracker checks every answer with forward
+# kinematics, marks what failed and leaves the arm where it was; `urkin.tracking.track` does
+# the same for full poses.
+#
 # ## Summary
 #
 # * Newton–Raphson IK: linearise $x(q + \Delta q) \approx x(q) + J\,\Delta q$, solve
@@ -1351,6 +1503,10 @@ for form in ("cross", "log"):
 # * Basins of attraction are large but not whole: plain Newton–Raphson succeeds from most
 #   starts within about 1 rad and from fewer and fewer beyond, sometimes on another branch.
 #   Good guesses and restarts make it reliable.
+# * A path is tracked with warm starts: each point from the last *reached* answer. Check
+#   every answer with forward kinematics; where a point fails, the arm stays where it was.
+#   Seed 000 kept failed answers: one bad sample is then enough to move the arm onto another
+#   branch.
 #
 # ## What comes next
 #
@@ -1360,5 +1516,5 @@ for form in ("cross", "log"):
 # matrix-log solver of the product-of-exponentials world, followed by a comparison of all
 # the methods.
 #
-# Before you move on: restart the kernel and run the whole notebook. All five check cells
+# Before you move on: restart the kernel and run the whole notebook. All six check cells
 # should report full marks.

@@ -426,6 +426,52 @@ def body_from_space(S, M):
     return np.vstack([w_body, v_body]).astype(np.float32)
 """,
     ),
+    # ------------------------------------------------------------------------------ 3.8
+    Variant(
+        "3.8",
+        "prefix chains with dh_chain, p × z",
+        """
+def screws_from_dh(rows):
+    rows = np.asarray(rows, dtype=float)
+    n = len(rows)
+    chain = urkin.kinematics.dh_chain
+    frames = [np.eye(4)] + [chain(rows[:k], np.zeros(k)) for k in range(1, n + 1)]
+    S = np.column_stack([np.r_[F[:3, 2], np.cross(F[:3, 3], F[:3, 2])] for F in frames[:-1]])
+    return S, frames[-1]
+""",
+    ),
+    Variant(
+        "3.8",
+        "own link matrices and the student's screw_axis, a list",
+        """
+def screws_from_dh(rows):
+    T = np.eye(4)
+    columns = []
+    for d, a, alpha in rows:
+        columns.append(screw_axis(T[:3, 2], T[:3, 3]))
+        ca, sa = np.cos(alpha), np.sin(alpha)
+        link = np.array([[1, 0, 0, a], [0, ca, -sa, 0], [0, sa, ca, d], [0, 0, 0, 1]])
+        T = T @ link
+    return [np.array(columns).T, T]
+""",
+    ),
+    Variant(
+        "3.8",
+        "rotations and origins kept apart, float32",
+        """
+def screws_from_dh(rows):
+    R, p = np.eye(3), np.zeros(3)
+    S = []
+    for d, a, alpha in np.asarray(rows, dtype=float):
+        z = R[:, 2].copy()
+        S.append(np.concatenate([z, np.cross(p, z)]))
+        p = p + d * R[:, 2] + a * R[:, 0]
+        R = R @ urkin.transforms.rot_x(alpha)
+    M = np.eye(4)
+    M[:3, :3], M[:3, 3] = R, p
+    return np.array(S, dtype=np.float32).T, M.astype(np.float32)
+""",
+    ),
 ]
 
 _TWIST_V_THETA = """
@@ -452,6 +498,35 @@ def twist_log(T):
     G_inv = np.eye(3) / theta - W / 2 + (1 / theta - 0.5 / np.tan(theta / 2)) * W @ W
     return np.r_[wt, G_inv @ T[:3, 3] * theta]
 """
+
+
+_SCREWS_FROM_DH = """
+def screws_from_dh(rows):
+    table = np.asarray(rows, dtype=float)
+    T = np.eye(4)
+    S = np.zeros((6, len(table)))
+    for i, (d, a, alpha) in enumerate(table):
+        READ
+        S[:3, i], S[3:, i] = z, -np.cross(z, p)
+        MOVE
+    return S, T
+"""
+
+
+def _screws_from_dh(
+    read: str = "z, p = T[:3, 2], T[:3, 3]",
+    move: str = "T = T @ LINK",
+    replace: tuple[tuple[str, str], ...] = (),
+) -> str:
+    """Exercise 3.8's solution with the line that reads frame i (``read``) or moves on to frame
+    i + 1 (``move``; LINK is the link transform at q = 0) replaced, then ``replace``'s pairs."""
+    source = _SCREWS_FROM_DH.replace("READ", read).replace("MOVE", move)
+    source = source.replace("LINK", "urkin.kinematics.dh_transform(0.0, d, a, alpha)")
+    for old, new in replace:
+        assert old in source, old
+        source = source.replace(old, new)
+    return source
+
 
 WRONG = [
     # ------------------------------------------------------------------------------ 3.1
@@ -1271,6 +1346,83 @@ def body_from_space(S, M):
         "3.7",
         "urkin's adjoint (hidden)",
         "def body_from_space(S, M):\n    return adjoint(inv_transform(M)) @ S\n",
+        points=0,
+    ),
+    # ------------------------------------------------------------------------------ 3.8
+    Variant(
+        "3.8",
+        "frames off by one (z_i, p_i)",
+        _screws_from_dh(read="T = T @ LINK\n        z, p = T[:3, 2], T[:3, 3]", move="pass"),
+        points=0,
+        mistake="frames off by one",
+    ),
+    Variant(
+        "3.8",
+        "v = +z × p",
+        _screws_from_dh(replace=(("-np.cross(z, p)", "np.cross(z, p)"),)),
+        points=0,
+        mistake="v = +ω × p has the wrong sign",
+    ),
+    Variant(
+        "3.8",
+        "S in (v, ω) order",
+        _screws_from_dh(replace=(("S[:3, i], S[3:, i]", "S[3:, i], S[:3, i]"),)),
+        points=0,
+        mistake="(v, ω) order",
+    ),
+    Variant(
+        "3.8",
+        "the origin of frame i",
+        _screws_from_dh(
+            read="z = T[:3, 2]\n        T = T @ LINK\n        p = T[:3, 3]", move="pass"
+        ),
+        points=0,
+        mistake="the point from frame i",
+    ),
+    Variant(
+        "3.8",
+        "M forgotten",
+        _screws_from_dh(replace=(("return S, T", "return S, np.eye(4)"),)),
+        points=0,
+        mistake="M forgotten",
+    ),
+    Variant(
+        "3.8",
+        "M one frame early",
+        _screws_from_dh(move="last, T = T, T @ LINK", replace=(("return S, T", "return S, last"),)),
+        points=0,
+        mistake="the last joint's frame",
+    ),
+    Variant(
+        "3.8",
+        "rows read as (a, d, α)",
+        _screws_from_dh(replace=(("(d, a, alpha) in", "(a, d, alpha) in"),)),
+        points=0,
+        mistake="read as (a, d, α)",
+    ),
+    Variant(
+        "3.8",
+        "only S returned",
+        _screws_from_dh(replace=(("return S, T", "return S"),)),
+        points=0,
+        mistake="only S returned",
+    ),
+    Variant(
+        "3.8",
+        "six joints hard-coded",
+        _screws_from_dh(
+            replace=(
+                ("np.zeros((6, len(table)))", "np.zeros((6, 6))"),
+                ("enumerate(table)", "zip(range(6), table)"),
+            )
+        ),
+        points=1,
+        mistake="six joints hard-coded",
+    ),
+    Variant(
+        "3.8",
+        "urkin's space_screws (hidden)",
+        "def screws_from_dh(rows):\n    return urkin.poe.space_screws(rows)\n",
         points=0,
     ),
 ]

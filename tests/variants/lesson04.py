@@ -60,6 +60,22 @@ def numeric_jacobian(f, q, h=1e-6):
 """
 
 
+def _complex_step_with(column: str, extra: str = "", default: str = "1e-20"):
+    """A complex_step_jacobian whose column j is computed by ``column`` (from position, q, h,
+    e: the unit vector e_j)."""
+    return f"""
+def complex_step_jacobian(position, q, h={default}):
+    q = np.asarray(q, dtype=float)
+    {extra}
+    columns = []
+    for j in range(q.size):
+        e = np.zeros(q.size)
+        e[j] = 1.0
+        columns.append({column})
+    return np.column_stack(columns)
+"""
+
+
 _JS = """
 def jacobian_space(S, q):
     S = np.asarray(S, dtype=float)
@@ -537,6 +553,53 @@ def space_from_geometric(J, T):
     for column in np.asarray(J, dtype=float).T:
         v, w = column[:3], column[3:]
         columns.append(np.concatenate([w, v + P @ w]))
+    return np.array(columns).T
+""",
+    ),
+    # ------------------------------------------------------------------------------ 4.11
+    Variant(
+        "4.11",
+        "one row per nudged point, transposed at the end",
+        """
+def complex_step_jacobian(position, q, h=1e-20):
+    q = np.asarray(q, dtype=float)
+    steps = 1j * h * np.eye(q.size)
+    return np.array([np.asarray(position(q + s)).imag for s in steps]).T / h
+""",
+    ),
+    Variant(
+        "4.11",
+        "a complex copy nudged and restored",
+        """
+def complex_step_jacobian(position, q, h=1e-20):
+    x = np.array(q, dtype=complex)
+    J = np.zeros((np.size(position(x.real)), x.size))
+    for j in range(x.size):
+        x[j] += 1j * h
+        J[:, j] = np.imag(position(x)) / h
+        x[j] = x[j].real
+    return J
+""",
+    ),
+    Variant(
+        "4.11",
+        "symmetric step (f(q + ih) − f(q − ih)) / 2ih",
+        _complex_step_with(
+            "((np.asarray(position(q + 1j * h * e)) - np.asarray(position(q - 1j * h * e)))"
+            " / (2j * h)).real"
+        ),
+    ),
+    Variant(
+        "4.11",
+        "lists and complex()",
+        """
+def complex_step_jacobian(position, q, h=1e-20):
+    q = [float(x) for x in q]
+    columns = []
+    for j in range(len(q)):
+        point = [complex(x) for x in q]
+        point[j] += complex(0.0, h)
+        columns.append([value.imag / h for value in np.asarray(position(np.array(point)))])
     return np.array(columns).T
 """,
     ),
@@ -1371,5 +1434,109 @@ def space_from_geometric(J, T):
 """,
         points=2,
         mistake="six joints assumed",
+    ),
+    # ------------------------------------------------------------------------------ 4.11
+    Variant(
+        "4.11",
+        "central differences, h = 1e-6",
+        _complex_step_with(
+            "(np.asarray(position(q + 1e-6 * e)) - np.asarray(position(q - 1e-6 * e))) / 2e-6"
+        ),
+        points=1,
+        mistake="real step",
+    ),
+    Variant(
+        "4.11",
+        "forward differences, h = 1e-6",
+        _complex_step_with(
+            "(np.asarray(position(q + 1e-6 * e)) - f0) / 1e-6",
+            "f0 = np.asarray(position(q))",
+        ),
+        points=0,
+        mistake="real step",
+    ),
+    Variant(
+        "4.11",
+        "the real part",
+        _complex_step_with("np.real(position(q + 1j * h * e)) / h"),
+        points=0,
+        mistake="the real part",
+    ),
+    Variant(
+        "4.11",
+        "not divided by h",
+        _complex_step_with("np.imag(position(q + 1j * h * e))"),
+        points=0,
+        mistake="not divided by h",
+    ),
+    Variant(
+        "4.11",
+        "divided by 2h",
+        _complex_step_with("np.imag(position(q + 1j * h * e)) / (2 * h)"),
+        points=0,
+        mistake="divided by 2h",
+    ),
+    Variant(
+        "4.11",
+        "one row per input",
+        """
+def complex_step_jacobian(position, q, h=1e-20):
+    q = np.asarray(q, dtype=float)
+    return np.array([np.imag(position(q + 1j * h * e)) / h for e in np.eye(q.size)])
+""",
+        points=0,
+        mistake="transposed",
+    ),
+    Variant(
+        "4.11",
+        "1j * h written into a float copy",
+        """
+def complex_step_jacobian(position, q, h=1e-20):
+    q = np.asarray(q, dtype=float)
+    J = np.zeros((np.size(position(q)), q.size))
+    for j in range(q.size):
+        x = q.copy()
+        x[j] += 1j * h  # numpy keeps the real part only
+        J[:, j] = np.imag(position(x)) / h
+    return J
+""",
+        points=0,
+        mistake="imaginary step was lost",
+    ),
+    Variant(
+        "4.11",
+        "complex values returned",
+        _complex_step_with("np.asarray(position(q + 1j * h * e)) / h"),
+        points=0,
+        mistake="complex numbers returned",
+    ),
+    Variant(
+        "4.11",
+        "h ignored",
+        _complex_step_with("np.imag(position(q + 1e-20j * e)) / 1e-20"),
+        points=2,
+        mistake="h argument is ignored",
+    ),
+    Variant(
+        "4.11",
+        "steps pile up",
+        """
+def complex_step_jacobian(position, q, h=1e-20):
+    x = np.array(q, dtype=complex)
+    columns = []
+    for j in range(x.size):
+        x[j] += 1j * h
+        columns.append(np.imag(position(x)) / h)
+    return np.column_stack(columns)
+""",
+        points=0,
+        mistake="pile up",
+    ),
+    Variant(
+        "4.11",
+        "float32 answer",
+        _complex_step_with("(np.imag(position(q + 1j * h * e)) / h).astype(np.float32)"),
+        points=0,
+        mistake="float32",
     ),
 ]

@@ -381,6 +381,43 @@ def null_space_step(J, e, q, q_rest, gain):
     return task + gain * null @ (null.T @ pull)
 """,
     ),
+    # ------------------------------------------------------------------------------ 5.6
+    Variant(
+        "5.6",
+        "lists, the index of the last reached row, allclose as the test",
+        """
+def track_positions(robot, points, q0, solve, tol=1e-9):
+    rows, reached = [], []
+    last = None
+    for p in np.asarray(points, dtype=float):
+        start = np.asarray(q0, dtype=float) if last is None else rows[last]
+        answer = np.asarray(solve(robot, p, start.tolist()), dtype=float)
+        good = bool(np.allclose(urkin.fk(robot, answer)[:3, 3], p, rtol=0, atol=tol / 2))
+        reached.append(good)
+        rows.append(answer if good else start)
+        if good:
+            last = len(rows) - 1
+    return np.array(rows), np.array(reached)
+""",
+    ),
+    Variant(
+        "5.6",
+        "answers wrapped into [−π, π) before they are kept",
+        """
+def track_positions(robot, points, q0, solve, tol=1e-9):
+    q = urkin.transforms.wrap_angles(np.asarray(q0, dtype=float))
+    Q, ok = [], []
+    for p in points:
+        p = np.asarray(p, dtype=float)
+        answer = urkin.transforms.wrap_angles(np.asarray(solve(robot, p, q), dtype=float))
+        hit = np.linalg.norm(urkin.fk(robot, answer)[:3, 3] - p) < tol
+        if hit:
+            q = answer
+        Q.append(q)
+        ok.append(hit)
+    return np.vstack(Q), np.array(ok, dtype=bool)
+""",
+    ),
 ]
 
 _NEWTON_TOOL_FRAME = _newton(
@@ -403,6 +440,33 @@ def convergence_order(errors):
         raise ValueError("errors: e_k = e_k-1, the order is undefined")
     a, b, c = {last}
     return float({result})
+"""
+
+
+def _track(
+    guess="q",
+    keep="if ok[k]:\n            q = answer",
+    ok_value="np.linalg.norm(urkin.fk(robot, answer)[:3, 3] - p) <= tol",
+    before="",
+    post="Q[k] = q",
+    returned="Q, ok",
+):
+    """A track_positions with its guess, its update of q, its ok, where the row is stored and
+    what it returns replaceable (``last``: the last answer, reached or not)."""
+    return f"""
+def track_positions(robot, points, q0, solve, tol=1e-9):
+    points = np.asarray(points, dtype=float)
+    q = np.array(q0, dtype=float)
+    last = q.copy()
+    Q = np.empty((len(points), 6))
+    ok = np.zeros(len(points), dtype=bool)
+    for k, p in enumerate(points):
+        {before}
+        answer = np.asarray(solve(robot, p, {guess}.copy()), dtype=float)
+        ok[k] = {ok_value}
+        {keep}
+        {post}
+    return {returned}
 """
 
 
@@ -657,5 +721,79 @@ def null_space_step(J, e, q, q_rest, gain):
 """,
         points=3,
         mistake=None,
+    ),
+    # ------------------------------------------------------------------------------ 5.6
+    Variant(
+        "5.6", "cold start from q0", _track(guess="np.array(q0, dtype=float)"), 1, "cold start"
+    ),
+    Variant(
+        "5.6",
+        "failed answer overwrites q (seed 000)",
+        _track(keep="q = answer"),
+        3,
+        "overwrites the arm's configuration",
+    ),
+    Variant(
+        "5.6",
+        "next guess from the failed answer",
+        _track(guess="last", keep="if ok[k]:\n            q = answer\n        last = answer"),
+        3,
+        "starts from the failed answer",
+    ),
+    Variant(
+        "5.6",
+        "ok not recorded",
+        """
+def track_positions(robot, points, q0, solve, tol=1e-9):
+    q = np.array(q0, dtype=float)
+    Q, ok = [], np.ones(len(points), dtype=bool)
+    for p in np.asarray(points, dtype=float):
+        answer = np.asarray(solve(robot, p, q), dtype=float)
+        if np.linalg.norm(urkin.fk(robot, answer)[:3, 3] - p) <= tol:
+            q = answer
+        Q.append(q.copy())
+    return np.array(Q), ok
+""",
+        3,
+        "ok is not recorded",
+    ),
+    Variant(
+        "5.6",
+        "no fk test: every answer kept and ok",
+        _track(ok_value="True", keep="q = answer"),
+        3,
+        "every answer taken as reached",
+    ),
+    Variant(
+        "5.6",
+        "off by one: q0 taken for points[0]",
+        """
+def track_positions(robot, points, q0, solve, tol=1e-9):
+    points = np.asarray(points, dtype=float)
+    Q = [np.array(q0, dtype=float)]
+    ok = [True]
+    for p in points[1:]:  # point k+1 solved from row k
+        answer = np.asarray(solve(robot, p, Q[-1].copy()), dtype=float)
+        hit = np.linalg.norm(urkin.fk(robot, answer)[:3, 3] - p) <= tol
+        Q.append(answer if hit else Q[-1])
+        ok.append(hit)
+    return np.array(Q), np.array(ok)
+""",
+        0,
+        "q0 taken as the answer for points[0]",
+    ),
+    Variant(
+        "5.6",
+        "off by one: row stored before solving",
+        _track(before="Q[k] = q", post=""),
+        0,
+        "stored before its point is solved",
+    ),
+    Variant(
+        "5.6",
+        "only Q returned",
+        _track(returned="Q"),
+        0,
+        "only Q returned",
     ),
 ]

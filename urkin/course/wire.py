@@ -10,7 +10,8 @@ graded.
 
 Two kinds of argument are rebuilt from a description rather than copied: a UR arm
 (:class:`urkin.Robot`, by its DH lengths) and an input function (:class:`Function`, by a kind
-and its parameters, for exercises that take a function such as ``numeric_jacobian(f, q)``).
+and its parameters, for exercises that take a function such as ``numeric_jacobian(f, q)`` or
+an IK solver ``track_positions(robot, points, q0, solve)``).
 A SymPy expression or matrix with symbols in it arrives as a
 :class:`urkin.course.symbolic_answer.Symbolic` (read from its ``srepr`` text without running it);
 anything else a student's function returns that is not plain data arrives as :class:`Opaque`.
@@ -96,10 +97,68 @@ def _flange_position(robot):
     return lambda q: fk(robot, np.asarray(q, dtype=float))[:3, 3]
 
 
+def _fixed_steps(points, steps):
+    points, steps = np.asarray(points, dtype=float), np.asarray(steps, dtype=float)
+
+    def solve(robot, p, q_guess):
+        k = int(np.argmin(np.linalg.norm(points - np.asarray(p, dtype=float), axis=1)))
+        return np.asarray(q_guess, dtype=float) + steps[k]
+
+    return solve
+
+
+def _position_ik():
+    def solve(robot, p, q_guess):
+        from urkin.numerical_ik import ik
+
+        return ik(robot, np.asarray(p, dtype=float), q0=q_guess, method="nr", max_restarts=0).q
+
+    return solve
+
+
+def _complex_kept(x) -> np.ndarray:
+    """``x`` as an array: complex numbers kept (complex-step derivatives), anything else float."""
+    x = np.asarray(x)
+    return x if np.iscomplexobj(x) else x.astype(float)
+
+
+def _polynomial(A, B, C, b):
+    A, B, C, b = (np.asarray(v, dtype=float) for v in (A, B, C, b))
+
+    def f(x):
+        x = _complex_kept(x)
+        return A @ x + (B @ x) * (C @ x) + b
+
+    return f
+
+
+def _sin_exp(A, B):
+    A, B = np.asarray(A, dtype=float), np.asarray(B, dtype=float)
+
+    def f(x):
+        x = _complex_kept(x)
+        return np.sin(A @ x) * np.exp(B @ x)
+
+    return f
+
+
+def _complex_flange_position(robot):
+    from urkin.kinematics import fk
+
+    return lambda q: fk(robot, _complex_kept(q))[:3, 3]
+
+
 _FUNCTION_KINDS = {
     "linear": _linear,  # f(x) = A x + b
     "smooth3": lambda: _smooth3,  # a fixed smooth map R³ → R³
     "flange_position": _flange_position,  # q ↦ the robot's flange position
+    # position-only IK stand-ins, solve(robot, p, q_guess) ↦ q:
+    "fixed_steps": _fixed_steps,  # q_guess + steps[k], k the listed point nearest p
+    "position_ik": _position_ik,  # urkin.ik(robot, p, q0=q_guess, method="nr", max_restarts=0).q
+    # complex-step test functions: a complex argument stays complex
+    "polynomial": _polynomial,  # f(x) = A x + (B x) ∘ (C x) + b
+    "sin_exp": _sin_exp,  # f(x) = sin(A x) ∘ exp(B x)
+    "complex_flange_position": _complex_flange_position,  # q ↦ the flange position, q complex
 }
 
 
@@ -112,6 +171,12 @@ class Function:
     >>> f = Function("linear", A=[[1.0, 2.0]], b=[0.5])
     >>> f([1.0, 1.0])
     array([3.5])
+
+    A function of several arguments, such as an IK solver ``solve(robot, p, q_guess)``:
+
+    >>> solve = Function("fixed_steps", points=[[0.0, 0.0, 1.0]], steps=[[0.1] * 6])
+    >>> solve(None, [0.0, 0.0, 1.0], [0.0] * 6)
+    array([0.1, 0.1, 0.1, 0.1, 0.1, 0.1])
     """
 
     kind: str
@@ -124,8 +189,8 @@ class Function:
         object.__setattr__(self, "params", params)
         object.__setattr__(self, "_built", _FUNCTION_KINDS[kind](**params))
 
-    def __call__(self, x: Any) -> Any:
-        return self._built(x)  # type: ignore[attr-defined]
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        return self._built(*args, **kwargs)  # type: ignore[attr-defined]
 
     def __repr__(self) -> str:
         return f"Function({self.kind!r})"

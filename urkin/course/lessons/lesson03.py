@@ -24,7 +24,7 @@ from urkin.course.compare import (
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_arm, random_pose, random_q, random_screw_axes
 from urkin.course.submission import StudentRaised
-from urkin.kinematics import dh_chain
+from urkin.kinematics import dh_chain, dh_transform
 from urkin.poe import body_screws, jacobian_space, screw_axis, space_screws
 from urkin.transforms import adjoint, inv_transform, se3_exp, se3_log, skew
 
@@ -1108,6 +1108,216 @@ def _body_fk_agrees(sub, rng):
             )
 
 
+# ------------------------------------------------------------------------ 3.8 screws_from_dh
+
+_SIX_JOINTS_DH = (
+    "six joints hard-coded (range(6), or a (6, 6) array of zeros): the table has one row per "
+    "joint, n of them; loop over len(rows)"
+)
+_SWAP = [3, 4, 5, 0, 1, 2]
+
+
+def _random_table(rng, n: int) -> np.ndarray:
+    """A new arm's standard-DH table (n, 3): rows (d, a, α), most twists multiples of π/2."""
+    alpha = rng.choice([0.0, np.pi / 2, -np.pi / 2], n)
+    free = rng.random(n) < 0.3
+    alpha[free] = rng.uniform(-np.pi, np.pi, int(free.sum()))
+    return np.column_stack([rng.uniform(-0.3, 0.3, n), rng.uniform(-0.5, 0.5, n), alpha])
+
+
+def _home_frames(rows) -> np.ndarray:
+    """DH frames 0 … n of a standard table at q = 0 (frame 0 the base): shape (n + 1, 4, 4)."""
+    links = dh_transform(0.0, rows[:, 0], rows[:, 1], rows[:, 2])
+    frames = [np.eye(4)]
+    for link in links:
+        frames.append(frames[-1] @ link)
+    return np.array(frames)
+
+
+def _frame_screws(frames, axis=0, point=0, sign=-1.0, take=lambda F: F[:3, 2]) -> np.ndarray:
+    """Screw axes (6, n) read off the frames: joint i + 1's ω from frame i + ``axis``, its point
+    from frame i + ``point``, v = ``sign`` · ω × p (the recipe's pieces swappable)."""
+    n = len(frames) - 1
+    S = np.zeros((6, n))
+    for i in range(n):
+        w, p = take(frames[i + axis]), frames[i + point][:3, 3]
+        S[:3, i], S[3:, i] = w, sign * np.cross(w, p)
+    return S
+
+
+def _dh_screw_hypotheses(rows):
+    frames = _home_frames(rows)
+    right = _frame_screws(frames)
+    swapped = _home_frames(rows[:, [1, 0, 2]])
+    n = len(rows)
+    hypotheses = {
+        "frames off by one: joint i turns about z_(i−1) of frame i − 1 (the base z for joint "
+        "1), through its origin p_(i−1) — not about z_i (that is the modified-DH recipe)": lambda: (
+            _frame_screws(frames, axis=1, point=1)
+        ),
+        "v = +ω × p has the wrong sign: a revolute joint's v is −ω × p = p × ω": lambda: (
+            _frame_screws(frames, sign=1.0)
+        ),
+        "S in (v, ω) order: screw axes are (ω, v), angular part first": lambda: right[_SWAP],
+        "the point from frame i (p_i) with the axis of frame i − 1: z_(i−1) passes through "
+        "p_(i−1); p_i lies a_i off it along x_i": lambda: _frame_screws(frames, point=1),
+        "the axis from frame i (z_i) with the point of frame i − 1: joint i turns about "
+        "z_(i−1)": lambda: _frame_screws(frames, axis=1),
+        "v = p: the frame's origin is a point of the axis, not its v; v = −z × p": lambda: (
+            np.vstack([right[:3], frames[:-1, :3, 3].T])
+        ),
+        "the joint axis taken from the first column of the frame (x): z is the third column, "
+        "F[:3, 2]": lambda: _frame_screws(frames, take=lambda F: F[:3, 0]),
+        "the joint axis taken from the third row of the rotation: z is the third column, "
+        "F[:3, 2]": lambda: _frame_screws(frames, take=lambda F: F[2, :3]),
+        "the rows read as (a, d, α): the course's DH rows are (d, a, α), d first": lambda: (
+            _frame_screws(swapped)
+        ),
+        "S transposed: one screw axis per column, shape (6, n)": lambda: right.T,
+    }
+    if n > 6:
+        hypotheses[_SIX_JOINTS_DH] = lambda: np.c_[right[:, :6], np.zeros((6, n - 6))]
+    return unless_right(hypotheses, right)
+
+
+def _dh_home_hypotheses(rows):
+    frames = _home_frames(rows)
+    return unless_right(
+        {
+            "M forgotten (the identity, the base frame): M is the end effector's pose at q = 0, "
+            "T_0n(0), the last DH frame": lambda: np.eye(4),
+            "M = T_0,n−1(0), the last joint's frame: the end effector is frame n, one link "
+            "further": lambda: frames[-2],
+            "M inverted: it is the pose of frame n in the base frame, T_0n(0)": lambda: (
+                inv_transform(frames[-1])
+            ),
+            "M from the rows read as (a, d, α): the course's DH rows are (d, a, α), d first": (
+                lambda: _home_frames(rows[:, [1, 0, 2]])[-1]
+            ),
+        },
+        frames[-1],
+    )
+
+
+def _shape_of_value(value) -> tuple[int, ...] | None:
+    """The shape of a returned value as numbers, or None when it is not numbers."""
+    try:
+        return np.shape(np.asarray(value, dtype=float))
+    except (TypeError, ValueError):
+        return None
+
+
+def _dh_call(sub, rows, inputs) -> tuple[np.ndarray, np.ndarray]:
+    """The student's (S, M), each checked for shape."""
+    n, what = len(rows), "screws_from_dh(rows)"
+    try:
+        value = sub.screws_from_dh(rows.copy())
+    except StudentRaised as exc:
+        if exc.kind != "IndexError" or n >= 6:
+            raise
+        raise Mismatch(
+            exc.describe().splitlines()[0] + f" for a table of {n} rows",
+            inputs=inputs,
+            mistake=_SIX_JOINTS_DH,
+        ) from None
+    if value is None:
+        raise Mismatch(f"{what} returned None: is a `return` statement missing?", inputs=inputs)
+    if not (isinstance(value, (tuple, list)) and len(value) == 2):
+        shape = _shape_of_value(value)
+        raise Mismatch(
+            f"{what} must return a pair (S, M); got {type(value).__name__}"
+            + (f" of shape {shape}" if shape else ""),
+            inputs=inputs,
+            mistake=(
+                "only S returned: return the pair (S, M), with M = T_0n(0) the end effector's "
+                "pose at q = 0"
+                if shape in ((6, n), (n, 6))
+                else None
+            ),
+        )
+    first, second = value
+    if _shape_of_value(first) == (4, 4) and _shape_of_value(second) in ((6, n), (n, 6)):
+        raise Mismatch(
+            f"{what} must return (S, M), S first; got a (4, 4) matrix first",
+            inputs=inputs,
+            mistake="(M, S) returned: the order is (S, M), the screw axes first",
+        )
+    shapes = {(n, 6): "S transposed: one screw axis per column, shape (6, n)"} if n != 6 else {}
+    if n != 6:
+        shapes[(6, 6)] = _SIX_JOINTS_DH
+    S = as_array(first, (6, n), f"S (item 0 of {what})", inputs, shapes)
+    M = as_array(second, (4, 4), f"M (item 1 of {what})", inputs)
+    return S, M
+
+
+def _dh_compare(sub, rows, name, expected=None) -> None:
+    inputs = {"arm": name, "rows": rows}
+    S, M = _dh_call(sub, rows, inputs)
+    S_right, M_right = space_screws(rows) if expected is None else expected
+    compare(
+        S,
+        S_right,
+        what=f"the space screw axes of {name}: S_i = (z_(i−1), −z_(i−1) × p_(i−1)) of DH "
+        "frame i − 1 at q = 0, one per column (to 1e-12)",
+        inputs=inputs,
+        hypotheses=_dh_screw_hypotheses(rows),
+        atol=1e-12,
+    )
+    compare(
+        M,
+        M_right,
+        what=f"the home pose M of {name}: the last DH frame at q = 0, T_0n(0) (to 1e-12)",
+        inputs=inputs,
+        hypotheses=_dh_home_hypotheses(rows),
+        atol=1e-12,
+    )
+
+
+def _dh_ur_arms(sub, rng):
+    for _ in range(4):
+        arm = random_arm(rng)
+        _dh_compare(sub, arm.dh_table(), f"the {arm.name}'s table", space_screws(arm))
+
+
+def _dh_any_table(sub, rng):
+    for n in rng.permutation(np.arange(1, 8)):  # every n from 1 to 7, in random order
+        _dh_compare(sub, _random_table(rng, int(n)), f"a new arm of {n} joint(s)")
+
+
+def _dh_fk_agrees(sub, rng):
+    cases = [(f"the {arm.name}'s table", arm.dh_table()) for arm in (random_arm(rng),)]
+    for n in (int(rng.integers(1, 6)), 7, int(rng.integers(2, 8))):
+        cases.append((f"a new arm of {n} joint(s)", _random_table(rng, n)))
+    for name, rows in cases:
+        inputs = {"arm": name, "rows": rows}
+        S_got, M_got = _dh_call(sub, rows, inputs)
+        like = S_got if S_got.dtype.itemsize <= M_got.dtype.itemsize else M_got
+        S, M = S_got.astype(float), M_got.astype(float)
+        q = rng.uniform(-np.pi, np.pi, (5, len(rows)))
+        try:
+            T_poe = np.array([_chain(_reference_factors(S, q_k)) @ M for q_k in q])
+        except ValueError:  # entries too large for an exponential: certainly not the chain
+            T_poe = np.full((5, 4, 4), np.inf)
+        T_dh = dh_chain(rows, q)
+        worst = int(np.argmax(np.abs(T_poe - T_dh).max(axis=(1, 2))))
+        if close(T_poe[worst], T_dh[worst], 1e-9, like=like):
+            continue
+        S_right, M_right = space_screws(rows)
+        mistake = None
+        if not close(S, S_right, 1e-9):
+            mistake = identify_mistake(S, _dh_screw_hypotheses(rows))
+        elif not close(M, M_right, 1e-9):
+            mistake = identify_mistake(M, _dh_home_hypotheses(rows))
+        raise Mismatch(
+            "with your S and M, the space form e^[S1]q1 ⋯ e^[Sn]qn M (urkin.poe.fk_space) must "
+            "give the table's DH chain dh_chain(rows, q) at every q (to 1e-9)",
+            inputs={**inputs, "q": q[worst]},
+            expected=T_dh[worst],
+            got=T_poe[worst],
+            mistake=mistake,
+        )
+
+
 LESSON = Lesson(
     number="03",
     title="The product of exponentials",
@@ -1210,6 +1420,25 @@ LESSON = Lesson(
                 ),
             ),
             answer=(adjoint, body_screws),
+        ),
+        Exercise(
+            id="3.8",
+            function="screws_from_dh",
+            title="the space screw axes and home pose of any arm, from its DH table",
+            checks=(
+                Check(
+                    "the screw axes S and the home pose M of random UR arms' DH tables",
+                    1,
+                    _dh_ur_arms,
+                ),
+                Check("S and M of new arms of 1 to 7 joints", 2, _dh_any_table),
+                Check(
+                    "with your S and M, the space-form FK gives the DH chain at random q",
+                    1,
+                    _dh_fk_agrees,
+                ),
+            ),
+            answer=(*concepts.SCREW_AXIS, space_screws),
         ),
     ),
 )

@@ -26,7 +26,12 @@ from urkin.course.inputs import (
     random_q,
     random_screw_axes,
 )
-from urkin.kinematics import SINGULARITIES, dh_transform, singularity_factors
+from urkin.kinematics import (
+    SINGULARITIES,
+    dh_transform,
+    position_jacobian,
+    singularity_factors,
+)
 from urkin.poe import (
     body_screws,
     fk_space,
@@ -1707,6 +1712,237 @@ def _space_any(sub, rng):
         )
 
 
+# ----------------------------------------------------------------- 4.11 complex_step_jacobian
+
+_CS_DEFAULT = 1e-20  # the contract's default step
+_CS_REAL_STEP = (
+    "a finite difference with a real step (central or forward differences): it subtracts two "
+    "nearly equal values of f and loses digits to cancellation — about 1e-11 at best for central "
+    "differences, 1e-8 for forward ones; the complex step Im f(q + i h e_j)/h subtracts nothing"
+)
+_CS_TRANSPOSED = (
+    "transposed: row k is output k, column j is input q_j (shape (m, n)) — np.column_stack, "
+    "or np.array(columns).T"
+)
+_CS_FLOAT32 = (
+    "the answer is {dtype}: the point of the complex step is all of float64's digits; keep "
+    "complex128 (q + 1j * h * e with q in float64) and return float64"
+)
+
+
+def _complex_step(f, q, h, *, part=np.imag, divide=True, base=None) -> np.ndarray:
+    """Column j = part(f(q + i h e_j)) / h; ``base(j)`` replaces e_j (for the hypotheses)."""
+    q = np.asarray(q, dtype=float)
+    columns = []
+    for j in range(q.size):
+        e = np.eye(q.size)[j] if base is None else base(j)
+        value = np.asarray(f(q + 1j * h * e)).ravel()
+        columns.append(part(value) / (h if divide else 1.0))
+    return np.column_stack(columns)
+
+
+def _analytic_case(rng, m: int, n: int, kind: str):
+    """A random analytic test function R^n → R^m (a wire.Function), its formula and its
+    parameters (shown with a failure), and its exact Jacobian as a function of x."""
+    scale = 1.0 / np.sqrt(n)
+    A, B = rng.normal(0.0, scale, (m, n)), rng.normal(0.0, 0.5 * scale, (m, n))
+    if kind == "polynomial":
+        C, b = rng.normal(0.0, scale, (m, n)), rng.normal(size=m)
+        f = wire.Function("polynomial", A=A, B=B, C=C, b=b)
+        shown = {"f": "f(x) = A x + (B x) ∘ (C x) + b", "A": A, "B": B, "C": C, "b": b}
+        return f, shown, lambda x: A + (C @ x)[:, None] * B + (B @ x)[:, None] * C
+    f = wire.Function("sin_exp", A=A, B=B)
+    shown = {"f": "f(x) = sin(A x) ∘ exp(B x)", "A": A, "B": B}
+
+    def jacobian(x):
+        grow = np.exp(B @ x)
+        return (np.cos(A @ x) * grow)[:, None] * A + (np.sin(A @ x) * grow)[:, None] * B
+
+    return f, shown, jacobian
+
+
+def _cs_hypotheses(f, q, h) -> dict[str, Callable[[], np.ndarray]]:
+    n = np.size(q)
+    hypotheses = {
+        "the real part Re f(q + i h e_j)/h (≈ f(q)/h): the derivative is in the imaginary "
+        "part, np.imag": lambda: _complex_step(f, q, h, part=np.real),
+        "all zeros: the imaginary step was lost — x[j] += 1j * h on a real array keeps only the "
+        "real part (numpy's ComplexWarning; make the copy complex, q.astype(complex)), and a "
+        "real step of 1e-20 vanishes (q + 1e-20 == q)": lambda: np.zeros(
+            (np.size(f(np.asarray(q, dtype=float))), n)
+        ),
+        "Im f(q + i h e_j) not divided by h": lambda: _complex_step(f, q, h, divide=False),
+        "divided by 2h: the complex step divides Im f(q + i h e_j) by h (central differences "
+        "divide by 2h)": lambda: _complex_step(f, q, h) / 2,
+        "the sign flipped (a step of −i h, or −Im): Im f(q + i h e_j)/h": lambda: (
+            -_complex_step(f, q, h)
+        ),
+        "every entry of q nudged at once (q + i h): nudge one entry at a time, q + i h e_j": (
+            lambda: _complex_step(f, q, h, base=lambda j: np.ones(n))
+        ),
+        "the steps pile up from column to column: start every column from a fresh complex copy "
+        "of q": lambda: _complex_step(f, q, h, base=lambda j: (np.arange(n) <= j).astype(float)),
+        _CS_TRANSPOSED: lambda: _complex_step(f, q, h).T,
+        "central differences with a real step, (f(q + h e_j) − f(q − h e_j)) / 2h: the "
+        "complex step is Im f(q + i h e_j)/h": lambda: _central(f, q, h),
+        "forward differences with a real step, (f(q + h e_j) − f(q)) / h: the complex step is "
+        "Im f(q + i h e_j)/h": lambda: 2 * _differentiate(f, q, h, (1, 0)),
+    }
+    if h != _CS_DEFAULT:
+        hypotheses[
+            "the step h argument is ignored (a fixed step is used): use the h you are given"
+        ] = lambda: _complex_step(f, q, _CS_DEFAULT)
+    for fixed in (1e-2, 1e-3, 1e-4, 1e-5):
+        hypotheses[
+            f"a fixed step h = {fixed:g} is used: use the h you are given (its default is 1e-20)"
+        ] = lambda fixed=fixed: _complex_step(f, q, fixed)
+    return hypotheses
+
+
+def _cs_matches(got, candidate) -> bool:
+    """Equal to 1e-9 of the candidate's size (exactly, for a zero candidate)."""
+    candidate = np.asarray(candidate, dtype=float)
+    if candidate.shape != np.shape(got) or not np.all(np.isfinite(candidate)):
+        return False
+    size = float(np.abs(candidate).max(initial=0.0))
+    return bool(np.allclose(got, candidate, rtol=0, atol=1e-9 * size))
+
+
+def _cs_mistake(got, f, q, h, right) -> str | None:
+    """The named mistake that reproduces ``got`` (relative to each candidate's size, so that
+    answers of 1e20 or 1e-20 are told apart), else a real-step difference when ``got`` is close
+    to ``right`` but not within round-off."""
+    for name, compute in _cs_hypotheses(f, q, h).items():
+        try:
+            with np.errstate(all="ignore"):
+                candidate = np.asarray(compute(), dtype=float)
+        except Exception:  # a hypothesis that cannot be evaluated names nothing
+            continue
+        if not _cs_matches(right, candidate) and _cs_matches(got, candidate):
+            return name
+    if np.shape(got) == np.shape(right):
+        gap = float(np.abs(got - right).max())
+        if gap <= 1e-4 * max(1.0, float(np.abs(right).max())):
+            return _CS_REAL_STEP
+    return None
+
+
+def _cs_call(sub, f, q, h, inputs, as_list=False) -> np.ndarray:
+    """The student's Jacobian as float64 numbers of shape (m, n) (h left to its default when
+    None)."""
+    m, n = np.size(f(np.asarray(q, dtype=float))), np.size(q)
+    args = (f, q.tolist() if as_list else q) + (() if h is None else (h,))
+    what = "complex_step_jacobian(position, q" + ("" if h is None else ", h") + ")"
+    value = sub.complex_step_jacobian(*args)
+    try:
+        raw = np.asarray(value)
+    except (TypeError, ValueError):
+        raw = None
+    if raw is not None and np.issubdtype(raw.dtype, np.inexact):
+        if np.iscomplexobj(raw) and np.abs(raw.imag).max(initial=0.0) > 1e-12:
+            raise Mismatch(
+                f"{what} must return real numbers; got complex ones",
+                inputs=inputs,
+                got=raw.imag,
+                mistake="complex numbers returned: the derivative is the imaginary part alone, "
+                "np.imag(f(q + 1j * h * e_j)) / h",
+            )
+        if raw.dtype.itemsize < (16 if np.iscomplexobj(raw) else 8):
+            raise Mismatch(
+                f"{what} is {raw.dtype}; it is compared to 1e-12, which only float64 resolves",
+                inputs=inputs,
+                mistake=_CS_FLOAT32.format(dtype=raw.dtype),
+            )
+    shapes = {(m * n,): "a flat vector: return the (m, n) matrix, one row per output"}
+    if m != n:
+        shapes[(n, m)] = _CS_TRANSPOSED
+    return as_array(value, (m, n), what, inputs, shapes).astype(float)
+
+
+def _cs_judge(sub, f, q, h, expected, *, what, inputs, atol, as_list=False) -> None:
+    got = _cs_call(sub, f, q, h, inputs, as_list)
+    if close(got, expected, atol):
+        return
+    step = _CS_DEFAULT if h is None else h
+    gap = float(np.abs(got - expected).max())
+    raise Mismatch(
+        what,
+        inputs=inputs,
+        expected=expected,
+        got=got,
+        mistake=_cs_mistake(got, f, q, step, _complex_step(f, q, step)),
+        difference=f"largest difference {gap:.1e}; the tolerance is {atol:.0e}"
+        if gap < 1e-3
+        else None,
+    )
+
+
+def _cs_analytic(sub, rng):
+    order = rng.permutation(len(_SHAPES))
+    for case in range(4):
+        m, n = _SHAPES[order[case]]
+        kind = ("polynomial", "sin_exp")[(case + int(order[0])) % 2]
+        f, shown, jacobian = _analytic_case(rng, m, n, kind)
+        q = rng.uniform(-1.0, 1.0, n)
+        as_list = case == 0
+        _cs_judge(
+            sub,
+            f,
+            q,
+            None,
+            jacobian(q),
+            what=f"the Jacobian of {shown['f']} ({m} outputs, {n} inputs), shape ({m}, {n}), "
+            "with the default step (to 1e-8)" + (", q given as a list" if as_list else ""),
+            inputs={**shown, "q": q.tolist() if as_list else q},
+            atol=1e-8,
+            as_list=as_list,
+        )
+
+
+def _cs_flange(sub, rng):
+    for _ in range(3):
+        arm, q = random_arm(rng), random_q(rng)
+        f = wire.Function("complex_flange_position", robot=arm)
+        _cs_judge(
+            sub,
+            f,
+            q,
+            None,
+            position_jacobian(arm, q),
+            what=f"∂p/∂q of the {arm.name}'s flange position, 3 × 6, with the default step, "
+            "against urkin's exact derivative to 1e-12 (central differences reach 1e-11 at best)",
+            inputs={
+                "position": f"the {arm.name}'s flange position, urkin.fk(robot, q)[:3, 3]",
+                "q": q,
+            },
+            atol=1e-12,
+        )
+
+
+def _cs_given_h(sub, rng):
+    cases = []
+    for h in (0.4, 2.0**-3):
+        m, n = _SHAPES[int(rng.integers(len(_SHAPES)))]
+        f, shown, _ = _analytic_case(rng, m, n, "sin_exp")
+        cases.append((f, shown, rng.uniform(-1.0, 1.0, n), h))
+    arm = random_arm(rng)
+    flange = wire.Function("complex_flange_position", robot=arm)
+    shown = {"position": f"the {arm.name}'s flange position, urkin.fk(robot, q)[:3, 3]"}
+    cases.append((flange, shown, random_q(rng), 0.25))
+    for f, shown, q, h in cases:
+        _cs_judge(
+            sub,
+            f,
+            q,
+            h,
+            _complex_step(f, q, h),
+            what=f"the complex step with the h = {h:g} you are given: column j is "
+            "Im f(q + i h e_j) / h, which differs from the derivative by O(h²) (to 1e-12)",
+            inputs={**shown, "q": q, "h": h},
+            atol=1e-12,
+        )
+
+
 LESSON = Lesson(
     number="04",
     title="Jacobians and singularities",
@@ -1850,6 +2086,30 @@ LESSON = Lesson(
                 Check("any number of columns (1 to 7) and any flange pose", 1, _space_any),
             ),
             answer=(*concepts.JACOBIAN, space_from_geometric, geometric_from_space),
+        ),
+        Exercise(
+            id="4.11",
+            function="complex_step_jacobian",
+            title="the Jacobian of any analytic function by the complex step",
+            checks=(
+                Check(
+                    "the (m, n) Jacobian of analytic functions of several shapes, q an array or "
+                    "a list",
+                    1,
+                    _cs_analytic,
+                ),
+                Check(
+                    "the UR flange's position Jacobian to 1e-12, beyond finite differences",
+                    1,
+                    _cs_flange,
+                ),
+                Check(
+                    "uses the step h it is given: Im f(q + i h e_j) / h at large h",
+                    1,
+                    _cs_given_h,
+                ),
+            ),
+            answer=concepts.JACOBIAN,
         ),
     ),
 )

@@ -7,7 +7,8 @@ import re
 import numpy as np
 
 import urkin
-from urkin.course import concepts
+from urkin import trajectory
+from urkin.course import concepts, wire
 from urkin.course.compare import Mismatch, as_array, close, compare, tolerance
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_arm, random_pose, random_regular_q
@@ -904,6 +905,257 @@ def _null_wrapped(sub, rng):
         )
 
 
+# ----------------------------------------------------------------------- 5.6 track_positions
+
+_TRACK_TOL = 1e-9  # m: the contract's default tol, and how close a row must be (rad)
+
+_COLD = (
+    "a cold start: every point is solved from q0; each must start from the previous reached "
+    "answer (a warm start), q0 only for the first"
+)
+_OVERWRITE = (
+    "a failed answer overwrites the arm's configuration (seed 000's bug): where a point is not "
+    "reached, Q[k] repeats the previous row and the next point starts from there"
+)
+_FROM_FAILED = (
+    "the next point starts from the failed answer: after a failure the guess is the last "
+    "reached answer (q0 if none yet), not what the solver returned"
+)
+_NO_OK = (
+    "ok is not recorded: ok[k] is True only where fk(robot, answer) is within tol of "
+    "points[k]; an unreachable point gives False"
+)
+_NEVER_TESTED = (
+    "every answer taken as reached: no test with urkin.fk, so a failed answer is stored, "
+    "used as the next guess and marked ok"
+)
+_SKIP_FIRST = (
+    "off by one: q0 taken as the answer for points[0] (point k+1 solved into row k+1 from row "
+    "k); q0 is where the arm is before the first point, which must be solved too"
+)
+_ROW_BEFORE = (
+    "off by one: each row stored before its point is solved: Q[k] must be the configuration "
+    "after point k (its answer, or the previous row if it failed)"
+)
+_ONLY_Q = "only Q returned: return both, Q and ok (a tuple of two arrays)"
+
+
+def _reached(arm, q, p, tol=_TRACK_TOL) -> bool:
+    return bool(np.linalg.norm(_fk(arm, wrap_angles(q))[:3, 3] - p) <= tol)
+
+
+def _track(arm, points, q0, solve, *, guess="reached", rows="held", ok="measured", skip=False):
+    """Warm-started tracking with ``solve``, or one of its named mistakes: ``guess`` is
+    "reached" (right), "q0" (cold start) or "answer" (the last answer, failed or not); ``rows``
+    "held" (right), "answer" (the failed answer stored) or "before" (stored before solving);
+    ``ok`` "measured" (right) or "all"; ``skip``: q0 taken as the answer for points[0]."""
+    q = np.array(q0, dtype=float)
+    last = q.copy()
+    Q, reached = [], []
+    for k, p in enumerate(points):
+        if skip and k == 0:
+            Q.append(q.copy())
+            reached.append(True)
+            continue
+        start = {"reached": q, "q0": np.asarray(q0, dtype=float), "answer": last}[guess]
+        answer = np.asarray(solve(arm, p, start.copy()), dtype=float)
+        hit = _reached(arm, answer, p)
+        before = q.copy()
+        if hit or rows == "answer":
+            q = answer
+        last = answer
+        Q.append(before if rows == "before" else q.copy())
+        reached.append(hit or ok == "all")
+    return np.array(Q), np.array(reached)
+
+
+def _track_hypotheses(arm, points, q0, solve) -> dict:
+    def run(**wrong):
+        return lambda: _track(arm, points, q0, solve, **wrong)
+
+    return {
+        _COLD: run(guess="q0"),
+        _NEVER_TESTED: run(guess="answer", rows="answer", ok="all"),
+        _OVERWRITE: run(guess="answer", rows="answer"),
+        _FROM_FAILED: run(guess="answer"),
+        _NO_OK: run(ok="all"),
+        _SKIP_FIRST: run(skip=True),
+        _ROW_BEFORE: run(rows="before"),
+    }
+
+
+def _same_track(Q, ok, Q_right, ok_right, atol=_TRACK_TOL) -> bool:
+    """Same ok, and rows equal modulo whole turns (a wrapped row is the same arm)."""
+    return bool(
+        np.array_equal(ok, ok_right)
+        and Q.shape == Q_right.shape
+        and np.abs(wrap_angles(Q - Q_right)).max(initial=0.0) <= atol
+    )
+
+
+def _call_track(sub, arm, points, q0, solve, inputs):
+    M = len(points)
+    what = "track_positions(robot, points, q0, solve)"
+    value = sub.track_positions(arm, points.copy(), q0.copy(), solve)
+    if not (isinstance(value, (tuple, list)) and len(value) == 2):
+        mistake = _ONLY_Q if np.shape(value) == (M, 6) else None
+        raise Mismatch(
+            f"{what} must return two values, Q of shape ({M}, 6) and ok of shape ({M},)",
+            inputs=inputs,
+            mistake=mistake,
+        )
+    Q = as_array(value[0], (M, 6), f"Q, the first value {what} returns,", inputs)
+    ok = as_array(value[1], (M,), f"ok, the second value {what} returns,", inputs)
+    if not np.all((ok == 0) | (ok == 1)):
+        raise Mismatch(
+            f"ok, the second value {what} returns, must hold True or False for each point",
+            inputs=inputs,
+            got=ok,
+        )
+    return Q, ok.astype(bool)
+
+
+def _track_mistake(arm, points, q0, solve, Q, ok, Q_right, ok_right):
+    """The named mistake whose rows and ok the student's are (to 1e-6), or None."""
+    for name, hypothesis in _track_hypotheses(arm, points, q0, solve).items():
+        Q_wrong, ok_wrong = hypothesis()
+        if not _same_track(Q_wrong, ok_wrong, Q_right, ok_right) and _same_track(
+            Q, ok, Q_wrong, ok_wrong, 1e-6
+        ):
+            return name
+    return None
+
+
+def _judge_track(sub, arm, points, q0, solve, what, inputs):
+    """Raise Mismatch unless the student's (Q, ok) is warm-started tracking with ``solve``."""
+    Q, ok = _call_track(sub, arm, points, q0, solve, inputs)
+    Q_right, ok_right = _track(arm, points, q0, solve)
+    if _same_track(Q, ok, Q_right, ok_right):
+        return
+    gap = np.abs(wrap_angles(Q - Q_right)).max(axis=1)
+    k = int(np.flatnonzero((ok != ok_right) | (gap > _TRACK_TOL))[0])
+    wrong = []
+    if ok[k] != ok_right[k]:
+        wrong.append(f"ok[{k}] must be {bool(ok_right[k])}, not {bool(ok[k])}")
+    if gap[k] > _TRACK_TOL:
+        wrong.append(f"Q[{k}] must be the row expected below (angles compared modulo 2π)")
+    raise Mismatch(
+        f"{what}. Row {k} is the first wrong one: " + "; ".join(wrong),
+        inputs=inputs,
+        expected=Q_right[k],
+        got=Q[k],
+        mistake=_track_mistake(arm, points, q0, solve, Q, ok, Q_right, ok_right),
+    )
+
+
+def _stepping_path(rng, arm, q0, reachable):
+    """Points and the stand-in solve's steps: a reachable point k lies where its step takes the
+    last reached answer (so only that guess reaches it); an unreachable one is 4 m away."""
+    q = np.array(q0, dtype=float)
+    points, steps = [], []
+    for hit in reachable:
+        step = rng.uniform(-0.15, 0.15, 6) if hit else rng.uniform(-0.6, 0.6, 6)
+        step[rng.integers(5)] += rng.choice([-1.0, 1.0]) * 0.1  # never a near-zero step
+        if hit:
+            q = q + step
+            points.append(_fk(arm, q)[:3, 3])
+        else:
+            points.append(4.0 * _unit(rng))
+        steps.append(step)
+    return np.array(points), np.array(steps)
+
+
+def _stepping_inputs(arm, points, q0, steps):
+    return {
+        "robot": arm.name,
+        "q0": q0,
+        "points": points,
+        "solve": "the check's stand-in: solve(robot, points[k], q_guess) = q_guess + steps[k]",
+        "steps": steps,
+    }
+
+
+def _track_warm(sub, rng):
+    for _ in range(3):
+        arm, q0 = random_arm(rng), random_regular_q(rng)
+        points, steps = _stepping_path(rng, arm, q0, [True] * int(rng.integers(5, 9)))
+        solve = wire.Function("fixed_steps", points=points, steps=steps)
+        _judge_track(
+            sub,
+            arm,
+            points,
+            q0,
+            solve,
+            "each point is solved from the previous answer (q0 for the first): the stand-in "
+            "solve returns its guess plus steps[k] (so Q[k] − steps[k] is the guess point k "
+            "started from), and points[k] lies where steps[k] takes the previous answer",
+            _stepping_inputs(arm, points, q0, steps),
+        )
+
+
+# In this order: the first two tell every named mistake apart; in the third, a cold start and
+# a guess from the failed answer give the same rows.
+_FAILURE_PATTERNS = (
+    (False, True, True, False, True),  # the first point fails: the arm stays at q0
+    (True, True, False, False, True, True),  # two failures in a row
+    (True, False, True, True, False),  # the last point fails
+)
+
+
+def _track_failures(sub, rng):
+    for pattern in _FAILURE_PATTERNS:
+        arm, q0 = random_arm(rng), random_regular_q(rng)
+        points, steps = _stepping_path(rng, arm, q0, pattern)
+        solve = wire.Function("fixed_steps", points=points, steps=steps)
+        failed = ", ".join(str(k) for k, hit in enumerate(pattern) if not hit)
+        _judge_track(
+            sub,
+            arm,
+            points,
+            q0,
+            solve,
+            f"points {failed} are out of reach (4 m away): there ok is False and the arm stays "
+            "where it was, and the next point starts from the last reached answer",
+            _stepping_inputs(arm, points, q0, steps),
+        )
+
+
+def _track_square(sub, rng):
+    ur5 = urkin.robot("UR5")
+    solve = wire.Function("position_ik")
+    for _ in range(2):
+        while True:
+            q0 = random_regular_q(rng)
+            centre = _fk(ur5, q0)[:3, 3] + rng.uniform(-0.01, 0.01, 3)
+            points = trajectory.square(centre, 0.03, normal=_unit(rng)).points(step=1e-3)
+            if _track(ur5, points, q0, solve)[1].all():  # urkin.ik reaches every point
+                break
+        inputs = {
+            "robot": ur5.name,
+            "q0": q0,
+            "points": f"a square of side 0.03 m about {np.round(centre, 4).tolist()}, "
+            f"{len(points)} samples at most 1 mm apart",
+            "solve": 'urkin.ik(robot, p, q0=q_guess, method="nr", max_restarts=0).q',
+        }
+        Q, ok = _call_track(sub, ur5, points, q0, solve, inputs)
+        misses = np.linalg.norm(_fk(ur5, wrap_angles(Q))[:, :3, 3] - points, axis=1)
+        wrong = np.flatnonzero(~ok | (misses > _TRACK_TOL))
+        if wrong.size == 0:
+            continue
+        k = int(wrong[0])
+        Q_right, ok_right = _track(ur5, points, q0, solve)
+        mistake = _track_mistake(ur5, points, q0, solve, Q, ok, Q_right, ok_right)
+        raise Mismatch(
+            f"every point of the square is reachable from the previous one: ok must be True "
+            f"throughout and urkin.fk(robot, Q[k]) within {_TRACK_TOL:.0e} m of points[k]; "
+            f"row {k}: ok {bool(ok[k])}, flange {misses[k]:.2e} m from its point",
+            inputs=inputs,
+            expected=points[k],
+            got=_fk(ur5, wrap_angles(Q[k]))[:3, 3],
+            mistake=mistake,
+        )
+
+
 LESSON = Lesson(
     number="05",
     title="Newton–Raphson inverse kinematics",
@@ -991,6 +1243,30 @@ LESSON = Lesson(
                 Check("the step on position Jacobians of UR arms", 2, _null_position),
                 Check("other shapes (2 × 6, 3 × 7, 6 × 6) and a rank-deficient J", 1, _null_shapes),
                 Check("wraps q_rest − q into (−π, π]", 1, _null_wrapped),
+            ),
+        ),
+        Exercise(
+            id="5.6",
+            function="track_positions",
+            title="a path of positions, warm-started, holding on failure",
+            checks=(
+                Check(
+                    "solves each point from the previous answer (q0 for the first)",
+                    2,
+                    _track_warm,
+                ),
+                Check(
+                    "an unreachable point: ok False, the arm stays where it was, the next point "
+                    "starts from the last reached answer",
+                    1,
+                    _track_failures,
+                ),
+                Check(
+                    "follows a 3 cm square at 1 mm on a UR5 with urkin's position IK, every row "
+                    "checked with urkin.fk",
+                    1,
+                    _track_square,
+                ),
             ),
         ),
     ),

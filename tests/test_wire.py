@@ -1,0 +1,113 @@
+"""Input functions described by data (urkin.course.wire.Function): rebuilt across the wire.
+
+The IK stand-ins of exercise 5.6, and the complex-step test functions of exercise 4.11, which
+keep a complex argument complex."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import urkin
+from urkin.course import wire
+
+
+def _across(value, trusted=True):
+    """``value`` as the other side of the grader's pipe sees it."""
+    return wire.decode(wire.loads(wire.dumps(wire.encode(value))), trusted=trusted)
+
+
+def test_a_function_of_one_argument_still_takes_one():
+    f = _across(wire.Function("linear", A=[[1.0, 2.0], [0.0, 1.0]], b=[0.5, -1.0]))
+    np.testing.assert_array_equal(f([1.0, 1.0]), [3.5, 0.0])
+
+
+def test_fixed_steps_adds_the_step_of_the_nearest_point_to_the_guess():
+    rng = np.random.default_rng(3)
+    points, steps = rng.normal(size=(4, 3)), rng.normal(size=(4, 6))
+    solve = _across(wire.Function("fixed_steps", points=points, steps=steps))
+    assert isinstance(solve, wire.Function) and solve.kind == "fixed_steps"
+    guess = rng.normal(size=6)
+    for k in range(4):
+        # any robot (it is not used), the point as a list, the guess unchanged by the call
+        np.testing.assert_array_equal(solve(None, points[k].tolist(), guess), guess + steps[k])
+    np.testing.assert_array_equal(solve(None, points[2] + 1e-6, guess.tolist()), guess + steps[2])
+    np.testing.assert_array_equal(solve(robot=None, p=points[1], q_guess=guess), guess + steps[1])
+
+
+def test_position_ik_is_urkins_plain_newton_from_the_guess():
+    ur5 = urkin.robot("UR5")
+    q_true = np.array([0.3, -1.2, 1.4, -1.1, 1.2, 0.4])
+    p = urkin.fk(ur5, q_true)[:3, 3]
+    guess = q_true + 0.05
+    solve = _across(wire.Function("position_ik"))
+    q = solve(_across(ur5), p, guess)
+    assert np.linalg.norm(urkin.fk(ur5, q)[:3, 3] - p) < 1e-10
+    expected = urkin.ik(ur5, p, q0=guess, method="nr", max_restarts=0).q
+    np.testing.assert_array_equal(q, expected)
+
+
+def test_a_submission_never_gets_a_function_back():
+    solve = wire.Function("fixed_steps", points=[[0.0, 0.0, 1.0]], steps=[[0.1] * 6])
+    back = _across(solve, trusted=False)
+    assert isinstance(back, wire.Opaque) and "fixed_steps" in back.text
+
+
+def test_an_unknown_kind_is_refused():
+    with pytest.raises(ValueError, match="unknown function kind"):
+        wire.Function("anything_goes")
+
+
+# ------------------------------------------------ complex-step test functions (exercise 4.11)
+
+RNG = np.random.default_rng(411)
+A, B, C = RNG.normal(size=(3, 2, 4))
+b = RNG.normal(size=2)
+UR5 = urkin.robot("UR5")
+
+
+def _polynomial_jacobian(x):
+    return A + (C @ x)[:, None] * B + (B @ x)[:, None] * C
+
+
+def _sin_exp_jacobian(x):
+    grow = np.exp(B @ x)
+    return (np.cos(A @ x) * grow)[:, None] * A + (np.sin(A @ x) * grow)[:, None] * B
+
+
+CASES = [
+    (wire.Function("polynomial", A=A, B=B, C=C, b=b), 4, _polynomial_jacobian),
+    (wire.Function("sin_exp", A=A, B=B), 4, _sin_exp_jacobian),
+    (
+        wire.Function("complex_flange_position", robot=UR5),
+        6,
+        lambda q: urkin.kinematics.position_jacobian(UR5, q),
+    ),
+]
+
+
+@pytest.mark.parametrize(("f", "n", "jacobian"), CASES, ids=[f.kind for f, _, _ in CASES])
+def test_a_complex_step_function_survives_the_wire_and_keeps_complex_arguments(f, n, jacobian):
+    back = _across(f)
+    assert isinstance(back, wire.Function) and back.kind == f.kind
+    x = RNG.uniform(-1.0, 1.0, n)
+    np.testing.assert_array_equal(back(x), f(x))
+    np.testing.assert_array_equal(back(list(x)), f(x))  # a list is read as numbers
+    assert not np.iscomplexobj(back(x))
+    h = 1e-20
+    J = np.column_stack([np.imag(back(x + 1j * h * e)) / h for e in np.eye(n)])
+    np.testing.assert_allclose(J, jacobian(x), rtol=0, atol=1e-12)
+
+
+def test_a_submission_cannot_rebuild_a_complex_step_function():
+    data = wire.loads(wire.dumps(wire.encode(CASES[2][0])))
+    assert isinstance(wire.decode(data), wire.Opaque)  # untrusted: described, never built
+
+
+def test_the_flange_position_for_numeric_jacobian_still_drops_nothing_real():
+    """The real-valued kind of exercise 4.2 is unchanged: it reads its argument as floats."""
+    q = RNG.uniform(-np.pi, np.pi, 6)
+    real = _across(wire.Function("flange_position", robot=UR5))
+    complex_kept = _across(wire.Function("complex_flange_position", robot=UR5))
+    np.testing.assert_array_equal(real(q), complex_kept(q))
+    np.testing.assert_array_equal(real(q.astype(np.float32)), complex_kept(q.astype(np.float32)))
