@@ -21,9 +21,9 @@
 #   (exercise 4.10);
 # * say which singular families a configuration is in, and which motion it loses there
 #   (exercises 4.5 and 4.7);
-# * measure how far a configuration is from trouble with manipulability (exercise 4.6), the
-#   velocity and force ellipsoids and the condition number (exercise 4.9), and find the joint
-#   torques that hold a load (exercise 4.8).
+# * measure how far a configuration is from trouble with manipulability (exercise 4.6) and
+#   with the velocity and force ellipsoids and the condition number of the position Jacobian
+#   $J_v$ (exercise 4.9), and find the joint torques that hold a load (exercise 4.8).
 #
 # **Time:** about 3½ hours. **You need:** lesson 01 (rotations, the cross product as a matrix),
 # lesson 02 (DH frames, the UR forward kinematics) and lesson 03 (screw axes $(\omega, v)$,
@@ -1269,9 +1269,11 @@ else:
 # %% [markdown]
 # ### Exercise 4.9 — `ellipsoid_axes` (4 points)
 #
-# Section 7 drew the flange's velocity ellipsoids and followed the condition number towards
-# the elbow singularity, and the statics section drew the force ellipsoids beside them, with
-# the same axes and inverse lengths. Both took the SVD of $J_v$ inline. Now put the method
+# Section 7 drew the flange's velocity ellipsoids and followed the condition number (of the
+# whole $J$) towards the elbow singularity, and the statics section drew the force ellipsoids
+# beside them, with the same axes and inverse lengths. The ellipsoids took the SVD of $J_v$
+# inline; its condition number $\sigma_1/\sigma_3$ is the same measure for the position part
+# alone. Now put the method
 # into one function, one that gives an honest answer at a singularity too.
 #
 # Write `ellipsoid_axes(J_v)` for a position Jacobian `J_v` of shape `(3, n)`, $n \ge 3$
@@ -1396,12 +1398,13 @@ else:
     print(f"  angle between its infinite force axis and the arm: {below(angle, 1e-9)} rad")
 
 # %% [markdown]
-# The flange at the end of section 7's path is close to trouble — joint torques of length
-# 1 N·m hold a push of 61 N along the arm, and the condition number is about 67 — but it is
-# not singular. Wrist 1, on the arm's line, is: its force ellipsoid is infinite along the arm,
-# and so is its condition number. (At a singularity the SVD returns $\sigma_3 = 0$ exactly or
-# round-off near $10^{-16}\sigma_1$, depending on the arithmetic; the threshold makes the
-# answer `inf` either way.)
+# At the end of section 7's path the whole $J$ is singular (the elbow), but the flange's position
+# Jacobian $J_v$ is not: joint torques of length 1 N·m hold a push of 61 N along the arm, and
+# $J_v$'s condition number is about 67 — close to trouble, because the bent wrist can still nudge
+# the flange origin along the arm. Wrist 1, on the arm's line, is singular: its force ellipsoid is
+# infinite along the arm, and so is its condition number. (At a singularity the SVD returns
+# $\sigma_3 = 0$ exactly or round-off near $10^{-16}\sigma_1$, depending on the arithmetic; the
+# threshold makes the answer `inf` either way.)
 #
 # ### Exercise 4.10 — `space_from_geometric` (3 points)
 #
@@ -1494,8 +1497,8 @@ else:
 # or a list) and `position(x)` returns `m` numbers. `position` accepts complex arguments, as
 # `lambda q: urkin.fk(robot, q)[:3, 3]` does. Column `j` is
 # $\operatorname{Im} f(q + \mathrm{i}h e_j) / h$: build each nudged point as a new *complex*
-# array (`q + 1j * h * e_j`; assigning `1j * h` into an entry of a float array silently drops
-# the imaginary part).
+# array (`q + 1j * h * e_j`; a float array cannot hold `1j * h` — numpy refuses the
+# assignment, or for numpy scalars warns and drops the imaginary part).
 #
 # *Checked* in float64 (the complex step's whole point is float64's last digits): (1 point) the
 # Jacobians of random polynomials $Ax + (Bx) \circ (Cx) + b$ and of $\sin(Ax) \circ \exp(Bx)$

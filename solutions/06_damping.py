@@ -30,8 +30,8 @@
 #   body Jacobian (exercise 6.6);
 # * choose the damping that guarantees a bound on the step length, and show that no smaller
 #   damping does (exercise 6.5);
-# * compare IK methods fairly, with every success verified by forward kinematics, and explain
-#   why a fixed damping stalls near singular solutions (sections 3 and 7).
+# * explain why a fixed damping stalls near singular solutions, and why a fair comparison of
+#   IK methods verifies every success by forward kinematics (sections 3 and 7).
 #
 # **Time:** about 3 hours. **You need:** lesson 03 (twists, the matrix log, the adjoint),
 # lesson 04 (Jacobians, the three singular families, singular values) and lesson 05 (the pose
@@ -388,12 +388,11 @@ for q3 in elbow_cases:
 # the arm hardly moves.
 #
 # **Right:** the price. With $\lambda$ below the smallest singular value at the solution, DLS
-# converges as Newton does. Up to about three and a half times that value it
-# still converges, with more and
-# more iterations; beyond it the solver gives up *short of the tolerance*, with an error that
-# grows with $\lambda$ — by $\lambda = 0.1$ it stops millimetres away. And the threshold
-# moves with the target: $\lambda = 0.01$, seed 000's choice, is fine for the first target and
-# fails the other two. To pick $\lambda$ well you would need to know how singular the
+# converges as Newton does. Up to about three and a half times that value it still converges, with
+# more and more iterations; beyond it the solver gives up *short of the tolerance*, with an error
+# that grows with $\lambda$ — by $\lambda = 0.1$ it stops up to a third of a millimetre away. And
+# the threshold moves with the target: $\lambda = 0.01$, seed 000's choice, is fine for the first
+# target and fails the other two. To pick $\lambda$ well you would need to know how singular the
 # solution is before you have found it.
 #
 # Why does the error stop falling? Near the solution the error changes as
