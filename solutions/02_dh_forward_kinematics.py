@@ -18,15 +18,16 @@
 #
 # * write the link transform of one DH row, and the forward kinematics of any DH table, in
 #   numpy (exercises 2.1 and 2.2);
-# * transcribe a published closed-form position (exercise 2.3), and see how testing it
-#   against an independent reference at random configurations tells right from wrong;
+# * transcribe a published closed-form position (exercise 2.3), and test any such formula
+#   against an independent reference at many random configurations, which tells right from
+#   wrong where a hand-picked pose cannot (exercise 2.7);
 # * derive `T_0_n` of an arm you have never seen, from its DH table, in SymPy (exercise 2.4);
 # * predict where the flange is in a simple pose from the table alone, before any product
 #   of matrices, and check the prediction (exercise 2.5);
 # * rewrite a standard-DH table for the modified convention, with the tool transform that its
 #   last row leaves over, and check that both describe the same arm (exercise 2.6).
 #
-# **Time:** about 2 hours. **You need:** lesson 01 (rotations, homogeneous transforms and the
+# **Time:** about 2½ hours. **You need:** lesson 01 (rotations, homogeneous transforms and the
 # `T_a_b` naming).
 
 # %%
@@ -1072,6 +1073,122 @@ else:
           f"largest |distance − 0.25 m| {below(np.abs(short - 0.25).max(), 1e-12)}")
 
 # %% [markdown]
+# ## Your turn: put any formula to the test
+#
+# "A published formula put to the test" found seed 002's missing $\sin q_5$ by comparing its
+# formula with an independent computation, the DH chain, at many random configurations rather
+# than at one hand-picked pose. That test is worth having as a tool: every closed form you
+# type, derive or find in a report from now on can go through it.
+#
+# ### Exercise 2.7 — `formula_gap` (4 points)
+#
+# Write `formula_gap(formula, robot, n=1000, seed=0)`. `formula(robot, q)` is a candidate
+# closed-form flange position: it takes a UR-type arm and UR joint angles `q` (shape `(6,)`,
+# radians) and returns a position of shape `(3,)` in metres. Test it at the `n` configurations
+#
+# ```
+# np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6))
+# ```
+#
+# (exactly this call, one configuration per row, so that your result can be reproduced and
+# checked) against an independent reference for the true flange position: `urkin.fk(robot,
+# q)[:3, 3]` (it accepts all `n` rows at once), or your own `forward_kinematics` of exercise
+# 2.2. Return a pair `(gap, q_worst)`: `gap`, the largest Euclidean distance
+# $\lVert p_{\text{formula}}(q) - p_{\text{true}}(q)\rVert$ over the `n` configurations
+# (metres), and `q_worst`, shape `(6,)`, the configuration where it occurs.
+#
+# *Checked* (to 1e-12; a float32 answer to float32's precision), with the default `n` and
+# `seed` and with other ones: (1 point) for the right closed form on random UR arms, a gap
+# below 1e-12 and a `q_worst` that is one of the drawn configurations; (2 points) for seed
+# 002's published formula (its own lengths, at its own angles `q + SEED002_SHIFT`) and for its
+# terms with other arms' lengths, exactly the largest distance and the configuration where it
+# occurs; (1 point) the same for a formula that is right at `q = 0` and near it but wrong
+# elsewhere: the right closed form with $\arctan(\tan q_j)$ in place of one joint angle $q_j$,
+# which is $q_j$ only while $|q_j| < \pi/2$. The feedback recognises testing only at `q = 0`
+# (or at a fixed handful of poses), the mean distance instead of the largest, the
+# configuration of the smallest distance, the largest single coordinate instead of the
+# Euclidean distance, angles drawn in degrees or converted with `np.radians`, and another
+# random draw. Nothing is hidden.
+
+# %%
+def formula_gap(formula, robot, n=1000, seed=0):
+    """Largest distance between a closed-form flange position and forward kinematics.
+
+    Parameters
+    ----------
+    formula : callable
+        ``formula(robot, q)``: a candidate flange position, q shape (6,) in radians, shape (3,)
+        in metres.
+    robot : urkin.Robot
+        The arm the formula is tested on.
+    n : int
+        Number of random configurations.
+    seed : int
+        Seed of ``np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6))``.
+
+    Returns
+    -------
+    gap : float
+        The largest Euclidean distance between the formula's position and the flange, metres.
+    q_worst : ndarray, shape (6,)
+        The configuration (one of the n drawn) where it occurs.
+    """
+    ### BEGIN SOLUTION
+    q = np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6))
+    p_formula = np.array([formula(robot, q_k) for q_k in q], dtype=float)
+    p_true = urkin.fk(robot, q)[:, :3, 3]
+    distances = np.linalg.norm(p_formula - p_true, axis=1)
+    worst = int(np.argmax(distances))
+    return float(distances[worst]), q[worst]
+    ### END SOLUTION
+
+
+# %%
+check("2.7", formula_gap)
+
+# %% [markdown]
+# Put it to work: on seed 002's formula as published (its angles are UR's plus
+# `SEED002_SHIFT`), on a formula that is right at `q = 0` and fails where $|q_1| > \pi/2$,
+# and on your `ur5_position` of exercise 2.3. At the worst configuration of seed 002's formula
+# the error should be $d_6\,|\cos(q_2+q_3+q_4)|\,(1 - \sin q_5)$, close to its bound $2d_6$.
+
+
+# %%
+def seed002_as_published(robot, q):
+    """Seed 002's p for UR angles q: its own formula, lengths and angles (robot is not used)."""
+    return np.array(seed002_position(np.asarray(q) + SEED002_SHIFT, SEED002_LENGTHS))
+
+
+def folded_q1(robot, q):
+    """The flange position with arctan(tan(q1)) in place of q1: right only while |q1| < π/2."""
+    q = np.array(q, dtype=float)
+    q[0] = np.arctan(np.tan(q[0]))
+    return urkin.fk(robot, q)[:3, 3]
+
+
+try:
+    seed_gap, seed_worst = formula_gap(seed002_as_published, SEED002_ARM)
+except NotImplementedError:
+    print("exercise 2.7 is not written yet: nothing to verify")
+else:
+    seed_worst = np.asarray(seed_worst, dtype=float)
+    c234_worst, s5_worst = np.cos(seed_worst[1:4].sum()), np.sin(seed_worst[4])
+    predicted = SEED002_LENGTHS[5] * abs(c234_worst) * (1 - s5_worst)
+    print(f"seed 002's published p, 1000 random q: gap {1000 * seed_gap:.1f} mm "
+          f"(bound 2·d6 = {2000 * SEED002_LENGTHS[5]:.0f} mm)")
+    print(f"  at q_worst: cos(q2+q3+q4) = {c234_worst:.2f}, sin q5 = {s5_worst:.2f}")
+    print(f"  |gap − d6·|cos(q2+q3+q4)|·(1 − sin q5)| there: "
+          f"{below(abs(predicted - seed_gap), 1e-12)}")
+    zero_miss = np.linalg.norm(folded_q1(ur5, np.zeros(6)) - urkin.fk(ur5, np.zeros(6))[:3, 3])
+    print(f"\narctan(tan(q1)) for q1, UR5: at q = 0 off by {below(zero_miss, 1e-12)}, "
+          f"at 1000 random q gap {formula_gap(folded_q1, ur5)[0]:.2f} m")
+    try:
+        yours_gap, _ = formula_gap(lambda robot, q: ur5_position(q), ur5)
+        print(f"your ur5_position, 1000 random q: gap {below(yours_gap, 1e-12)}")
+    except NotImplementedError:
+        print("your ur5_position: (exercise 2.3 is not written yet)")
+
+# %% [markdown]
 # ## Summary
 #
 # * A DH table holds four numbers per joint: $\theta$ and $d$ about and along the joint axis
@@ -1088,7 +1205,8 @@ else:
 # * Test formulas at many random configurations, and against an independent computation. Seed
 #   002's published position lacks a factor $\sin q_5$ in two terms, an error of up to
 #   $2d_6 = 165$ mm that vanishes exactly where $\cos(q_2+q_3+q_4) = 0$ or $\sin q_5 = 1$: the
-#   only poses at which its author's check could have passed.
+#   only poses at which its author's check could have passed. `formula_gap` (exercise 2.7)
+#   runs such a test on any closed-form position.
 #
 # ## What comes next
 #
@@ -1097,5 +1215,5 @@ else:
 # * **Inverse kinematics**: the way back, from a pose to joint angles — numerically with the
 #   Jacobian, and in closed form, where a UR arm has up to eight answers.
 #
-# Before you move on: restart the kernel and run the whole notebook. All six check cells
+# Before you move on: restart the kernel and run the whole notebook. All seven check cells
 # should report full marks.

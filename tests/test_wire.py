@@ -111,3 +111,57 @@ def test_the_flange_position_for_numeric_jacobian_still_drops_nothing_real():
     complex_kept = _across(wire.Function("complex_flange_position", robot=UR5))
     np.testing.assert_array_equal(real(q), complex_kept(q))
     np.testing.assert_array_equal(real(q.astype(np.float32)), complex_kept(q.astype(np.float32)))
+
+
+# ------------------------------------------ candidate closed-form positions (exercise 2.7)
+
+
+def test_the_right_closed_form_is_the_flange_position_of_every_arm():
+    rng = np.random.default_rng(27)
+    formula = _across(wire.Function("ur_position"))
+    for name in urkin.ROBOTS:
+        robot = _across(urkin.robot(name))
+        for q in rng.uniform(-np.pi, np.pi, (20, 6)):
+            p = urkin.fk(robot, q)[:3, 3]
+            np.testing.assert_allclose(formula(robot, q), p, rtol=0, atol=1e-12)
+            np.testing.assert_array_equal(formula(robot, list(q)), formula(robot, q))
+
+
+def test_seed002s_formula_as_published_misses_by_its_known_error():
+    """ERRATA 002: |e| = d6 |cos(q2+q3+q4)| (1 − sin q5); at 0.35 rad on every (report's) joint
+    the formula gives (759.367, 78.336, 415.781) mm."""
+    from urkin.course.seeds import SEED002_ARM, SEED002_SHIFT
+
+    arm = _across(SEED002_ARM)
+    published = _across(wire.Function("seed002_position", report_angles=True))
+    q_report = np.full(6, 0.35)
+    np.testing.assert_allclose(
+        1000 * published(arm, q_report - SEED002_SHIFT),
+        [759.367, 78.336, 415.781],
+        rtol=0,
+        atol=5e-4,
+    )
+    q = np.random.default_rng(2).uniform(-np.pi, np.pi, (50, 6))
+    errors = [np.linalg.norm(published(arm, qk) - urkin.fk(arm, qk)[:3, 3]) for qk in q]
+    bound = arm.d6 * np.abs(np.cos(q[:, 1:4].sum(axis=1))) * (1.0 - np.sin(q[:, 4]))
+    np.testing.assert_allclose(errors, bound, rtol=0, atol=1e-12)
+    # its terms with UR's lengths and angles make the same mistake on any UR arm
+    terms = _across(wire.Function("seed002_position"))
+    ur10 = urkin.robot("UR10")
+    errors = [np.linalg.norm(terms(ur10, qk) - urkin.fk(ur10, qk)[:3, 3]) for qk in q]
+    bound = ur10.d6 * np.abs(np.cos(q[:, 1:4].sum(axis=1))) * (1.0 - np.sin(q[:, 4]))
+    np.testing.assert_allclose(errors, bound, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("joint", range(5))
+def test_a_folded_joint_is_right_near_zero_and_wrong_beyond_a_quarter_turn(joint):
+    ur5 = urkin.robot("UR5")
+    formula = _across(wire.Function("folded_ur_position", joint=joint))
+    q = np.random.default_rng(joint).uniform(-np.pi, np.pi, (200, 6))
+    errors = np.array([np.linalg.norm(formula(ur5, qk) - urkin.fk(ur5, qk)[:3, 3]) for qk in q])
+    inside = np.abs(q[:, joint]) < np.pi / 2
+    assert (
+        errors[inside].max() < 1e-12
+        and np.linalg.norm(formula(ur5, np.zeros(6)) - urkin.fk(ur5, np.zeros(6))[:3, 3]) < 1e-12
+    )
+    assert errors[~inside].min() > 1e-3  # a half turn of a joint always moves the flange

@@ -28,6 +28,25 @@ def _to_modified(
     return _TO_MODIFIED.format(d=d, a=a, alpha=alpha, tool=tool)
 
 
+_FORMULA_GAP = """
+def formula_gap(formula, robot, n=1000, seed=0):
+    q = {draw}
+    p_formula = np.array([formula(robot, q_k) for q_k in q], dtype=float)
+    difference = p_formula - urkin.fk(robot, q)[:, :3, 3]
+    distances = {distances}
+    return {answer}
+"""
+
+
+def _formula_gap(
+    draw="np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6))",
+    distances="np.linalg.norm(difference, axis=1)",
+    answer="distances.max(), q[np.argmax(distances)]",
+):
+    """A formula_gap whose draw, distances and answer are the given expressions."""
+    return _FORMULA_GAP.format(draw=draw, distances=distances, answer=answer)
+
+
 CORRECT = [
     Variant(
         "2.1",
@@ -223,6 +242,33 @@ def to_modified(rows):
                     dtype=np.float32)
     return table, tool
 """,
+    ),
+    Variant(
+        "2.7",
+        "one configuration at a time, the student's forward_kinematics, a list back",
+        """
+import math
+
+
+def formula_gap(formula, robot, n=1000, seed=0):
+    rng = np.random.default_rng(seed)
+    gap, q_worst = -1.0, None
+    for _ in range(n):
+        q = rng.uniform(-np.pi, np.pi, 6)
+        p = forward_kinematics(robot, q)[:3, 3]
+        distance = math.dist(formula(robot, q), p)
+        if distance > gap:
+            gap, q_worst = distance, q
+    return [gap, list(q_worst)]
+""",
+    ),
+    Variant(
+        "2.7",
+        "sum of squares, np.sqrt, an array answer",
+        _formula_gap(
+            distances="np.sqrt((difference**2).sum(axis=1))",
+            answer="np.float64(distances.max()), q[distances == distances.max()][0]",
+        ),
     ),
 ]
 
@@ -508,5 +554,79 @@ def upright_flange(robot):
         ),
         points=1,
         mistake="T_tool inverted",
+    ),
+    Variant(
+        "2.7",
+        "only q = 0 tested",
+        """
+def formula_gap(formula, robot, n=1000, seed=0):
+    q = np.zeros(6)
+    return float(np.linalg.norm(formula(robot, q) - urkin.fk(robot, q)[:3, 3])), q
+""",
+        points=0,
+        mistake="only q = 0 tested",
+    ),
+    Variant(
+        "2.7",
+        "a fixed handful of poses",
+        """
+def formula_gap(formula, robot, n=1000, seed=0):
+    poses = [np.zeros(6), np.full(6, 0.35), np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])]
+    gaps = [np.linalg.norm(formula(robot, q) - urkin.fk(robot, q)[:3, 3]) for q in poses]
+    return max(gaps), poses[int(np.argmax(gaps))]
+""",
+        points=0,
+        mistake="not one of the drawn configurations",
+    ),
+    Variant(
+        "2.7",
+        "the mean distance",
+        _formula_gap(answer="distances.mean(), q[np.argmax(distances)]"),
+        points=1,
+        mistake="mean distance instead of the largest",
+    ),
+    Variant(
+        "2.7",
+        "the configuration of the smallest distance",
+        _formula_gap(answer="distances.max(), q[np.argmin(distances)]"),
+        points=1,
+        mistake="smallest distance (argmin)",
+    ),
+    Variant(
+        "2.7",
+        "the largest coordinate difference",
+        _formula_gap(
+            distances="np.abs(difference)",
+            answer="distances.max(), q[np.unravel_index(np.argmax(distances), distances.shape)[0]]",
+        ),
+        points=1,
+        mistake="largest single coordinate",
+    ),
+    Variant(
+        "2.7",
+        "angles drawn in degrees",
+        """
+def formula_gap(formula, robot, n=1000, seed=0):
+    q = np.random.default_rng(seed).uniform(-180.0, 180.0, (n, 6))
+    distances = [np.linalg.norm(formula(robot, q_k) - forward_kinematics(robot, q_k)[:3, 3])
+                 for q_k in q]
+    return max(distances), q[int(np.argmax(distances))]
+""",
+        points=0,
+        mistake="drawn in degrees",
+    ),
+    Variant(
+        "2.7",
+        "the draw converted with np.radians",
+        _formula_gap(draw="np.radians(np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6)))"),
+        points=0,
+        mistake="converted with np.radians",
+    ),
+    Variant(
+        "2.7",
+        "the legacy np.random.seed",
+        _formula_gap(draw="np.random.seed(seed) or np.random.uniform(-np.pi, np.pi, (n, 6))"),
+        points=0,
+        mistake="legacy np.random.seed",
     ),
 ]

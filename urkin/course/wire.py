@@ -11,7 +11,8 @@ graded.
 Two kinds of argument are rebuilt from a description rather than copied: a UR arm
 (:class:`urkin.Robot`, by its DH lengths) and an input function (:class:`Function`, by a kind
 and its parameters, for exercises that take a function such as ``numeric_jacobian(f, q)`` or
-an IK solver ``track_positions(robot, points, q0, solve)``).
+an IK solver ``track_positions(robot, points, q0, solve)``, or a candidate formula
+``formula_gap(formula, robot)``).
 A SymPy expression or matrix with symbols in it arrives as a
 :class:`urkin.course.symbolic_answer.Symbolic` (read from its ``srepr`` text without running it);
 anything else a student's function returns that is not plain data arrives as :class:`Opaque`.
@@ -148,6 +149,45 @@ def _complex_flange_position(robot):
     return lambda q: fk(robot, _complex_kept(q))[:3, 3]
 
 
+def _ur_closed_form(lengths, q) -> np.ndarray:
+    """The closed-form flange position of a UR-type arm (UR's angles and sign convention)."""
+    d1, a2, a3, d4, d5, d6 = (float(x) for x in lengths)
+    q1, q2, q3, q4, q5, _ = np.asarray(q, dtype=float)
+    c1, s1, c5, s5 = np.cos(q1), np.sin(q1), np.cos(q5), np.sin(q5)
+    c234, s234 = np.cos(q2 + q3 + q4), np.sin(q2 + q3 + q4)
+    reach = a2 * np.cos(q2) + a3 * np.cos(q2 + q3)
+    return np.array(
+        [
+            c1 * reach + d4 * s1 + d5 * c1 * s234 + d6 * (s1 * c5 - c1 * c234 * s5),
+            s1 * reach - d4 * c1 + d5 * s1 * s234 - d6 * (c1 * c5 + s1 * c234 * s5),
+            d1 + a2 * np.sin(q2) + a3 * np.sin(q2 + q3) - d5 * c234 - d6 * s234 * s5,
+        ]
+    )
+
+
+def _ur_position():
+    return lambda robot, q: _ur_closed_form(robot.lengths, q)
+
+
+def _seed002_formula(report_angles=False):
+    from urkin.course.seeds import SEED002_LENGTHS, SEED002_SHIFT, seed002_position
+
+    if report_angles:  # as published: its lengths, at its angles q_UR + SEED002_SHIFT
+        return lambda robot, q: np.array(
+            seed002_position(np.asarray(q, dtype=float) + SEED002_SHIFT, SEED002_LENGTHS)
+        )
+    return lambda robot, q: np.array(seed002_position(np.asarray(q, dtype=float), robot.lengths))
+
+
+def _folded_ur_position(joint):
+    def formula(robot, q):
+        q = np.array(q, dtype=float)
+        q[joint] = np.arctan(np.tan(q[joint]))  # q_joint itself for |q_joint| < π/2 only
+        return _ur_closed_form(robot.lengths, q)
+
+    return formula
+
+
 _FUNCTION_KINDS = {
     "linear": _linear,  # f(x) = A x + b
     "smooth3": lambda: _smooth3,  # a fixed smooth map R³ → R³
@@ -159,6 +199,12 @@ _FUNCTION_KINDS = {
     "polynomial": _polynomial,  # f(x) = A x + (B x) ∘ (C x) + b
     "sin_exp": _sin_exp,  # f(x) = sin(A x) ∘ exp(B x)
     "complex_flange_position": _complex_flange_position,  # q ↦ the flange position, q complex
+    # candidate closed-form positions formula(robot, q) ↦ p, to be tested (exercise 2.7):
+    "ur_position": _ur_position,  # the right closed form for the robot's lengths
+    # seed 002's published p (its d6·cos(q2+q3+q4) terms lack sin q5): with report_angles, its
+    # own lengths at its angles q + SEED002_SHIFT; otherwise its terms with the robot's lengths
+    "seed002_position": _seed002_formula,
+    "folded_ur_position": _folded_ur_position,  # right while |q[joint]| < π/2, turned by π beyond
 }
 
 

@@ -19,9 +19,9 @@ from urkin.course.compare import (
 )
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import negated_a, random_arm, random_q
-from urkin.course.seeds import seed002_position
+from urkin.course.seeds import SEED002_ARM, seed002_position
 from urkin.course.symbolic_answer import Symbolic
-from urkin.course.wire import Opaque
+from urkin.course.wire import Function, Opaque
 from urkin.kinematics import dh_chain, dh_transform
 
 _fk = urkin.fk
@@ -627,6 +627,224 @@ def _modified_tool(sub, rng):
             )
 
 
+# ---------------------------------------------------------------------------- 2.7 formula_gap
+
+
+def _draw(n, seed):
+    """The contract's configurations: np.random.default_rng(seed).uniform(-π, π, (n, 6))."""
+    return np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6))
+
+
+def _flange(robot, q):
+    """Flange positions for the rows of q (urkin.fk refuses angles in degrees; this does not)."""
+    return dh_chain(robot.dh_table(), q)[:, :3, 3]
+
+
+def _distances(formula, robot, q):
+    """|formula(robot, q_k) − flange position| for every row q_k of q, metres."""
+    p = np.array([formula(robot, q_k) for q_k in q], dtype=float)
+    return np.linalg.norm(p - _flange(robot, q), axis=1)
+
+
+def _worst(distances, q):
+    k = int(np.argmax(distances))
+    return float(distances[k]), q[k]
+
+
+def _other_draws(n, seed):
+    """Configurations a student may have tested instead of the stated draw, by mistake."""
+    return {
+        "angles drawn in degrees, uniform(−180, 180), and used as radians": (
+            np.random.default_rng(seed).uniform(-180.0, 180.0, (n, 6))
+        ),
+        "the drawn angles converted with np.radians: they are radians already, and what is "
+        "left is a few degrees around q = 0": np.radians(_draw(n, seed)),
+        "a different random draw (the legacy np.random.seed and np.random.uniform): use "
+        "np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6))": (
+            np.random.RandomState(seed).uniform(-np.pi, np.pi, (n, 6))
+        ),
+        "a different random draw (shape (6, n), transposed): use "
+        "np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6))": (
+            np.random.default_rng(seed).uniform(-np.pi, np.pi, (6, n)).T
+        ),
+    }
+
+
+def _smallest(distances, q):
+    """The largest distance, and every configuration within 1e-12 of the smallest (round-off
+    decides which of them an argmin picks)."""
+    return float(distances.max()), q[distances <= distances.min() + 1e-12]
+
+
+_ONLY_ZERO = "only q = 0 tested: the configurations are the n random ones of the stated draw"
+
+
+def _gap_hypotheses(formula, robot, n, seed):
+    """name ↦ a function giving (gap, q_worst) as the mistake computes them: q_worst is one
+    configuration, or rows of which the mistake picks one, or None (any)."""
+    q = _draw(n, seed)
+
+    def coordinate_max():
+        p = np.array([formula(robot, q_k) for q_k in q], dtype=float)
+        per = np.abs(p - _flange(robot, q))
+        k = int(np.argmax(per.max(axis=1)))
+        return float(per[k].max()), q[k]
+
+    hypotheses = {
+        _ONLY_ZERO: lambda: _worst(_distances(formula, robot, np.zeros((1, 6))), np.zeros((1, 6))),
+        "the mean distance instead of the largest": lambda: (
+            float(_distances(formula, robot, q).mean()),
+            None,
+        ),
+        "the configuration of the smallest distance (argmin) instead of the largest": lambda: (
+            _smallest(_distances(formula, robot, q), q)
+        ),
+        "the largest single coordinate |Δx|, |Δy| or |Δz| instead of the Euclidean distance": (
+            coordinate_max
+        ),
+    }
+    for name, other in _other_draws(n, seed).items():
+        hypotheses[name] = lambda other=other: _worst(_distances(formula, robot, other), other)
+    return hypotheses
+
+
+def _gap_answer(sub, formula, robot, n, seed, inputs):
+    """The student's (gap, q_worst), checked for shape."""
+    what = "formula_gap(formula, robot, n, seed)"
+    got = sub.formula_gap(formula, robot) if n is None else sub.formula_gap(formula, robot, n, seed)
+    if not (isinstance(got, (tuple, list)) and len(got) == 2):
+        raise Mismatch(
+            f"{what} must return a pair (gap, q_worst); got {type(got).__name__}"
+            + (f" of length {len(got)}" if isinstance(got, (tuple, list)) else ""),
+            inputs=inputs,
+        )
+    gap = as_array(got[0], (), f"{what}[0], the gap,", inputs)
+    q_worst = as_array(got[1], (6,), f"{what}[1], q_worst,", inputs)
+    return gap, q_worst
+
+
+def _rows_like(q, q_worst):
+    """Indices of the rows of q equal to q_worst (to 1e-12, or the answer's precision)."""
+    return np.flatnonzero(np.abs(q - q_worst).max(axis=1) <= tolerance(1e-12, q_worst, np.pi))
+
+
+def _draw_mistake(q_worst, n, seed) -> str:
+    """Why q_worst is not a configuration of the stated draw, as well as can be told."""
+    if not np.any(q_worst):
+        return _ONLY_ZERO
+    for name, other in _other_draws(n, seed).items():
+        if len(_rows_like(other, q_worst)):
+            return name
+    return (
+        "q_worst is not one of the drawn configurations: test at exactly the n configurations "
+        "of np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6)) (a fixed handful of "
+        "poses, or another draw, cannot be reproduced or checked)"
+    )
+
+
+def _gap_cases(rng):
+    """(robot, n, seed): the default n = 1000, seed = 0 (n None), then two random ones."""
+    yield random_arm(rng), None, 0
+    for _ in range(2):
+        yield random_arm(rng), int(rng.integers(50, 400)), int(rng.integers(1, 10_000))
+
+
+def _gap_inputs(formula_text, robot, n, seed):
+    if n is None:
+        n, seed = "1000 (the default)", "0 (the default)"
+    return {"formula": formula_text, "robot": robot.name, "n": n, "seed": seed}
+
+
+def _gap_right_formula(sub, rng):
+    formula = Function("ur_position")
+    for robot, n, seed in _gap_cases(rng):
+        inputs = _gap_inputs("the right closed-form flange position", robot, n, seed)
+        gap, q_worst = _gap_answer(sub, formula, robot, n, seed, inputs)
+        if not (0.0 <= gap <= tolerance(1e-12, gap)):
+            raise Mismatch(
+                "a right formula is off by round-off only: the gap must be ≥ 0 and below 1e-12",
+                inputs=inputs,
+                got=gap,
+                difference=f"gap {float(gap):.3g} m",
+            )
+        n_drawn = 1000 if n is None else n
+        if not len(_rows_like(_draw(n_drawn, seed), q_worst)):
+            raise Mismatch(
+                "q_worst must be one of the n configurations drawn by "
+                "np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6))",
+                inputs=inputs,
+                got=q_worst,
+                mistake=_draw_mistake(q_worst, n_drawn, seed),
+            )
+
+
+def _judge_gap(sub, formula, formula_text, robot, n, seed):
+    """The student's (gap, q_worst) must be the largest distance and where it occurs."""
+    inputs = _gap_inputs(formula_text, robot, n, seed)
+    gap, q_worst = _gap_answer(sub, formula, robot, n, seed, inputs)
+    n_drawn, seed_drawn = (1000, 0) if n is None else (n, seed)
+    q = _draw(n_drawn, seed_drawn)
+    distances = _distances(formula, robot, q)
+    right_gap, right_q = _worst(distances, q)
+    atol = tolerance(1e-12, gap, right_gap)
+    at = _rows_like(q, q_worst)
+    gap_ok = abs(float(gap) - right_gap) <= atol
+    q_ok = len(at) and distances[at].max() >= right_gap - atol
+    if gap_ok and q_ok:
+        return
+    mistake = None
+    for name, compute in _gap_hypotheses(formula, robot, n_drawn, seed_drawn).items():
+        try:
+            with np.errstate(all="ignore"):
+                h_gap, h_q = compute()
+        except Exception:  # a hypothesis that cannot be evaluated simply does not match
+            continue
+        same_gap = abs(float(gap) - h_gap) <= tolerance(1e-12, gap, h_gap)
+        same_q = h_q is None or len(_rows_like(np.atleast_2d(h_q), q_worst))
+        is_right = abs(h_gap - right_gap) <= 1e-12 and (
+            h_q is None or np.array_equal(np.atleast_2d(h_q), right_q[None])
+        )
+        if same_gap and same_q and not is_right:
+            mistake = name
+            break
+    if mistake is None and not len(at):
+        mistake = _draw_mistake(q_worst, n_drawn, seed_drawn)
+    raise Mismatch(
+        "(gap, q_worst): the largest Euclidean distance |formula(robot, q) − flange position| "
+        "over the n configurations of np.random.default_rng(seed).uniform(-np.pi, np.pi, "
+        "(n, 6)), and the configuration where it occurs (to 1e-12)",
+        inputs=inputs,
+        expected=np.r_[right_gap, right_q],
+        got=np.r_[float(gap), q_worst],
+        mistake=mistake,
+        difference="shown as (gap, q1, …, q6)"
+        + (f"; gap {right_gap:.15g} m expected, {float(gap):.15g} m got" if not gap_ok else ""),
+    )
+
+
+def _gap_seed002(sub, rng):
+    published = Function("seed002_position", report_angles=True)
+    _judge_gap(
+        sub, published, "seed 002's published p (its own lengths and angles)", SEED002_ARM, None, 0
+    )
+    terms = Function("seed002_position")
+    text = "seed 002's terms (d6·cos(q2+q3+q4) without sin q5) with the robot's lengths"
+    for robot, n, seed in _gap_cases(rng):
+        if n is not None:  # the default draw was judged on the published formula
+            _judge_gap(sub, terms, text, robot, n, seed)
+
+
+def _gap_folded(sub, rng):
+    for robot, n, seed in _gap_cases(rng):
+        joint = int(rng.integers(0, 5))
+        formula = Function("folded_ur_position", joint=joint)
+        text = (
+            f"the right closed form, but with arctan(tan(q{joint + 1})) for q{joint + 1}: right "
+            f"at q = 0 and wherever |q{joint + 1}| < π/2, turned by half a turn beyond"
+        )
+        _judge_gap(sub, formula, text, robot, n, seed)
+
+
 LESSON = Lesson(
     number="02",
     title="Denavit–Hartenberg forward kinematics",
@@ -732,6 +950,28 @@ LESSON = Lesson(
                 ),
                 Check("the modified table (d_i, a_(i−1), α_(i−1))", 1, _modified_table),
                 Check("the tool transform Tx(a_n) Rx(α_n)", 1, _modified_tool),
+            ),
+        ),
+        Exercise(
+            id="2.7",
+            function="formula_gap",
+            title="put a closed-form position to the test at random configurations",
+            checks=(
+                Check(
+                    "a right formula: gap below 1e-12, q_worst one of the drawn configurations",
+                    1,
+                    _gap_right_formula,
+                ),
+                Check(
+                    "seed 002's formula: the exact largest distance and where it occurs",
+                    2,
+                    _gap_seed002,
+                ),
+                Check(
+                    "a formula right at and near q = 0 but wrong elsewhere is caught",
+                    1,
+                    _gap_folded,
+                ),
             ),
         ),
     ),
