@@ -445,8 +445,9 @@ def draw_arms(
     ----------
     ax : mpl_toolkits.mplot3d.Axes3D
     robot : Robot
-    arms : sequence of (q, colour, label)
-        Joint angles (radians, shape (6,)), line colour and legend entry (or None).
+    arms : sequence of tuple
+        Each ``(q, colour, label)``: joint angles (radians, shape (6,)), line colour and legend
+        entry (or None).
     linewidth : float
     frames : bool
         Draw the DH frame triads too.
@@ -673,7 +674,8 @@ def robot_panels(
     Parameters
     ----------
     robot : Robot
-    configurations : sequence of (q, caption)
+    configurations : sequence of tuple
+        Each ``(q, caption)``.
         Joint angles in radians and the title of that panel.
     title : str, optional
         Title of the whole figure.
@@ -1105,7 +1107,8 @@ def singular_families_figure(
     Parameters
     ----------
     robot : Robot
-    configurations : mapping of family name to q
+    configurations : mapping
+        Family name to joint angles ``q``.
         Keys among ``"shoulder"``, ``"elbow"`` and ``"wrist"``; joint angles in radians.
     conditions : mapping of family name to str, optional
         The condition written in each panel's title.
@@ -2429,7 +2432,8 @@ def joint_paths_figure(
     ----------
     fraction : array_like, shape (N,)
         Position along the path.
-    panels : sequence of (q, title)
+    panels : sequence of tuple
+        Each ``(q, title)``.
         ``q`` has shape (N, 6), radians.
     levels : sequence of (angle, linestyle, label)
         Horizontal lines drawn at ± each angle.

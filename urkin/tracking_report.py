@@ -62,8 +62,8 @@ class TrackingReport:
         and ``"max"`` of each joint (rad); ``"beyond_limits"`` the joints that leave the
         robot's limits (1-based).
     singularity_margin : dict of str to tuple
-        For each family, (smallest |factor|, sample): metres for the shoulder, |sin| for the
-        elbow and wrist.
+        For each family, (smallest absolute factor, sample): metres for the shoulder, the
+        absolute sine for the elbow and wrist.
     below_base : tuple
         (lowest height of any DH frame origin 1-6 above the mounting plane z = 0 (m), sample,
         frame); negative means below the plane.
