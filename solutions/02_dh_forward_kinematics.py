@@ -18,7 +18,7 @@
 #
 # * write the link transform of one DH row, and the forward kinematics of any DH table, in
 #   numpy (exercises 2.1 and 2.2);
-# * transcribe a published closed-form position (exercise 2.3), and test any such formula
+# * write the derived closed-form position (exercise 2.3), and test any such formula
 #   against an independent reference at many random configurations, which tells right from
 #   wrong where a hand-picked pose cannot (exercise 2.7);
 # * derive `T_0_n` of an arm you have never seen, from its DH table, in SymPy (exercise 2.4);

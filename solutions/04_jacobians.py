@@ -1498,7 +1498,7 @@ else:
 # `lambda q: urkin.fk(robot, q)[:3, 3]` does. Column `j` is
 # $\operatorname{Im} f(q + \mathrm{i}h e_j) / h$: build each nudged point as a new *complex*
 # array (`q + 1j * h * e_j`; a float array cannot hold `1j * h` — numpy refuses the
-# assignment, or for numpy scalars warns and drops the imaginary part).
+# assignment, or warns and drops the imaginary part).
 #
 # *Checked* in float64 (the complex step's whole point is float64's last digits): (1 point) the
 # Jacobians of random polynomials $Ax + (Bx) \circ (Cx) + b$ and of $\sin(Ax) \circ \exp(Bx)$

@@ -21,8 +21,8 @@
 # **What you will be able to do**
 #
 # * compute the damped least-squares and Levenberg–Marquardt steps for a Jacobian of any
-#   shape, with matrix products and a solve, and recognise element-wise `*` and `**-1` where
-#   they do not belong (exercises 6.1 and 6.2);
+#   shape, with matrix products and a solve (exercises 6.1 and 6.2), and recognise
+#   element-wise `*` and `**-1` where they do not belong (exercise 6.1);
 # * write Levenberg–Marquardt IK that adapts its damping, rejects steps that raise the error
 #   and restarts when it is trapped, even from the singular home pose (exercise 6.3);
 # * write *Modern Robotics*' matrix-log solver, pairing the space error twist with the space
@@ -390,7 +390,7 @@ for q3 in elbow_cases:
 # **Right:** the price. With $\lambda$ below the smallest singular value at the solution, DLS
 # converges as Newton does. Up to about three and a half times that value it still converges, with
 # more and more iterations; beyond it the solver gives up *short of the tolerance*, with an error
-# that grows with $\lambda$ — by $\lambda = 0.1$ it stops up to a third of a millimetre away. And
+# that grows with $\lambda$ — by $\lambda = 0.1$ it stops up to about 0.35 mm away. And
 # the threshold moves with the target: $\lambda = 0.01$, seed 000's choice, is fine for the first
 # target and fails the other two. To pick $\lambda$ well you would need to know how singular the
 # solution is before you have found it.

@@ -1077,6 +1077,8 @@ if yours is not None:
 # θ1 put wrist 1 in different places, $2d_5$ apart, on either side of joint 5's centre. Near
 # the edge of the reach one of them can fall outside the ring while the other stays inside.
 #
+# ## 6. Singular poses
+#
 # Each `±arccos` above is a place where two solutions meet when its argument reaches ±1,
 # and step 3 divides by $\sin\theta_5$. These are exactly lesson 04's three singular
 # families:

@@ -342,6 +342,34 @@ def _mention_problems(path: Path, notebook: dict, numbers: set[str]) -> list[str
     return problems
 
 
+def section_numbers(markdown: str) -> list[str]:
+    """Problems with a lesson's numbered sections (``## 1. …``): they must run 1, 2, 3 … with
+    no number missing or repeated, since the text refers to them by number.
+
+    Examples
+    --------
+    >>> section_numbers("## 1. A\\n## 2. B\\n## 4. D")
+    ['section 3 is missing: the numbered sections run 1, 2, 4']
+    >>> section_numbers("## 1. A\\n## Summary")
+    []
+    """
+    found = [int(n) for n in re.findall(r"^## (\d+)\. ", markdown, re.M)]
+    if found == list(range(1, len(found) + 1)):
+        return []
+    missing = sorted(set(range(1, max(found) + 1)) - set(found))
+    numbers = ", ".join(map(str, found))
+    if missing:
+        return [f"section {missing[0]} is missing: the numbered sections run {numbers}"]
+    return [f"the numbered sections run {numbers}: not 1, 2, 3 … in order"]
+
+
+def _section_problems(path: Path, notebook: dict) -> list[str]:
+    markdown = "\n".join(
+        _source(cell) for cell in notebook.get("cells", []) if cell.get("cell_type") == "markdown"
+    )
+    return [f"{path}: {problem}" for problem in section_numbers(markdown)]
+
+
 def _math_layout_problems(path: Path, notebook: dict) -> list[str]:
     return [
         f"{path}, cell {index + 1}: {problem}"
@@ -376,6 +404,7 @@ def check(root: Path) -> list[str]:
         problems += _exercise_problems(path, notebook, lesson)
         problems += _math_layout_problems(path, notebook)
         problems += _mention_problems(path, notebook, numbers)
+        problems += _section_problems(path, notebook)
         if notebook.get("metadata", {}).get("kernelspec") != KERNELSPEC:
             problems.append(f"{path}: kernelspec is not normalised to python3")
         solution_ids, removed_lines = [], []
