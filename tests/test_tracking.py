@@ -211,3 +211,165 @@ def test_track_carries_its_report_and_failures():
 def test_bad_report_input_is_refused(call, message):
     with pytest.raises(ValueError, match=message):
         call()
+
+
+# ------------------------------------------------------------------ the report's per-sample numbers
+
+
+def _angle_between(A, B):
+    """Rotation angle of A^T B from its sine (the skew part) and cosine (the trace)."""
+    R = np.swapaxes(A, -1, -2) @ B
+    skew = R - np.swapaxes(R, -1, -2)
+    sine = np.linalg.norm(np.stack([skew[:, 2, 1], skew[:, 0, 2], skew[:, 1, 0]], axis=1), axis=1)
+    cosine = (np.trace(R, axis1=1, axis2=2) - 1) / 2
+    return np.arctan2(sine / 2, cosine)
+
+
+def test_the_report_keeps_per_sample_numbers_that_agree_with_fk():
+    poses = _seed_square_poses()
+    q = tj.track(UR3, poses, _elbow_up_start(UR3, poses[0])).q
+    q[5] += np.array([1e-4, -2e-4, 0, 3e-4, 0, 1e-4])  # one sample off its pose
+    q[7, 5] += 2 * np.pi  # a turn of joint 6 is the same arm pose
+    report = tracking_report(UR3, poses, q)
+    reached = urkin.fk(UR3, q)
+    position = np.linalg.norm(reached[:, :3, 3] - poses[:, :3, 3], axis=1)
+    np.testing.assert_allclose(report.position_errors, position, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(
+        report.orientation_errors, _angle_between(reached[:, :3, :3], poses[:, :3, :3]), atol=1e-14
+    )
+    assert report.position_errors[5] > 1e-5 and np.delete(report.position_errors, 5).max() < 1e-12
+    spacings = [np.linalg.norm(poses[k + 1, :3, 3] - poses[k, :3, 3]) for k in range(len(q) - 1)]
+    np.testing.assert_allclose(report.spacings, spacings, rtol=1e-15, atol=0)
+    np.testing.assert_array_equal(report.q, q)  # as given, not wrapped
+    assert report.q is not q
+    q2, q3, q4, q5 = q[:, 1], q[:, 2], q[:, 3], q[:, 4]
+    shoulder = UR3.a2 * np.cos(q2) + UR3.a3 * np.cos(q2 + q3) + UR3.d5 * np.sin(q2 + q3 + q4)
+    np.testing.assert_allclose(
+        report.factors, np.stack([shoulder, np.sin(q3), np.sin(q5)], axis=1), atol=1e-14
+    )
+    np.testing.assert_array_equal(report.joint_limits, np.array(UR3.joint_limits))
+    # the summaries are summaries of these arrays
+    assert report.position_error[0] == report.position_errors.max()
+    assert report.orientation_error[0] == report.orientation_errors.max()
+    assert report.spacing == (
+        report.spacings.min(),
+        np.median(report.spacings),
+        report.spacings.max(),
+    )
+    np.testing.assert_array_equal(report.branches, np.sign(report.factors))
+
+
+def _texts(ax):
+    return [ax.get_title(), ax.get_xlabel(), ax.get_ylabel()]
+
+
+def _labelled(ax, start):
+    """The artists of ax whose legend label starts with start."""
+    artists = ax.get_lines() + ax.patches
+    return [a for a in artists if str(a.get_label()).startswith(start)]
+
+
+TITLES = [
+    "Target spacing",
+    "Pose error at each sample",
+    "Joint angles",
+    "Distance from the singularities",
+]
+
+
+def test_the_report_figure_has_four_labelled_panels_and_the_seed_square_repeats_corners():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    poses = _seed_square_poses()
+    report = tj.track(UR3, poses, _elbow_up_start(UR3, poses[0])).report
+    fig = report.plot(title="seed 000's square")
+    try:
+        assert len(fig.axes) == 4
+        assert [ax.get_title() for ax in fig.axes] == TITLES
+        assert fig.get_suptitle() == "seed 000's square"
+        units = ["(mm)", "rad", "°", "(m"]
+        for ax, unit in zip(fig.axes, units):
+            assert unit in ax.get_ylabel(), ax.get_ylabel()
+            assert ax.get_legend() is not None
+        assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["sample", "sample"]
+        assert fig.axes[1].get_yscale() == fig.axes[3].get_yscale() == "log"
+        # panel 1: the seed repeats the three inner corners, at the end of sides 1-3
+        spacing_ax = fig.axes[0]
+        (marks,) = _labelled(spacing_ax, "repeated sample (3)")
+        np.testing.assert_array_equal(marks.get_xdata(), np.array([19, 39, 59]) + 0.5)
+        np.testing.assert_array_equal(marks.get_ydata(), 0.0)
+        (one_mm,) = _labelled(spacing_ax, "1 mm")
+        np.testing.assert_array_equal(one_mm.get_ydata(), [1.0, 1.0])
+        (spacing,) = _labelled(spacing_ax, "spacing")
+        np.testing.assert_allclose(spacing.get_ydata(), report.spacings * 1e3, rtol=1e-15)
+        assert spacing.get_ydata()[19] == 0.0 and spacing.get_ydata()[0] > 7.8  # 7.9 mm steps
+        # panel 3: the joint angles in degrees, the ±360° limits
+        joints = _labelled(fig.axes[2], "joint ")
+        assert len(joints) == 6
+        np.testing.assert_allclose(joints[2].get_ydata(), np.degrees(report.q[:, 2]))
+        dotted = [line for line in fig.axes[2].get_lines() if line.get_linestyle() == ":"]
+        assert sorted(line.get_ydata()[0] for line in dotted) == [-360.0, 360.0]
+        assert _labelled(fig.axes[2], "limits ±360°")
+        fig.canvas.draw()  # lays out without error; constrained layout
+        assert fig.get_layout_engine() is not None
+    finally:
+        plt.close(fig)
+
+
+def test_the_report_figure_marks_flips_failures_and_exact_zeros():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    turns = np.linspace(0, 1, 50)[:, None] * np.array([0, 0, 0, 0, 0, 8 * np.pi])
+    q = np.array([0.3, -1.2, 1.4, -0.6, 0.0, 0.5]) + turns  # q5 = 0: the wrist is singular
+    q[30:, 2] = -q[30:, 2]  # the elbow flips between samples 29 and 30
+    poses = urkin.fk(UR5, wrap_angles(q))
+    failures = {10: "x", 40: "y", 41: "y", 42: "y"}
+    report = tracking_report(UR5, poses, q, failures=failures)
+    fig = report.plot()
+    try:
+        error_ax, joint_ax, margin_ax = fig.axes[1:]
+        (flip,) = _labelled(joint_ax, "elbow flip (1)")
+        np.testing.assert_array_equal(flip.get_xdata(), [29.5, 29.5])
+        assert max(line.get_ydata().max() for line in _labelled(joint_ax, "joint 6")) > 1440
+        # failures: two bands (sample 10; samples 40-42), in the error and the margin panels
+        for ax in (error_ax, margin_ax):
+            bands = [p for p in ax.patches if p.get_facecolor()[0] > 0.8]
+            assert len(bands) == 2
+            assert _labelled(ax, "failed samples (4)")
+            spans = sorted(
+                (round(p.get_x() + 0.0, 6), round(p.get_x() + p.get_width(), 6)) for p in bands
+            )
+            assert spans == [(9.5, 10.5), (39.5, 42.5)]
+        # |sin q5| is exactly 0 and drawn at the floor; the label says where
+        (wrist,) = _labelled(margin_ax, "wrist |sin q5|")
+        assert np.all(wrist.get_ydata() == 1e-17)
+        assert "0 drawn at 1e-17" in margin_ax.get_ylabel()
+        assert margin_ax.get_ylim()[0] < 1e-17
+    finally:
+        plt.close(fig)
+
+
+def test_a_report_without_per_sample_arrays_cannot_be_drawn_and_import_stays_light():
+    import dataclasses
+    import subprocess
+    import sys
+
+    poses = _seed_square_poses()
+    report = tracking_report(UR3, poses, tj.track(UR3, poses, _elbow_up_start(UR3, poses[0])).q)
+    bare = dataclasses.replace(report, q=np.zeros((0, 6)), position_errors=np.zeros(0))
+    with pytest.raises(ValueError, match="per-sample arrays"):
+        bare.plot()
+    code = (
+        "import sys, urkin; from urkin import trajectory as tj; "
+        "r = tj.track(urkin.robot('ur3'), tj.pose_path(tj.line((0.3, 0.1, 0.3), "
+        "(0.3, 0.1, 0.31))), [0.0, -1.2, 1.4, -0.6, 1.1, 0.5]); "
+        "print('matplotlib' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

@@ -263,3 +263,158 @@ def test_joint_trajectory_moves_from_start_to_end_with_consistent_rates():
         tj.joint_trajectory(q0, q1, profile, samples=1)
     with pytest.raises(TypeError, match="TimeScaling"):
         tj.joint_trajectory(q0, q1, 2.0)
+
+
+# ------------------------------------------------------------------------- via-point trajectories
+# References: each segment's cubic solved from its four boundary conditions as a linear system
+# (not the Hermite form the code uses), the heuristic velocities by a loop over vias and joints,
+# finite differences, and the cubic time scaling's closed form 3τ² − 2τ³.
+
+
+def _random_vias(seed, k=5, n=6):
+    rng = np.random.default_rng(seed)
+    q_via = rng.uniform(-np.pi, np.pi, (k, n))
+    q_via[2, 1] = q_via[1, 1]  # a joint that stands still over a segment (slope 0)
+    t_via = np.r_[0.0, np.cumsum(rng.integers(1, 9, k - 1))] / 8 + 0.25  # exact in binary
+    return rng, q_via, t_via
+
+
+def _heuristic(q_via, t_via):
+    k, n = q_via.shape
+    v = np.zeros((k, n))
+    for i in range(1, k - 1):
+        for joint in range(n):
+            before = (q_via[i, joint] - q_via[i - 1, joint]) / (t_via[i] - t_via[i - 1])
+            after = (q_via[i + 1, joint] - q_via[i, joint]) / (t_via[i + 1] - t_via[i])
+            if (before > 0 and after > 0) or (before < 0 and after < 0):
+                v[i, joint] = (before + after) / 2
+    return v
+
+
+def _reference(q_via, t_via, v_via, t):
+    """q, qd, qdd at times t from each segment's cubic a0 + a1 s + a2 s² + a3 s³, its
+    coefficients solved from q and q̇ at both ends."""
+    segment = np.clip(np.searchsorted(t_via, t, side="right") - 1, 0, len(t_via) - 2)
+    out = np.zeros((3, len(t), q_via.shape[1]))
+    for j in range(len(t_via) - 1):
+        T = t_via[j + 1] - t_via[j]
+        system = np.array([[1, 0, 0, 0], [0, 1, 0, 0], [1, T, T**2, T**3], [0, 1, 2 * T, 3 * T**2]])
+        a = np.linalg.solve(system, np.stack([q_via[j], v_via[j], q_via[j + 1], v_via[j + 1]]))
+        s = (t[segment == j] - t_via[j])[:, None]
+        out[0, segment == j] = a[0] + a[1] * s + a[2] * s**2 + a[3] * s**3
+        out[1, segment == j] = a[1] + 2 * a[2] * s + 3 * a[3] * s**2
+        out[2, segment == j] = 2 * a[2] + 6 * a[3] * s
+    return out
+
+
+@pytest.mark.parametrize("given", [False, True], ids=["heuristic", "given"])
+@pytest.mark.parametrize("seed", range(5))
+def test_via_trajectory_passes_every_via_exactly_with_its_velocity(seed, given):
+    rng, q_via, t_via = _random_vias(seed)
+    v_via = rng.uniform(-2, 2, q_via.shape) if given else _heuristic(q_via, t_via)
+    step = 1 / 64  # a power of two: the sample times hit the vias exactly
+    traj = tj.via_trajectory(q_via, t_via, v_via if given else None, dt=step)
+    at = np.round((t_via - t_via[0]) / step).astype(int)
+    np.testing.assert_array_equal(traj.t[at], t_via)
+    np.testing.assert_array_equal(traj.q[at], q_via)
+    np.testing.assert_array_equal(traj.qd[at], v_via)
+    assert traj.t[-1] == t_via[-1] and len(traj.t) == at[-1] + 1
+    # and between the vias, the cubics solved from their boundary conditions
+    q, qd, qdd = _reference(q_via, t_via, v_via, traj.t)
+    np.testing.assert_allclose(traj.q, q, atol=1e-12)
+    np.testing.assert_allclose(traj.qd, qd, atol=1e-11)
+    np.testing.assert_allclose(traj.qdd, qdd, atol=1e-10)
+
+
+def test_via_heuristic_velocities_average_same_sign_slopes_else_stop():
+    q_via = np.array([[0.0, 0.0], [1.0, 1.0], [3.0, 0.5], [3.0, 2.0], [2.0, 2.5]])
+    t_via = np.array([0.0, 1.0, 2.0, 3.0, 5.0])
+    traj = tj.via_trajectory(q_via, t_via, samples=11)  # every 0.5 s: vias at 0, 2, 4, 6, 10
+    # joint 1: slopes 1, 2, 0, −0.5 → 1.5, 0 (a slope of zero), 0 (turns); joint 2: 1, −0.5,
+    # 1.5, 0.25 → 0 (turns back), 0 (turns), 0.875
+    expected = [[0.0, 0.0], [1.5, 0.0], [0.0, 0.0], [0.0, 0.875], [0.0, 0.0]]
+    np.testing.assert_array_equal(traj.qd[[0, 2, 4, 6, 10]], expected)
+    np.testing.assert_array_equal(_heuristic(q_via, t_via), expected)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_via_trajectory_is_continuous_in_q_and_qd_and_its_rates_are_the_slopes(seed):
+    _, q_via, t_via = _random_vias(10 + seed)
+    h = 2.0**-12
+    traj = tj.via_trajectory(q_via, t_via, dt=h)
+    inner = np.round((t_via[1:-1] - t_via[0]) / h).astype(int)  # samples exactly at the vias
+    np.testing.assert_array_equal(traj.t[inner], t_via[1:-1])
+    qdd_max = np.abs(traj.qdd).max()
+    # one-sided limits: one sample before and after each interior via, h → 0
+    for i in inner:
+        before, at, after = traj.q[i - 1], traj.q[i], traj.q[i + 1]
+        assert np.all(np.abs(after - at - h * traj.qd[i]) <= qdd_max * h**2)
+        assert np.all(np.abs(at - before - h * traj.qd[i]) <= qdd_max * h**2)
+        assert np.all(np.abs(traj.qd[i + 1] - traj.qd[i - 1]) <= 2 * qdd_max * h * 1.001)
+    # the left limits, from each segment's own cubic at its end (the reference)
+    _, v_left, a_left = _reference(
+        q_via[:-1], t_via[:-1], _heuristic(q_via, t_via)[:-1], t_via[1:-1]
+    )
+    np.testing.assert_allclose(v_left, traj.qd[inner], atol=1e-12)
+    assert np.abs(a_left - traj.qdd[inner]).max() > 1e-3  # accelerations jump at the vias
+    # away from the vias, the velocities and accelerations are the slopes of q and qd
+    smooth = np.ones(len(traj.t), dtype=bool)
+    for i in inner:
+        smooth[i - 1 : i + 2] = False
+    smooth[[0, -1]] = False
+    dq = np.gradient(traj.q, h, axis=0)
+    dqd = np.gradient(traj.qd, h, axis=0)
+    np.testing.assert_allclose(dq[smooth], traj.qd[smooth], atol=1e-6 * max(1.0, qdd_max))
+    np.testing.assert_allclose(dqd[smooth], traj.qdd[smooth], atol=1e-9 * max(1.0, qdd_max))
+
+
+def test_two_vias_are_the_cubic_time_scaling():
+    q0, q1 = np.array([0.1, -1.2, 2.0]), np.array([1.0, 0.3, -0.5])
+    T, start = 2.5, 0.75
+    traj = tj.via_trajectory([q0, q1], [start, start + T], samples=101)
+    tau = ((traj.t - start) / T)[:, None]
+    delta = q1 - q0
+    np.testing.assert_allclose(traj.t, np.linspace(start, start + T, 101), atol=0)
+    np.testing.assert_allclose(traj.q, q0 + (3 * tau**2 - 2 * tau**3) * delta, atol=1e-14)
+    np.testing.assert_allclose(traj.qd, (6 * tau - 6 * tau**2) / T * delta, atol=1e-14)
+    np.testing.assert_allclose(traj.qdd, (6 - 12 * tau) / T**2 * delta, atol=1e-13)
+    same = tj.joint_trajectory(q0, q1, tj.time_scaling("cubic", T), samples=101)
+    np.testing.assert_allclose(traj.q, same.q, atol=1e-14)
+    np.testing.assert_allclose(traj.qd, same.qd, atol=1e-14)
+    np.testing.assert_allclose(traj.qdd, same.qdd, atol=1e-13)
+
+
+def test_via_trajectory_sampling_by_count_or_step():
+    q_via, t_via = [[0.0], [1.0]], [0.0, 0.3]
+    assert len(tj.via_trajectory(q_via, t_via).t) == 100
+    by_step = tj.via_trajectory(q_via, t_via, dt=0.1)  # 0.3 / 0.1 = 2.9999999999999996
+    np.testing.assert_allclose(by_step.t, [0.0, 0.1, 0.2, 0.3], atol=1e-15)
+    assert by_step.t[-1] == 0.3 and by_step.q[-1, 0] == 1.0
+    short = tj.via_trajectory(q_via, t_via, dt=0.25)  # does not reach the end: stops before
+    np.testing.assert_array_equal(short.t, [0.0, 0.25])
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"q_via": [0.0, 1.0]}, r"q_via must have shape \(K, n\)"),
+        ({"q_via": [[0.0, 1.0]], "t_via": [0.0]}, "K ≥ 2"),
+        ({"t_via": [0.0, 1.0]}, r"t_via must have one time per via, shape \(3,\)"),
+        ({"t_via": [0.0, 1.0, 1.0]}, r"strictly increasing; t_via\[2\]"),
+        ({"t_via": [0.0, 2.0, 1.0]}, "strictly increasing"),
+        ({"q_via": [[0.0, 1.0], [np.nan, 0.0], [1.0, 1.0]]}, "q_via contains NaN"),
+        ({"t_via": [0.0, np.nan, 2.0]}, "t_via contains NaN"),
+        ({"qd_via": np.zeros((3, 3))}, r"qd_via must have one velocity per via and joint"),
+        ({"qd_via": [[0.0, 0.0], [np.inf, 0.0], [0.0, 0.0]]}, "qd_via contains NaN or inf"),
+        ({"samples": 1}, "samples must be an integer ≥ 2"),
+        ({"samples": 2.5}, "samples must be an integer ≥ 2"),
+        ({"samples": 10, "dt": 0.1}, "samples or dt, not both"),
+        ({"dt": 0.0}, "dt must be one number > 0"),
+        ({"dt": np.nan}, "dt"),
+    ],
+)
+def test_bad_vias_are_refused_with_the_argument_named(kwargs, message):
+    arguments = {"q_via": [[0.0, 1.0], [1.0, 0.0], [2.0, 2.0]], "t_via": [0.0, 1.0, 2.0]}
+    arguments |= kwargs
+    with pytest.raises(ValueError, match=message):
+        tj.via_trajectory(**arguments)

@@ -165,3 +165,29 @@ def test_a_folded_joint_is_right_near_zero_and_wrong_beyond_a_quarter_turn(joint
         and np.linalg.norm(formula(ur5, np.zeros(6)) - urkin.fk(ur5, np.zeros(6))[:3, 3]) < 1e-12
     )
     assert errors[~inside].min() > 1e-3  # a half turn of a joint always moves the flange
+
+
+# ------------------------------------ all closed-form solutions of listed poses (exercise 8.4)
+
+
+def test_listed_solutions_returns_the_rows_of_the_nearest_listed_pose():
+    rng = np.random.default_rng(84)
+    ur5 = urkin.robot("UR5")
+    poses = urkin.fk(ur5, rng.uniform(-np.pi, np.pi, (3, 6)))
+    solutions = rng.uniform(-np.pi, np.pi, (3, 8, 6))
+    counts = np.array([8, 0, 5])
+    solve_all = _across(
+        wire.Function("listed_solutions", poses=poses, solutions=solutions, counts=counts)
+    )
+    assert isinstance(solve_all, wire.Function) and solve_all.kind == "listed_solutions"
+    robot = _across(ur5)
+    for k in range(3):
+        rows = solve_all(robot, poses[k])
+        assert rows.shape == (counts[k], 6)
+        np.testing.assert_array_equal(rows, solutions[k, : counts[k]])
+    # a pose given as a list, slightly off, still finds its row; the answer is a copy
+    rows = solve_all(None, (poses[2] + 1e-9).tolist())
+    np.testing.assert_array_equal(rows, solutions[2, :5])
+    rows[:] = 0.0
+    np.testing.assert_array_equal(solve_all(None, poses[2]), solutions[2, :5])
+    assert solve_all(robot=None, T=poses[1]).shape == (0, 6)

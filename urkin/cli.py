@@ -6,11 +6,14 @@
     urkin course build|check|execute|render   build course/ from solutions/, check, run, render
     urkin codegen [--check]                regenerate urkin/_generated from the SymPy derivation
     urkin info                             the arms urkin knows and their DH lengths
+    urkin demo [--robot UR3] [--save FILE.gif] [--script "X+,Z-,home,circle"]
+                                           jog an arm in a window, or record a session to a GIF
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -56,6 +59,72 @@ def _info(_: argparse.Namespace) -> int:
     for name in urkin.ROBOTS:
         values = " ".join(f"{x:>9.5f}" for x in urkin.robot(name).lengths)
         print(f"{name:<6} {values}")
+    return 0
+
+
+#: The session ``urkin demo --save`` records when no --script is given.
+DEMO_SCRIPT = "X+,X+,Z-,Y+,home,circle,square"
+
+
+def _display() -> str:
+    """Why no window can be opened ("" when one can): no display, or a matplotlib backend
+    that draws to files only."""
+    if sys.platform.startswith("linux") and not (
+        os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
+    ):
+        return "there is no display (DISPLAY is not set)"
+    import matplotlib
+
+    from urkin.jog import _interactive_backend
+
+    if not _interactive_backend():
+        return f"matplotlib's backend {matplotlib.get_backend()!r} cannot open a window"
+    return ""
+
+
+def _demo(args: argparse.Namespace) -> int:
+    import urkin
+    from urkin.jog import JogController, parse_script
+
+    try:
+        robot = urkin.robot(args.robot)
+        actions = parse_script(DEMO_SCRIPT if args.script is None else args.script)
+    except (KeyError, ValueError) as exc:
+        print(f"urkin demo: {exc.args[0]}", file=sys.stderr)
+        return 2
+    if args.save is None:
+        why = _display()
+        if why:
+            print(
+                f"urkin demo: {why}; use --save demo.gif to record a scripted session to a GIF "
+                "instead",
+                file=sys.stderr,
+            )
+            return 2
+    elif args.save.suffix.lower() != ".gif":
+        print(f"urkin demo: --save needs a .gif file name; got {args.save}", file=sys.stderr)
+        return 2
+    if args.save is not None:
+        import matplotlib
+
+        matplotlib.use("Agg")  # recording needs no window
+    controller = JogController(robot)
+    if args.save is not None or args.script is not None:
+        for action in actions:
+            print(controller.do(action).status)
+    if args.save is None:
+        import matplotlib.pyplot as plt
+
+        from urkin.jog import demo_figure
+
+        _window = demo_figure(controller)  # a reference keeps the buttons' callbacks alive
+        plt.show()
+        return 0
+    from urkin.animation import animate
+
+    trail = controller.trail
+    animate(robot, trail).save_gif(args.save)
+    print(f"saved {args.save} ({len(trail)} configurations)")
     return 0
 
 
@@ -111,6 +180,20 @@ def main(argv: list[str] | None = None) -> int:
 
     info = commands.add_parser("info", help="list the arms and their DH lengths")
     info.set_defaults(run=_info)
+
+    demo = commands.add_parser(
+        "demo", help="jog an arm with buttons in a window, or record a scripted session"
+    )
+    demo.add_argument("--robot", default="UR3", help="the arm (default UR3; see urkin info)")
+    demo.add_argument(
+        "--save", type=Path, metavar="FILE.gif", help="record the session to a GIF, no window"
+    )
+    demo.add_argument(
+        "--script",
+        help="comma-separated steps: X+, X-, Y+, Y-, Z+, Z-, home, circle, square (with --save "
+        f"default {DEMO_SCRIPT!r}; with a window, run before it opens)",
+    )
+    demo.set_defaults(run=_demo)
 
     args = parser.parse_args(argv)
     return int(args.run(args))

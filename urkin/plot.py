@@ -40,6 +40,8 @@ from urkin.transforms import check_transform, make_transform, rotation_to_rpy
 
 __all__ = [
     "AXIS_COLOURS",
+    "Animation",
+    "animate",
     "arms_figure",
     "axes3d",
     "convergence_figure",
@@ -69,6 +71,7 @@ __all__ = [
     "solver_runs_figure",
     "square_traces_figure",
     "step_size_figure",
+    "tracking_report_figure",
 ]
 
 #: Colours of the x, y and z axes of a frame triad (red, green, blue).
@@ -2480,3 +2483,234 @@ def joint_paths_figure(
     if title:
         fig.suptitle(title, fontsize=13)
     return fig
+
+
+# ---------------------------------------------------------------------------------------------
+# the tracking report
+# ---------------------------------------------------------------------------------------------
+
+# imported with the section that draws it (urkin.tracking_report imports this module lazily)
+from urkin.tracking_report import TrackingReport  # noqa: E402
+
+#: Where :func:`tracking_report_figure` draws a value of exactly zero on its log axes.
+_REPORT_FLOOR = 1e-17
+
+
+#: Colour and line style of each singular family in :func:`tracking_report_figure`.
+_FAMILY_STYLES = {
+    "shoulder": ("tab:pink", "-"),
+    "elbow": ("tab:olive", "--"),
+    "wrist": ("tab:cyan", "-."),
+}
+
+
+def _runs(indices: ArrayLike) -> list[tuple[int, int]]:
+    """Consecutive runs ``(first, last)`` in sorted integer indices."""
+    k = np.asarray(indices, dtype=int)
+    if k.size == 0:
+        return []
+    breaks = np.flatnonzero(np.diff(k) > 1)
+    return list(zip(k[np.r_[0, breaks + 1]].tolist(), k[np.r_[breaks, len(k) - 1]].tolist()))
+
+
+def _mark_failures(ax, failed: np.ndarray) -> None:
+    """Shade the failed samples (consecutive ones as one band)."""
+    for i, (first, last) in enumerate(_runs(failed)):
+        ax.axvspan(
+            first - 0.5,
+            last + 0.5,
+            color="tab:red",
+            alpha=0.2,
+            linewidth=0,
+            label=f"failed samples ({len(failed)})" if i == 0 else None,
+        )
+
+
+def tracking_report_figure(
+    report: TrackingReport,
+    *,
+    title: str | None = None,
+    figsize: tuple[float, float] = (11.0, 7.5),
+) -> Figure:
+    """The per-sample numbers of a tracking report, in four panels.
+
+    1. **Target spacing** (mm) between targets k and k + 1, drawn between the two samples,
+       with the 1 mm line and the repeated samples (spacing 0, same orientation) marked.
+    2. **Pose error** at each sample: position (m) and orientation (rad) on one log axis;
+       an error of exactly zero is drawn at 1e-17.
+    3. **Joint angles** (degrees, not wrapped) with the joint limits (±360° on every UR arm),
+       so that winding shows; a branch flip of a singular family is a vertical line between
+       the two samples.
+    4. **Distance from the singularities** on a log axis: the absolute shoulder factor (m),
+       ``|sin q3|`` (elbow) and ``|sin q5|`` (wrist); zero drawn at 1e-17.
+
+    Failed samples are shaded red in panels 2 and 4.
+
+    Parameters
+    ----------
+    report : urkin.tracking_report.TrackingReport
+        From :func:`urkin.tracking_report.tracking_report` (or a tracking's ``report``).
+    title : str, optional
+        Title of the whole figure.
+    figsize : tuple of float
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        If the report has no per-sample arrays.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import urkin
+    >>> from urkin.tracking_report import tracking_report
+    >>> ur5 = urkin.robot("ur5")
+    >>> q = np.linspace([0.3, -1.2, 1.4, -0.6, 1.1, 0.5], [0.5, -1.0, 1.0, -0.2, 1.3, 9.0], 40)
+    >>> fig = tracking_report_figure(tracking_report(ur5, urkin.fk(ur5, q), q))
+    >>> [ax.get_title() for ax in fig.axes]  # doctest: +NORMALIZE_WHITESPACE
+    ['Target spacing', 'Pose error at each sample', 'Joint angles',
+     'Distance from the singularities']
+    >>> plt.close(fig)
+    """
+    q = np.asarray(report.q, dtype=float)
+    samples = len(q)
+    if samples == 0 or len(report.position_errors) != samples:
+        raise ValueError(
+            "report has no per-sample arrays: make it with urkin.tracking_report.tracking_report"
+        )
+    k = np.arange(samples)
+    between = k[:-1] + 0.5
+    failed = np.array(sorted(report.failures), dtype=int)
+    fig, axes = plt.subplots(2, 2, figsize=figsize, layout="constrained", sharex=True)
+    spacing_ax, error_ax, joint_ax, margin_ax = axes.ravel()
+
+    # (1) spacing
+    spacing_mm = np.asarray(report.spacings) * 1e3
+    spacing_ax.plot(
+        between,
+        spacing_mm,
+        ".-" if samples <= 200 else "-",  # dots only where they can be told apart
+        color="tab:blue",
+        markersize=3,
+        linewidth=1,
+        label="spacing",
+    )
+    spacing_ax.axhline(1.0, color="0.3", linestyle="--", linewidth=1, label="1 mm")
+    repeated = np.asarray(report.repeated, dtype=int)
+    if len(repeated):
+        spacing_ax.plot(
+            repeated + 0.5,
+            np.zeros(len(repeated)),
+            "x",
+            color="tab:red",
+            markersize=9,
+            markeredgewidth=2,
+            clip_on=False,
+            label=f"repeated sample ({len(repeated)})",
+        )
+    spacing_ax.set_ylim(0, max(1.2, 1.1 * float(spacing_mm.max())))
+    spacing_ax.set_title("Target spacing")
+    spacing_ax.set_ylabel("spacing to the next target (mm)")
+
+    # (2) pose error
+    error_ax.semilogy(
+        k,
+        np.maximum(report.position_errors, _REPORT_FLOOR),
+        "-",
+        color="tab:blue",
+        linewidth=1.2,
+        label="position (m)",
+    )
+    error_ax.semilogy(
+        k,
+        np.maximum(report.orientation_errors, _REPORT_FLOOR),
+        "--",
+        color="tab:orange",
+        linewidth=1.2,
+        label="orientation (rad)",
+    )
+    error_ax.axhline(
+        np.finfo(float).eps,
+        color="0.5",
+        linestyle=":",
+        linewidth=1,
+        label="machine precision, 2.2e-16",
+    )
+    _mark_failures(error_ax, failed)
+    worst = max(float(np.max(report.position_errors)), float(np.max(report.orientation_errors)))
+    error_ax.set_ylim(_REPORT_FLOOR / 3, max(1e-12, 3 * worst))  # round-off reads as round-off
+    error_ax.set_title("Pose error at each sample")
+    error_ax.set_ylabel(f"error (m or rad; 0 drawn at {_REPORT_FLOOR:.0e})")
+
+    # (3) joint angles
+    for joint in range(6):
+        joint_ax.plot(k, np.degrees(q[:, joint]), linewidth=1.4, label=f"joint {joint + 1}")
+    limits = np.asarray(report.joint_limits, dtype=float)
+    levels = np.unique(np.degrees(limits)) if limits.size else np.array([-360.0, 360.0])
+    if len(levels) == 2 and levels[0] == -levels[1]:
+        limit_label = f"limits ±{levels[1]:.0f}°"
+    else:
+        limit_label = "limits " + ", ".join(f"{v:+.0f}°" for v in levels)
+    for i, level in enumerate(levels):
+        joint_ax.axhline(
+            level, color="0.3", linestyle=":", linewidth=1.2, label=limit_label if i == 0 else None
+        )
+    for family, where in report.branch_flips.items():
+        colour, style = _FAMILY_STYLES.get(family, ("0.3", "-"))
+        for i, flip in enumerate(np.asarray(where, dtype=int)):
+            joint_ax.axvline(
+                flip + 0.5,
+                color=colour,
+                linestyle=style,
+                linewidth=1.6,
+                label=f"{family} flip ({len(where)})" if i == 0 else None,
+            )
+    joint_ax.set_title("Joint angles")
+    joint_ax.set_ylabel("joint angle (°, not wrapped)")
+    low = min(float(np.degrees(q).min()), float(levels.min()))
+    high = max(float(np.degrees(q).max()), float(levels.max()))
+    tick = 90.0
+    while (high - low) / tick > 9:  # ticks at multiples of 90°, at most about ten
+        tick *= 2
+    joint_ax.set_yticks(np.arange(np.ceil(low / tick), np.floor(high / tick) + 1) * tick)
+    span = high - low
+    joint_ax.set_ylim(low - 0.06 * span, high + 0.32 * span)  # the top: room for the legend
+    joint_ax.legend(fontsize=7.5, loc="upper center", ncol=5, framealpha=0.85, columnspacing=1.0)
+
+    # (4) singularity margins
+    factors = np.abs(np.asarray(report.factors, dtype=float))
+    names = ("shoulder |factor| (m)", "elbow |sin q3|", "wrist |sin q5|")
+    for column, (name, family) in enumerate(zip(names, ("shoulder", "elbow", "wrist"))):
+        colour, style = _FAMILY_STYLES[family]
+        margin_ax.semilogy(
+            k,
+            np.maximum(factors[:, column], _REPORT_FLOOR),
+            color=colour,
+            linestyle=style,
+            linewidth=1.4,
+            label=name,
+        )
+    smallest = float(np.maximum(factors, _REPORT_FLOOR).min())
+    margin_ax.set_ylim(min(smallest / 3, 1e-3), 3.0)  # at least three decades: no minor labels
+    _mark_failures(margin_ax, failed)
+    margin_ax.set_title("Distance from the singularities")
+    margin_ax.set_ylabel(f"|factor| (m or 1; 0 drawn at {_REPORT_FLOOR:.0e})")
+
+    for ax in (spacing_ax, error_ax, margin_ax):
+        ax.legend(fontsize=8, loc="best", framealpha=0.85)
+    for ax in axes.ravel():
+        ax.grid(True, alpha=0.3)
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    for ax in axes[1]:
+        ax.set_xlabel("sample")
+    if title:
+        fig.suptitle(title, fontsize=13)
+    return fig
+
+
+from urkin.animation import Animation, animate  # noqa: E402

@@ -5,7 +5,8 @@ was meant to reach, with numbers for every way a path follower can go wrong: sam
 further apart than claimed, or repeated; poses missed; what the arm does *between* samples;
 joints that jump, wind up past their limits, or change branch; singularities approached;
 links below the mounting plane; speeds and accelerations over the limits at a given duration;
-and the samples that failed.  Everything is batched over the samples.
+and the samples that failed.  Everything is batched over the samples.  The report keeps the
+per-sample numbers too, and :meth:`TrackingReport.plot` draws them in four panels.
 
 Branches are the signs of the three singular factors of :func:`urkin.kinematics.
 singularity_factors` — shoulder ``a2 c2 + a3 c23 + d5 s234``, elbow ``sin q3``, wrist
@@ -17,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -26,14 +28,22 @@ from urkin.kinematics import fk, fk_frames, singularity_factors
 from urkin.robots import Robot, check_robot
 from urkin.transforms import check_transform, pose_error, wrap_angles
 
+if TYPE_CHECKING:  # matplotlib is imported only when a report is drawn
+    from matplotlib.figure import Figure
+
 __all__ = ["TrackingReport", "tracking_report"]
 
 _FAMILIES = ("shoulder", "elbow", "wrist")
+_SAME = 1e-12  # m, and per rotation entry: closer consecutive targets are the same sample
+_TIE = 1e-9  # minima closer than this are equal; the report names the first
 
 
 @dataclass(frozen=True)
 class TrackingReport:
     """Numbers that say how well a joint path follows a path of poses (see the module).
+
+    The summaries come with the per-sample arrays they summarise (empty in a report built by
+    hand without them); :meth:`plot` draws those.
 
     Attributes
     ----------
@@ -43,7 +53,8 @@ class TrackingReport:
         (min, median, max) distance between consecutive target positions (m); a repeated
         sample shows as a minimum of 0.
     repeated : ndarray of int
-        Indices k where target k + 1 is target k again (same position and orientation).
+        Indices k where target k + 1 is target k again (same position and orientation to
+        1e-12, so that round-off in how the samples were computed does not hide a repeat).
     position_error, orientation_error : tuple of float
         (max, rms) of the distance (m) and rotation angle (rad) from ``fk(q[k])`` to pose k.
     midpoint_deviation : float
@@ -74,6 +85,17 @@ class TrackingReport:
         joint (1-based) and the sample where its ratio peaks.
     failures : dict of int to str
         The samples that failed and why (as given).
+    position_errors, orientation_errors : ndarray, shape (M,)
+        The distance (m) and rotation angle (rad) from ``fk(q[k])`` to pose k, per sample.
+    spacings : ndarray, shape (M − 1,)
+        The distance between target positions k and k + 1 (m).
+    q : ndarray, shape (M, 6)
+        The joint path (rad) as given (not wrapped: a joint that winds up shows it).
+    factors : ndarray, shape (M, 3)
+        The shoulder (m), elbow and wrist factors of
+        :func:`urkin.kinematics.singularity_factors` at each sample.
+    joint_limits : ndarray, shape (6, 2)
+        The robot's joint limits (rad), lower and upper.
     """
 
     samples: int
@@ -91,6 +113,12 @@ class TrackingReport:
     below_base: tuple[float, int, int]
     limits: dict[str, np.ndarray | int] | None = None
     failures: dict[int, str] = field(default_factory=dict)
+    position_errors: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    orientation_errors: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    spacings: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    q: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
+    factors: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    joint_limits: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
 
     def rows(self) -> list[tuple[str, str]]:
         """The report as (quantity, value) text rows."""
@@ -113,7 +141,10 @@ class TrackingReport:
             ("largest joint step", " ".join(f"{s:.4f}" for s in self.joint_step) + " rad"),
             ("jumps", f"{len(self.jumps)}"),
             ("branch flips", flips),
-            ("net turns per joint", " ".join(f"{t:+.2f}" for t in self.winding["turns"])),
+            (
+                "net turns per joint",
+                " ".join(f"{round(t, 2) + 0.0:+.2f}" for t in self.winding["turns"]),
+            ),
             ("joints beyond their limits", _joints(self.winding["beyond_limits"])),
             ("closest to a singularity", margin),
             ("lowest joint origin", f"{height * 1e3:.1f} mm (frame {frame}, sample {where})"),
@@ -147,6 +178,55 @@ class TrackingReport:
         rows = self.rows()
         width = max(len(name) for name, _ in rows)
         return "\n".join(f"{name:<{width}}  {value}" for name, value in rows)
+
+    def plot(
+        self, *, title: str | None = None, figsize: tuple[float, float] = (11.0, 7.5)
+    ) -> Figure:
+        """The report's per-sample numbers in four panels.
+
+        (1) the spacing of the targets (mm) with the 1 mm line and the repeated samples;
+        (2) the position (m) and orientation (rad) error at each sample, on a log axis;
+        (3) the joint angles (degrees) with the joint limits, and the branch flips;
+        (4) the distance from each singular family (shoulder factor in m, ``|sin q3|``,
+        ``|sin q5|``), on a log axis, with the failed samples.  Drawn by
+        :func:`urkin.plot.tracking_report_figure` (this imports matplotlib; ``import urkin``
+        does not).
+
+        Parameters
+        ----------
+        title : str, optional
+            Title of the whole figure.
+        figsize : tuple of float
+            Figure size (inches).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+
+        Raises
+        ------
+        ValueError
+            If the report has no per-sample arrays (built by hand without them).
+
+        Examples
+        --------
+        >>> import matplotlib
+        >>> matplotlib.use("Agg")
+        >>> import matplotlib.pyplot as plt
+        >>> import urkin
+        >>> from urkin import trajectory
+        >>> ur3 = urkin.robot("ur3")
+        >>> poses = trajectory.pose_path(trajectory.circle((0.25, 0.1, 0.3), 0.1, plane="yz"))
+        >>> report = trajectory.track(ur3, poses, urkin.ik_analytic(ur3, poses[0])[2]).report
+        >>> fig = report.plot(title="seed 000's circle")
+        >>> [ax.get_title() for ax in fig.axes]  # doctest: +NORMALIZE_WHITESPACE
+        ['Target spacing', 'Pose error at each sample', 'Joint angles',
+         'Distance from the singularities']
+        >>> plt.close(fig)
+        """
+        from urkin.plot import tracking_report_figure
+
+        return tracking_report_figure(self, title=title, figsize=figsize)
 
 
 def _pair(values: tuple[float, float], unit: str) -> str:
@@ -227,8 +307,8 @@ def tracking_report(
     jump = float(real(jump, "jump"))
     positions = T[:, :3, 3]
     gaps = np.linalg.norm(np.diff(positions, axis=0), axis=1)
-    same_orientation = np.abs(np.diff(T[:, :3, :3], axis=0)).max(axis=(1, 2)) == 0.0
-    repeated = np.flatnonzero((gaps == 0.0) & same_orientation)
+    same_orientation = np.abs(np.diff(T[:, :3, :3], axis=0)).max(axis=(1, 2)) <= _SAME
+    repeated = np.flatnonzero((gaps <= _SAME) & same_orientation)
 
     turned = wrap_angles(Q)  # the same arm poses; a path that winds up may leave fk's range
     position, angle = pose_error(fk(robot, turned), T)
@@ -244,7 +324,9 @@ def tracking_report(
         name: np.flatnonzero(branches[1:, i] * branches[:-1, i] < 0)
         for i, name in enumerate(_FAMILIES)
     }
-    low = np.abs(factors).argmin(axis=0)
+    # the first sample within _TIE of the smallest, so that round-off cannot pick among equals
+    size = np.abs(factors)
+    low = np.argmax(size <= size.min(axis=0) + _TIE, axis=0)
     margin = {
         name: (float(abs(factors[low[i], i])), int(low[i])) for i, name in enumerate(_FAMILIES)
     }
@@ -259,7 +341,8 @@ def tracking_report(
     }
 
     heights = fk_frames(robot, turned)[:, 1:, 2, 3]  # (M, 6): DH frames 1-6
-    sample, frame = np.unravel_index(int(np.argmin(heights)), heights.shape)
+    lowest = int(np.argmax(heights.ravel() <= heights.min() + _TIE))  # first of equals
+    sample, frame = np.unravel_index(lowest, heights.shape)
     below = (float(heights[sample, frame]), int(sample), int(frame) + 1)
 
     timing = None
@@ -304,4 +387,10 @@ def tracking_report(
         below_base=below,
         limits=timing,
         failures=dict(failures or {}),
+        position_errors=position,
+        orientation_errors=angle,
+        spacings=gaps,
+        q=Q.copy(),
+        factors=factors,
+        joint_limits=limits,
     )

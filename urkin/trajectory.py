@@ -13,7 +13,8 @@ Time scaling
     :func:`time_scaling` gives ``s(t)``, ``ṡ(t)`` and ``s̈(t)`` of a rest-to-rest motion (cubic,
     quintic or trapezoidal velocity) and :func:`minimum_time` the shortest duration under
     per-joint velocity and acceleration limits when every joint follows the same ``s(t)``;
-    :func:`joint_trajectory` samples such a joint-space move as a :class:`Trajectory`.
+    :func:`joint_trajectory` samples such a joint-space move as a :class:`Trajectory`, and
+    :func:`via_trajectory` a piecewise-cubic one through via points at given times.
 Tracking
     :func:`track` (from :mod:`urkin.tracking`) follows poses with warm-started IK.
 
@@ -60,6 +61,7 @@ __all__ = [
     "square",
     "time_scaling",
     "track",
+    "via_trajectory",
 ]
 
 #: The coordinate planes a square or circle may lie in, as (first in-plane axis, second); the
@@ -572,3 +574,142 @@ def joint_trajectory(
     s, sd, sdd = scaling(t)
     delta = q1 - q0
     return Trajectory(t, q0 + s[:, None] * delta, sd[:, None] * delta, sdd[:, None] * delta)
+
+
+def _via_velocities(q: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """The heuristic via velocities: zero at the ends; at an interior via the mean of the two
+    adjacent segment slopes where they have the same sign, else zero (per joint)."""
+    slopes = np.diff(q, axis=0) / np.diff(t)[:, None]  # (K − 1, n)
+    before, after = slopes[:-1], slopes[1:]
+    same_sign = np.sign(before) * np.sign(after) > 0
+    inner = np.where(same_sign, (before + after) / 2, 0.0)
+    zero = np.zeros((1, q.shape[1]))
+    return np.concatenate([zero, inner, zero])
+
+
+def _sample_times(t_first: float, t_last: float, samples: int | None, dt: float | None):
+    if samples is not None and dt is not None:
+        raise ValueError("give samples or dt, not both")
+    if dt is None:
+        count = 100 if samples is None else samples
+        if isinstance(count, bool) or int(count) != count or count < 2:
+            raise ValueError(f"samples must be an integer ≥ 2; got {samples!r}")
+        return np.linspace(t_first, t_last, int(count))
+    step = _positive(dt, "dt")
+    duration = t_last - t_first
+    # every dt from the first via, not past the last (a duration that is a whole number of
+    # steps keeps its end despite round-off in duration / step)
+    count = math.floor(duration / step + 1e-9) + 1
+    return np.minimum(t_first + step * np.arange(count), t_last)
+
+
+def via_trajectory(
+    q_via: ArrayLike,
+    t_via: ArrayLike,
+    qd_via: ArrayLike | None = None,
+    *,
+    samples: int | None = None,
+    dt: float | None = None,
+) -> Trajectory:
+    """A piecewise-cubic joint trajectory through via points (Lynch & Park, §9.2).
+
+    Between consecutive vias ``j`` and ``j + 1`` each joint follows the cubic that starts at
+    ``q_via[j]`` with velocity ``qd_via[j]`` and ends at ``q_via[j + 1]`` with velocity
+    ``qd_via[j + 1]`` after ``T_j = t_via[j + 1] − t_via[j]`` seconds.  With
+    ``τ = (t − t_via[j]) / T_j`` it is written in the Hermite form::
+
+        q = (1 − 3τ² + 2τ³) q_j + (3τ² − 2τ³) q_{j+1}
+            + T_j (τ − 2τ² + τ³) q̇_j + T_j (τ³ − τ²) q̇_{j+1},
+
+    whose weights are exactly 1 and 0 at ``τ = 0`` and ``τ = 1``: the trajectory passes
+    through every via, with the via's velocity, exactly.  Positions and velocities are
+    therefore continuous at the vias; **accelerations are not**: each segment has its own
+    (linear in time) acceleration and it generally jumps at an interior via.  A sample at an
+    interior via's time carries the acceleration of the segment that starts there (the last
+    via's, of the last segment).
+
+    Parameters
+    ----------
+    q_via : array_like, shape (K, n)
+        The vias (rad, or m for a linear joint), K ≥ 2.
+    t_via : array_like, shape (K,)
+        When each via is reached (s), strictly increasing.
+    qd_via : array_like, shape (K, n), optional
+        The velocity at each via (rad/s).  Default: the classic heuristic — zero at the first
+        and last via; at an interior via, per joint, the mean of the slopes
+        ``(q_{j+1} − q_j) / T_j`` of the two segments that meet there when they have the same
+        sign, else zero (the joint turns back, or stops, there).
+    samples : int, optional
+        Number of evenly spaced times from ``t_via[0]`` to ``t_via[-1]`` (both included).
+        Default 100 when ``dt`` is not given either.
+    dt : float, optional
+        Instead of ``samples``: a time every ``dt`` seconds from ``t_via[0]``, up to
+        ``t_via[-1]`` (included when the duration is a whole number of steps).
+
+    Returns
+    -------
+    Trajectory
+        ``t`` (M,), ``q``, ``qd``, ``qdd`` (M, n).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: wrong shapes, fewer than two vias, times not strictly
+        increasing, NaN or infinite entries, both or bad ``samples`` / ``dt``.
+
+    See Also
+    --------
+    joint_trajectory : one rest-to-rest move (two vias with zero velocities: the same cubic).
+
+    Examples
+    --------
+    >>> traj = via_trajectory([[0.0], [1.0], [3.0], [2.0]], [0.0, 1.0, 2.0, 4.0], samples=9)
+    >>> traj.t.tolist()
+    [0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0]
+    >>> traj.q[[0, 2, 4, 8], 0].tolist()  # the vias, at t = 0, 1, 2 and 4 s
+    [0.0, 1.0, 3.0, 2.0]
+    >>> traj.qd[[2, 4], 0].tolist()  # slopes 1 and 2 average to 1.5; 2 and -0.5 turn: 0
+    [1.5, 0.0]
+    """
+    q = real(q_via, "q_via")
+    t = real(t_via, "t_via")
+    if q.ndim != 2 or len(q) < 2:
+        raise ValueError(f"q_via must have shape (K, n) with K ≥ 2 vias; got {q.shape}")
+    if t.shape != (len(q),):
+        raise ValueError(f"t_via must have one time per via, shape ({len(q)},); got {t.shape}")
+    gaps = np.diff(t)
+    if np.any(gaps <= 0):
+        k = int(np.argmax(gaps <= 0))
+        raise ValueError(
+            f"t_via must be strictly increasing; t_via[{k + 1}] = {t[k + 1]:g} s does not come "
+            f"after t_via[{k}] = {t[k]:g} s"
+        )
+    if qd_via is None:
+        v = _via_velocities(q, t)
+    else:
+        v = real(qd_via, "qd_via")
+        if v.shape != q.shape:
+            raise ValueError(
+                f"qd_via must have one velocity per via and joint, shape {q.shape}; got {v.shape}"
+            )
+    times = _sample_times(float(t[0]), float(t[-1]), samples, dt)
+    j = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 2)  # segment
+    T = gaps[j][:, None]
+    tau = ((times - t[j]) / gaps[j])[:, None]
+    q0, q1, v0, v1 = q[j], q[j + 1], v[j], v[j + 1]
+    tau2, tau3 = tau * tau, tau * tau * tau
+    position = (
+        (1 - 3 * tau2 + 2 * tau3) * q0
+        + (3 * tau2 - 2 * tau3) * q1
+        + T * (tau - 2 * tau2 + tau3) * v0
+        + T * (tau3 - tau2) * v1
+    )
+    velocity = (
+        (6 * tau2 - 6 * tau) * (q0 - q1) / T
+        + (1 - 4 * tau + 3 * tau2) * v0
+        + (3 * tau2 - 2 * tau) * v1
+    )
+    acceleration = (12 * tau - 6) * (q0 - q1) / (T * T) + (
+        (6 * tau - 4) * v0 + (6 * tau - 2) * v1
+    ) / T
+    return Trajectory(times, position, velocity, acceleration)

@@ -117,6 +117,18 @@ def _position_ik():
     return solve
 
 
+def _listed_solutions(poses, solutions, counts):
+    poses = np.asarray(poses, dtype=float)
+    solutions, counts = np.asarray(solutions, dtype=float), np.asarray(counts, dtype=int)
+
+    def solve_all(robot, T):
+        gaps = np.abs(poses - np.asarray(T, dtype=float)).max(axis=(1, 2))
+        k = int(np.argmin(gaps))
+        return solutions[k, : counts[k]].copy()
+
+    return solve_all
+
+
 def _complex_kept(x) -> np.ndarray:
     """``x`` as an array: complex numbers kept (complex-step derivatives), anything else float."""
     x = np.asarray(x)
@@ -195,6 +207,8 @@ _FUNCTION_KINDS = {
     # position-only IK stand-ins, solve(robot, p, q_guess) ↦ q:
     "fixed_steps": _fixed_steps,  # q_guess + steps[k], k the listed point nearest p
     "position_ik": _position_ik,  # urkin.ik(robot, p, q0=q_guess, method="nr", max_restarts=0).q
+    # all closed-form solutions of a pose, solve_all(robot, T) ↦ (K, 6), listed by the check:
+    "listed_solutions": _listed_solutions,  # solutions[k, :counts[k]], k the listed pose nearest T
     # complex-step test functions: a complex argument stays complex
     "polynomial": _polynomial,  # f(x) = A x + (B x) ∘ (C x) + b
     "sin_exp": _sin_exp,  # f(x) = sin(A x) ∘ exp(B x)
