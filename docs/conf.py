@@ -33,6 +33,11 @@ exclude_patterns = ["_build", "**.ipynb_checkpoints", "Thumbs.db", ".DS_Store"]
 nb_execution_mode = "off"
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]
 myst_heading_anchors = 3
+# Nothing is loaded from another host. No page runs a kernel, so a live widget (lesson 08's jog
+# panel) would be dead: its output also carries a recording of the session as an animation
+# (text/html), which is shown instead, and ipywidgets' embedding scripts (from CDNs) are off.
+nb_ipywidgets_js = {}
+nb_mime_priority_overrides = [("*", "application/vnd.jupyter.widget-view+json", None)]
 
 # API reference
 autodoc_default_options = {"members": True, "member-order": "bysource"}

@@ -83,7 +83,7 @@ def test_presses_follow_the_summed_offsets_with_the_orientation_held(jog):
         assert np.abs(T[:3, :3] - T0[:3, :3]).max() < 1e-9
         x, y, z = expected
         assert step.status == f"{key}: moved to x {x:.3f} y {y:.3f} z {z:.3f} m"
-    assert np.abs(jog.flange[:3, 3] - (CENTER + [0.04, 0.02, -0.02])).max() < 1e-9
+    assert np.abs(jog.flange[:3, 3] - (CENTER + np.array([0.04, 0.02, -0.02]))).max() < 1e-9
     trail = jog.trail
     assert trail.shape == (5, 6)
     assert np.array_equal(trail[0], jog.q0)
@@ -140,7 +140,9 @@ def test_presses_stop_above_the_mounting_plane(jog):
     steps = [jog.press("Z-") for _ in range(12)]
     refused = [s for s in steps if not s.ok]
     assert refused and all(s.ok for s in steps[: steps.index(refused[0])])
-    assert re.search(r"DH frame \d would go [\d.e-]+ mm below the mounting plane", refused[0].status)
+    assert re.search(
+        r"DH frame \d would go [\d.e-]+ mm below the mounting plane", refused[0].status
+    )
     heights = urkin.fk_frames(UR3, jog.trail)[:, 1:, 2, 3]
     assert heights.min() > 0.0
 
@@ -180,6 +182,15 @@ def test_runs_follow_the_path_exactly(jog, shape):
     assert np.abs(np.diff(approach, axis=0)).max() <= J.JOINT_MOVE_STEP + 1e-12
     assert np.array_equal(jog.q, step.qs[-1])
     assert len(jog.trail) == before + len(step.qs)
+
+
+@pytest.mark.parametrize("shape", ["circle", "square"])
+def test_runs_from_home_keep_their_branch_well_above_the_plane(jog, shape):
+    """What home_configuration's docstring promises."""
+    step = jog.run(shape)
+    signs = np.sign(urkin.kinematics.singularity_factors(UR3, np.vstack([jog.q0, step.qs])))
+    assert np.array_equal(signs, np.broadcast_to([-1.0, 1.0, -1.0], signs.shape))
+    assert urkin.fk_frames(UR3, step.qs)[:, 1:, 2, 3].min() > 0.118
 
 
 def test_a_run_stops_at_the_last_reached_sample():
@@ -337,6 +348,21 @@ def test_window_buttons_drive_the_controller(jog):
     step = window.click("circle")
     assert step.ok and window.status.get_text() == step.status
     assert window.ax.get_title().startswith("UR3 at q = ")
+
+
+def test_window_plays_moves_frame_by_frame(jog):
+    window = J.demo_figure(jog)
+    window._animated = True  # as with an interactive backend, whose timer calls _tick
+    jog.press("Z+")
+    step = window.click("home")
+    assert 1 < len(window._queue) <= window.frames_per_move
+    assert window._queue[-1] == len(jog.trail) - 1
+    while window._queue:
+        window._tick()
+    window._tick()  # an empty queue stops the timer
+    arm = window.ax.lines[2]  # after the two reference axes of axes3d: the stick figure
+    assert np.allclose(np.array(arm.get_data_3d())[:, -1], jog.flange[:3, 3])
+    assert step.ok and window.status.get_text() == step.status
 
 
 # ---------------------------------------------------------------------------------------------

@@ -7,9 +7,11 @@ nothing from another host (no script library, no font, no URL): it plays inline 
 and in the static docs, and several players on one page do not interfere.  No video codec is
 used; :meth:`Animation.save_gif` writes the same frames as an animated GIF with Pillow.
 
-The HTML is the same for the same call sequence in a session except for the base64 pictures
-(the player's id is ``urkin-anim-<counter>``, every number in it is an integer), so notebook
-comparisons can mask ``base64,…`` and compare the rest.
+Apart from the base64 pictures, the HTML depends only on the number of samples and frames,
+the frame rate, the figure's width and the robot's name: no position, angle or size measured
+at run time is written in it, and the player's id is ``urkin-anim-<counter>`` (the same for
+the same sequence of calls in a session).  Notebook comparisons can mask ``base64,…`` and
+compare the rest.
 
 Imports matplotlib and Pillow (not imported by ``import urkin``); :mod:`urkin.plot` exposes
 :func:`animate` and :class:`Animation` too.
@@ -24,6 +26,7 @@ import itertools
 import json
 import math
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -378,8 +381,9 @@ def animate(
 ) -> Animation:
     """Animate the arm through the configurations ``qs``: an HTML player, inline anywhere.
 
-    Each frame shows the stick figure, the tool's triad (x red, y green, z blue), the path
-    the tool has traced since the first sample, the pose panel (position and roll–pitch–yaw,
+    Each frame shows the stick figure, the tool's triad (x red, y green, z blue; the tool is
+    the flange unless the robot has one, see :meth:`urkin.Robot.with_tool`), the path the
+    tool has traced since the first sample, the pose panel (position and roll–pitch–yaw,
     see :func:`urkin.plot.pose_text`) and "sample k of M", in a view cube that stays fixed and
     holds the whole motion.  The frames are rendered once with matplotlib (Agg, no pyplot)
     and embedded as PNG ``data:`` URIs; nothing is loaded from elsewhere when the player runs.
@@ -403,8 +407,9 @@ def animate(
         At most this many frames, chosen evenly over the samples by index; the first and
         the last sample are always drawn, and every sample when M ≤ ``max_frames``.
     max_bytes : int
-        Budget of the HTML, bytes.  If the frames would exceed it, they are quantized to a
-        shared palette, then rendered at a lower resolution, until they fit.
+        Budget of the HTML, bytes (:attr:`Animation.size`).  If full-colour frames would
+        exceed it, they are quantized to a shared 256-colour palette, then rendered at lower
+        resolutions (down to 16 dpi), then given fewer colours, until they fit.
     fps : float
         Frames per second of the player and of :meth:`Animation.save_gif`.
     figsize : tuple of float
@@ -442,8 +447,10 @@ def animate(
     array([0, 1, 2])
     >>> "data-frame" in anim.html, "http" in anim.html, anim.size < 3_500_000
     (True, False, True)
-    >>> sorted(anim._repr_mimebundle_())
+    >>> sorted(anim._repr_mimebundle_())  # a notebook shows the player (text/html)
     ['image/png', 'text/html', 'text/plain']
+    >>> len(anim.keyframes(2).axes)  # a strip of the first and last frames
+    2
     """
     from urkin.plot import _reach, axes3d, draw_frame, draw_robot, pose_text
 
@@ -482,12 +489,27 @@ def animate(
         shown.append(path)
     c, half = _view(np.concatenate(shown), center, half_width)
 
-    # one figure, its artists updated frame by frame
-    fig = Figure(figsize=figsize, dpi=DEFAULT_DPI, layout="constrained")
+    # one figure, its artists updated frame by frame; fixed margins (a quarter inch, for the
+    # notes under the cube), texts scaled down on figures smaller than 7 inches
+    width_in, height_in = (float(x) for x in figsize)
+    scale = min(1.0, width_in / 7.0, height_in / 7.0)
+    margin = 0.25
+    fig = Figure(figsize=(width_in, height_in), dpi=DEFAULT_DPI)
     canvas = FigureCanvasAgg(fig)
-    ax = fig.add_subplot(projection="3d")
+    ax = fig.add_axes(
+        (
+            margin / width_in,
+            margin / height_in,
+            1 - 2 * margin / width_in,
+            1 - 2 * margin / height_in,
+        ),
+        projection="3d",
+    )
     axes3d(ax, center=c, half_width=half, title=robot.name if title is None else title)
-    ax.title.set_fontsize(13)
+    ax.title.set_fontsize(13 * scale)
+    ax.tick_params(labelsize=9 * scale)
+    for label in (ax.xaxis.label, ax.yaxis.label, ax.zaxis.label):
+        label.set_fontsize(10 * scale)
     if path is not None:
         ax.plot(*path.T, "--", color="0.55", linewidth=1.0, label="target path")
     (trace_line,) = ax.plot(
@@ -495,7 +517,7 @@ def animate(
     )
     trace_line.set_visible(trace)
     if trace or path is not None:
-        ax.legend(loc="upper right", fontsize=9, framealpha=0.85)
+        ax.legend(loc="upper right", fontsize=9 * scale, framealpha=0.85)
     (arm,) = draw_robot(ax, robot, q[chosen[0]], frames=False, linewidth=7.0)
     arm.set_markersize(8)
     arm.set_markerfacecolor("0.15")
@@ -503,7 +525,7 @@ def animate(
     for artist in axes:
         artist.set_visible(triad)
         if hasattr(artist, "set_fontsize"):
-            artist.set_fontsize(12)
+            artist.set_fontsize(12 * scale)
             artist.set_fontweight("bold")
     panel = ax.text2D(
         0.0,
@@ -512,12 +534,19 @@ def animate(
         va="top",
         transform=ax.transAxes,
         family="monospace",
-        fontsize=10.5,
+        fontsize=10.5 * scale,
         bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": "0.6"},
         visible=info,
     )
     counter = ax.text2D(
-        1.0, -0.005, "", ha="right", va="top", transform=ax.transAxes, fontsize=11, color="0.15"
+        1.0,
+        -0.005,
+        "",
+        ha="right",
+        va="top",
+        transform=ax.transAxes,
+        fontsize=11 * scale,
+        color="0.15",
     )
 
     def draw(j: int) -> None:
@@ -531,15 +560,13 @@ def animate(
         panel.set_text(pose_text(tools[k]))
         counter.set_text(f"sample {k + 1} of {m}")
 
-    # fix the layout once (on the last frame: the widest texts), so frames do not jitter
-    draw(len(chosen) - 1)
-    canvas.draw()
-    fig.set_layout_engine("none")
+    ax._urkin_frame_note.set_fontsize(9 * scale)
 
-    def render(dpi: float) -> list[np.ndarray]:
+    def render(dpi: float, which: Sequence[int]) -> list[np.ndarray]:
+        """The RGB pixels of frames ``which`` at ``dpi``."""
         fig.set_dpi(dpi)
         rgbs = []
-        for j in range(len(chosen)):
+        for j in which:
             draw(j)
             canvas.draw()
             rgbs.append(np.array(canvas.buffer_rgba())[..., :3])
@@ -553,42 +580,46 @@ def animate(
         raise ValueError(
             f"max_bytes = {max_bytes} is too small: the player alone takes {skeleton} bytes"
         )
+    room = max_bytes - skeleton
 
     def payload(images: list[bytes]) -> int:
         return sum(_b64_size(len(png)) for png in images)
 
-    def fits(images: list[bytes]) -> bool:
-        return skeleton + payload(images) <= max_bytes
-
-    # full colour; else one shared palette; else lower resolutions; else fewer colours
-    dpi = DEFAULT_DPI
-    rgbs = render(dpi)
-    colors: int | None = None
-    images: list[bytes] | None = None
-    ends = _encode([rgbs[0], rgbs[-1]], None)  # the end frames tell if full colour can fit
-    if skeleton + len(rgbs) * payload(ends) / len(ends) <= max_bytes:
-        images = _encode(rgbs, None)
-    if images is None or not fits(images):
+    # Full colour if it fits; else one shared palette; else lower resolutions; else fewer
+    # colours.  The first and last frames tell, before all are rendered, which to start with.
+    n = len(chosen)
+    dpi, colors = DEFAULT_DPI, None
+    probe = render(dpi, sorted({0, n - 1}))
+    if payload(_encode(probe, None)) * n / len(probe) > room:
+        colors = PALETTES[0]
+        estimate = payload(_encode(probe, colors)) * n / len(probe)
+        if estimate > room:  # bytes grow about as the pixels: aim a little below the budget
+            dpi = max(MIN_DPI, math.floor(dpi * math.sqrt(room / estimate) * 0.95))
+    if dpi == DEFAULT_DPI and n > 1:  # the probe's two frames are already rendered
+        rgbs = [probe[0], *render(dpi, range(1, n - 1)), probe[-1]]
+    else:
+        rgbs = render(dpi, range(n))
+    images = _encode(rgbs, colors)
+    if payload(images) > room and colors is None:
         colors = PALETTES[0]
         images = _encode(rgbs, colors)
-    while not fits(images) and dpi > MIN_DPI:
-        # bytes grow about as the pixels: aim a little below the budget
-        ratio = (max_bytes - skeleton) / payload(images)
-        dpi = max(MIN_DPI, math.floor(dpi * math.sqrt(ratio) * 0.95))
-        rgbs = render(dpi)
+    while payload(images) > room and dpi > MIN_DPI:
+        dpi = max(MIN_DPI, math.floor(dpi * math.sqrt(room / payload(images)) * 0.95))
+        rgbs = render(dpi, range(n))
         images = _encode(rgbs, colors)
     for fewer in PALETTES[1:]:
-        if fits(images):
+        if payload(images) <= room:
             break
         colors = fewer
         images = _encode(rgbs, colors)
-    if not fits(images):
+    if payload(images) > room:
         raise ValueError(
-            f"max_bytes = {max_bytes} is too small for {len(chosen)} frames: even at "
-            f"{MIN_DPI:g} dpi in {colors} colours the player takes more; raise max_bytes or "
-            "lower max_frames"
+            f"max_bytes = {max_bytes} is too small for {n} frames: even at {MIN_DPI:g} dpi in "
+            f"{colors} colours the player takes {skeleton + payload(images)} bytes; raise "
+            "max_bytes or lower max_frames"
         )
-    trace_drawn = np.column_stack(trace_line.get_data_3d())
+    draw(n - 1)
+    trace_drawn = np.column_stack(trace_line.get_data_3d())  # what the last frame shows
     html = _html(anim_id, images, chosen, m, fps, robot.name, width)
     return Animation(
         robot_name=robot.name,

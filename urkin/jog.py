@@ -472,7 +472,8 @@ class JogController:
         j = int(np.argmax(np.abs(delta)))
         return (
             f"joint {j + 1} would jump by {abs(delta[j]):.2f} rad (more than max_jump = "
-            f"{self.max_jump:g} rad: a flip through a singularity)"
+            f"{self.max_jump:g} rad): the arm's current branch ends here (at a singularity or "
+            "the edge of its reach) and only another branch reaches the target"
         )
 
     def _joint_move(self, q_end: np.ndarray) -> np.ndarray:
@@ -605,7 +606,7 @@ class JogController:
             reached = k + 1
             why = (
                 f"joint {joint + 1} would jump by {steps[k, joint]:.2f} rad from the sample before "
-                f"(more than max_jump = {self.max_jump:g} rad: a flip through a singularity)"
+                f"(more than max_jump = {self.max_jump:g} rad): the path leaves the arm's branch"
             )
             samples = samples[:reached]
         below = _below_plane(self.robot, samples)
@@ -746,8 +747,12 @@ class JogPanel:
 
         if not isinstance(controller, JogController):
             raise TypeError(f"controller must be a JogController; got {type(controller).__name__}")
-        if int(animation_frames) != animation_frames or animation_frames < 2:
-            raise ValueError(f"animation_frames must be an integer ≥ 2; got {animation_frames!r}")
+        if (
+            isinstance(animation_frames, bool)
+            or not isinstance(animation_frames, (int, np.integer))
+            or animation_frames < 1
+        ):
+            raise ValueError(f"animation_frames must be an integer ≥ 1; got {animation_frames!r}")
         self.controller = controller
         self.animation_frames = int(animation_frames)
         names = [*KEYS, "Home", "Circle", "Square"]
@@ -795,10 +800,12 @@ class JogPanel:
 
         Examples
         --------
+        >>> import matplotlib
+        >>> matplotlib.use("Agg")
         >>> import urkin
-        >>> panel = jog_panel(JogController(urkin.robot("UR3")))  # doctest: +SKIP
-        >>> panel.click("X+")  # doctest: +SKIP
-        >>> panel.status.value  # doctest: +SKIP
+        >>> panel = jog_panel(JogController(urkin.robot("UR3")))
+        >>> panel.click("X+")
+        >>> panel.status.value
         'X+: moved to x 0.270 y 0.100 z 0.300 m'
         """
         for key, button in self.buttons.items():
@@ -808,14 +815,19 @@ class JogPanel:
         raise ValueError(f"name must be one of {', '.join(self.buttons)}; got {name!r}")
 
     def redraw(self) -> None:
-        """Draw the current state and the tool trace into the output area."""
+        """Draw the current state and the tool trace into the output area (shown only under
+        IPython: elsewhere there is no front end to show it)."""
         import matplotlib.pyplot as plt
+        from IPython import get_ipython
         from IPython.display import clear_output, display
 
-        with self.output:
-            clear_output(wait=True)
-            ax = draw_session(self.controller)
-            display(ax.figure)
+        ax = draw_session(self.controller)
+        try:
+            if get_ipython() is not None:
+                with self.output:
+                    clear_output(wait=True)
+                    display(ax.figure)
+        finally:
             plt.close(ax.figure)
 
     def text(self) -> str:
@@ -830,8 +842,12 @@ class JogPanel:
         from urkin.animation import animate
 
         bundle = dict(self.widget._repr_mimebundle_(**kwargs))
+        robot = self.controller.robot
         bundle["text/html"] = animate(
-            self.controller.robot, self.controller.trail, max_frames=self.animation_frames
+            robot,
+            self.controller.trail,
+            title=f"{robot.name} jog session",
+            max_frames=self.animation_frames,
         ).html
         bundle["text/plain"] = self.text()
         return bundle
@@ -869,9 +885,15 @@ def jog_panel(controller: JogController, *, animation_frames: int = 60) -> JogPa
 
     Examples
     --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
     >>> import urkin
-    >>> panel = jog_panel(JogController(urkin.robot("UR3")))  # doctest: +SKIP
-    >>> panel  # in Jupyter: the buttons  # doctest: +SKIP
+    >>> panel = jog_panel(JogController(urkin.robot("UR3")))
+    >>> panel.click("Z-")
+    >>> panel.controller.flange[:3, 3].round(3) + 0.0
+    array([0.25, 0.1 , 0.28])
+    >>> panel  # in Jupyter: the buttons; in the docs: an animation of the session
+    Jog panel: UR3, 1 move so far; run the notebook to use the buttons
     """
     return JogPanel(controller, animation_frames=animation_frames)
 
@@ -923,23 +945,24 @@ class JogFigure:
         self.figure = plt.figure(figsize=(8.0, 8.8))
         if self.figure.canvas.manager is not None:
             self.figure.canvas.manager.set_window_title(f"urkin demo: {controller.robot.name} jog")
-        self.ax = self.figure.add_axes((0.02, 0.2, 0.96, 0.78), projection="3d")
+        self.ax = self.figure.add_axes((0.02, 0.21, 0.96, 0.73), projection="3d")
         names = [*KEYS, "Home", "Circle", "Square"]
         self.buttons: dict[str, Button] = {}
         for i, name in enumerate(names):
             row, col = (0, i) if i < len(KEYS) else (1, i - len(KEYS))
             width = 0.145 if row == 0 else 0.2
             left = 0.03 + col * (width + 0.012)
-            holder = self.figure.add_axes((left, 0.11 - row * 0.058, width, 0.048))
+            holder = self.figure.add_axes((left, 0.125 - row * 0.055, width, 0.045))
             button = Button(holder, name)
             button.on_clicked(lambda _event, name=name: self.click(name))
             self.buttons[name] = button
         self.status = self.figure.text(
             0.03,
-            0.015,
+            0.058,
             f"{controller.robot.name} ready at {_where(controller.flange)}",
             family="monospace",
-            fontsize=9,
+            fontsize=8,
+            va="top",
             wrap=True,
         )
         self._queue: list[int] = []

@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike
 
 from urkin.kinematics import fk_frames
 from urkin.robots import Robot
+from urkin.tracking_report import TrackingReport
 from urkin.transforms import check_transform, make_transform, rotation_to_rpy
 
 __all__ = [
@@ -71,6 +72,7 @@ __all__ = [
     "solver_runs_figure",
     "square_traces_figure",
     "step_size_figure",
+    "time_scaling_figure",
     "tracking_report_figure",
 ]
 
@@ -2490,7 +2492,6 @@ def joint_paths_figure(
 # ---------------------------------------------------------------------------------------------
 
 # imported with the section that draws it (urkin.tracking_report imports this module lazily)
-from urkin.tracking_report import TrackingReport  # noqa: E402
 
 #: Where :func:`tracking_report_figure` draws a value of exactly zero on its log axes.
 _REPORT_FLOOR = 1e-17
@@ -2710,6 +2711,63 @@ def tracking_report_figure(
         ax.set_xlabel("sample")
     if title:
         fig.suptitle(title, fontsize=13)
+    return fig
+
+
+def time_scaling_figure(
+    scalings: Sequence,
+    *,
+    samples: int = 401,
+    title: str | None = None,
+    figsize: tuple[float, float] = (11.0, 3.6),
+) -> Figure:
+    """Position, speed and acceleration of rest-to-rest time scalings, side by side.
+
+    Parameters
+    ----------
+    scalings : sequence of urkin.trajectory.TimeScaling
+        Each is drawn over ``0 ≤ t ≤ T`` in its own colour, labelled with its kind and ``T``.
+    samples : int
+        Points per curve.
+    title : str, optional
+        Figure title.
+    figsize : tuple of float
+        Inches.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from urkin.trajectory import time_scaling
+    >>> fig = time_scaling_figure([time_scaling("cubic", 2.0), time_scaling("quintic", 2.0)])
+    >>> [ax.get_ylabel() for ax in fig.axes]
+    ['s', 'ṡ (1/s)', 's̈ (1/s²)']
+    >>> plt.close(fig)
+    """
+    fig = plt.figure(figsize=figsize, layout="constrained")
+    axes = fig.subplots(1, 3)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for k, scaling in enumerate(scalings):
+        t = np.linspace(0.0, scaling.T, samples)
+        values = scaling(t)
+        label = f"{scaling.kind}, T = {scaling.T:.2f} s"
+        for ax, value in zip(axes, values):
+            ax.plot(t, value, color=colours[k % len(colours)], linewidth=2, label=label)
+    for ax, name, what in zip(
+        axes, ("s", "ṡ (1/s)", "s̈ (1/s²)"), ("path parameter", "speed", "acceleration")
+    ):
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel(name)
+        ax.set_title(what)
+        ax.grid(alpha=0.3)
+        ax.axhline(0.0, color="0.5", linewidth=0.8)
+    axes[0].legend(loc="upper left", fontsize=8)
+    if title:
+        fig.suptitle(title)
     return fig
 
 
