@@ -29,7 +29,7 @@ test: lint unit notebooks docs
 
 lint: $(STAMP)
 	$(PY) -m ruff check .
-	$(PY) -m ruff format --check urkin tests bench docs/conf.py
+	$(PY) -m ruff format --check urkin tests bench docs/conf.py docs/check_offline.py
 
 unit: $(STAMP)
 	$(PY) -m pytest
@@ -49,6 +49,7 @@ notebooks: $(STAMP)
 docs: $(STAMP)
 	rm -rf docs/_build
 	$(PY) -m sphinx -W --keep-going -q -b html docs docs/_build/html
+	$(PY) docs/check_offline.py docs/_build/html
 	@echo "docs: open docs/_build/html/index.html"
 
 ## make lessons: after editing solutions/*.py, re-execute the solution notebooks and rebuild course/

@@ -1384,10 +1384,10 @@ else:
 #
 # ## What comes next
 #
-# This is the last lesson so far. The natural next step is motion: sampling straight lines,
-# circles and squares along a path, timing them, and tracking them in task space with
-# `ik_closest` or warm-started numerical IK — the tools of lessons 05–07 put to work, and
-# seed 000's and seed 002's tracking runs to repeat and correct.
+# Lesson 08 puts the arm in motion: straight lines, circles and squares sampled at 1 mm,
+# timed within the joints' limits, and tracked sample after sample with the nearest
+# closed-form solution of this lesson — and seed 000's and seed 002's tracking runs
+# replayed, measured and corrected.
 #
 # Before you move on: restart the kernel and run the whole notebook. All six check cells
 # should report full marks.

@@ -196,9 +196,11 @@ def test_gif_loops_with_every_frame(small, tmp_path):
         assert gif.size == Image.open(io.BytesIO(small.images[0])).size
 
 
-def test_gif_of_full_colour_frames(tmp_path):
+def test_frames_share_one_palette_and_make_a_gif(tmp_path):
     anim = animate(UR3, _sweep(3), figsize=(3.0, 3.0))
-    assert anim.colors is None  # small enough for full colour
+    assert anim.colors == 256
+    palettes = {Image.open(io.BytesIO(png)).getpalette()[:48].__repr__() for png in anim.images}
+    assert len(palettes) == 1 and Image.open(io.BytesIO(anim.images[0])).mode == "P"
     with Image.open(anim.save_gif(tmp_path / "three.gif")) as gif:
         assert gif.n_frames == 3 and gif.info["loop"] == 0 and gif.info["duration"] == 100
 

@@ -167,7 +167,7 @@ def test_a_folded_joint_is_right_near_zero_and_wrong_beyond_a_quarter_turn(joint
     assert errors[~inside].min() > 1e-3  # a half turn of a joint always moves the flange
 
 
-# ------------------------------------ all closed-form solutions of listed poses (exercise 8.4)
+# ------------------------------------ all closed-form solutions of listed poses (exercise 8.2)
 
 
 def test_listed_solutions_returns_the_rows_of_the_nearest_listed_pose():

@@ -83,8 +83,8 @@ class Animation:
         Frames per second of the player.
     dpi : float
         Resolution the frames were rendered at (lowered to fit ``max_bytes``).
-    colors : int or None
-        Size of the frames' shared palette, or None for full-colour PNG.
+    colors : int
+        Size of the frames' shared palette.
     """
 
     robot_name: str
@@ -95,7 +95,7 @@ class Animation:
     trace: np.ndarray = field(repr=False)
     fps: float = 10.0
     dpi: float = DEFAULT_DPI
-    colors: int | None = None
+    colors: int = 256
 
     @property
     def size(self) -> int:
@@ -161,10 +161,7 @@ class Animation:
         pathlib.Path
         """
         rate = self.fps if fps is None else _rate(fps, "fps")
-        pictures = [Image.open(io.BytesIO(png)) for png in self.images]
-        if pictures[0].mode != "P":  # full colour: one palette for all frames
-            palette = _palette([np.asarray(p.convert("RGB")) for p in pictures], 256)
-            pictures = [_quantize(np.asarray(p.convert("RGB")), palette) for p in pictures]
+        pictures = [Image.open(io.BytesIO(png)) for png in self.images]  # one palette: GIF's
         target = Path(path)
         pictures[0].save(
             target,
@@ -228,9 +225,7 @@ def _png(picture: Image.Image) -> bytes:
     return buffer.getvalue()
 
 
-def _encode(rgbs: list[np.ndarray], colors: int | None) -> list[bytes]:
-    if colors is None:
-        return [_png(Image.fromarray(rgb)) for rgb in rgbs]
+def _encode(rgbs: list[np.ndarray], colors: int) -> list[bytes]:
     palette = _palette(rgbs, colors)
     return [_png(_quantize(rgb, palette)) for rgb in rgbs]
 
@@ -407,9 +402,9 @@ def animate(
         At most this many frames, chosen evenly over the samples by index; the first and
         the last sample are always drawn, and every sample when M ≤ ``max_frames``.
     max_bytes : int
-        Budget of the HTML, bytes (:attr:`Animation.size`).  If full-colour frames would
-        exceed it, they are quantized to a shared 256-colour palette, then rendered at lower
-        resolutions (down to 16 dpi), then given fewer colours, until they fit.
+        Budget of the HTML, bytes (:attr:`Animation.size`).  Frames share one 256-colour
+        palette; if they would exceed the budget, they are rendered at lower resolutions
+        (down to 16 dpi), then given fewer colours, until they fit.
     fps : float
         Frames per second of the player and of :meth:`Animation.save_gif`.
     figsize : tuple of float
@@ -585,24 +580,20 @@ def animate(
     def payload(images: list[bytes]) -> int:
         return sum(_b64_size(len(png)) for png in images)
 
-    # Full colour if it fits; else one shared palette; else lower resolutions; else fewer
-    # colours.  The first and last frames tell, before all are rendered, which to start with.
+    # One shared 256-colour palette (a stick figure on white loses nothing, and the frames
+    # shrink to about a third); then lower resolutions; then fewer colours.  The first and
+    # last frames tell, before all are rendered, which resolution to start with.
     n = len(chosen)
-    dpi, colors = DEFAULT_DPI, None
+    dpi, colors = DEFAULT_DPI, PALETTES[0]
     probe = render(dpi, sorted({0, n - 1}))
-    if payload(_encode(probe, None)) * n / len(probe) > room:
-        colors = PALETTES[0]
-        estimate = payload(_encode(probe, colors)) * n / len(probe)
-        if estimate > room:  # bytes grow about as the pixels: aim a little below the budget
-            dpi = max(MIN_DPI, math.floor(dpi * math.sqrt(room / estimate) * 0.95))
+    estimate = payload(_encode(probe, colors)) * n / len(probe)
+    if estimate > room:  # bytes grow about as the pixels: aim a little below the budget
+        dpi = max(MIN_DPI, math.floor(dpi * math.sqrt(room / estimate) * 0.95))
     if dpi == DEFAULT_DPI and n > 1:  # the probe's two frames are already rendered
         rgbs = [probe[0], *render(dpi, range(1, n - 1)), probe[-1]]
     else:
         rgbs = render(dpi, range(n))
     images = _encode(rgbs, colors)
-    if payload(images) > room and colors is None:
-        colors = PALETTES[0]
-        images = _encode(rgbs, colors)
     while payload(images) > room and dpi > MIN_DPI:
         dpi = max(MIN_DPI, math.floor(dpi * math.sqrt(room / payload(images)) * 0.95))
         rgbs = render(dpi, range(n))

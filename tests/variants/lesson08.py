@@ -70,7 +70,7 @@ def sample_polyline(corners, step=1e-3, closed=False):
     return np.concatenate([np.linspace(a, b, 20) for a, b in zip(corners[:-1], corners[1:])])
 """
 
-# ------------------------------------------------------------------------ 8.2 quintic_scaling
+# ------------------------------------------------------------------------ 8.3 quintic_scaling
 
 _QUINTIC = """
 def quintic_scaling(t, T):
@@ -110,7 +110,7 @@ def quintic_scaling(t, T):
     return s, 30 * tau**2 * (1 - tau) ** 2 / T, 60 * tau * (1 - tau) * (1 - 2 * tau) / T**2
 """
 
-# ----------------------------------------------------------------------- 8.3 minimum_duration
+# ----------------------------------------------------------------------- 8.4 minimum_duration
 
 _DURATION = """
 def minimum_duration(distance, max_velocity, max_acceleration):
@@ -170,7 +170,7 @@ def minimum_duration(distance, max_velocity, max_acceleration):
     return T
 """
 
-# -------------------------------------------------------------------------- 8.4 track_nearest
+# -------------------------------------------------------------------------- 8.2 track_nearest
 
 _TRACK = """
 def track_nearest(robot, poses, q0, solve_all):
@@ -320,10 +320,10 @@ CORRECT = [
     Variant("8.1", "a loop over segments", _polyline()),
     Variant("8.1", "urkin's margin, linspace without the end", _URKIN_MARGIN),
     Variant("8.1", "pure Python lists", _PURE_PYTHON),
-    Variant("8.2", "np.where and np.polyval", _QUINTIC_WHERE),
-    Variant("8.2", "float32", _QUINTIC_FLOAT32),
+    Variant("8.3", "np.where and np.polyval", _QUINTIC_WHERE),
+    Variant("8.3", "float32", _QUINTIC_FLOAT32),
     Variant(
-        "8.2",
+        "8.3",
         "Horner and factored derivatives",
         _quintic(
             s="tau**3 * (10 + tau * (-15 + 6 * tau))",
@@ -331,11 +331,11 @@ CORRECT = [
             s_ddot="60 * tau * (1 - tau) * (1 - 2 * tau) / (T * T)",
         ),
     ),
-    Variant("8.3", "the largest allowed s-dot and s-ddot", _DURATION_URKIN),
-    Variant("8.3", "a loop over joints", _DURATION_LOOP),
-    Variant("8.4", "urkin.transforms.wrap_angles, lists", _TRACK_WRAP_ANGLES),
-    Variant("8.4", "solutions shifted by whole turns", _TRACK_ROUND),
-    Variant("8.4", "a template of the solution", _track()),
+    Variant("8.4", "the largest allowed s-dot and s-ddot", _DURATION_URKIN),
+    Variant("8.4", "a loop over joints", _DURATION_LOOP),
+    Variant("8.2", "urkin.transforms.wrap_angles, lists", _TRACK_WRAP_ANGLES),
+    Variant("8.2", "solutions shifted by whole turns", _TRACK_ROUND),
+    Variant("8.2", "a template of the solution", _track()),
     Variant("8.5", "loops over samples", _READ_LOOPS),
     Variant("8.5", "np.diff of booleans, arrays", _READ_DIFF),
     Variant("8.5", "a template of the solution", _read()),
@@ -398,9 +398,9 @@ WRONG = [
         points=3,
         mistake="zero-length segment",
     ),
-    # ------------------------------------------------------------------------------ 8.2
+    # ------------------------------------------------------------------------------ 8.3
     Variant(
-        "8.2",
+        "8.3",
         "cubic",
         _quintic(
             s="3 * tau**2 - 2 * tau**3",
@@ -411,7 +411,7 @@ WRONG = [
         mistake="cubic",
     ),
     Variant(
-        "8.2",
+        "8.3",
         "derivatives in tau",
         _quintic(
             s_dot="30 * tau**2 - 60 * tau**3 + 30 * tau**4",
@@ -421,71 +421,71 @@ WRONG = [
         mistake="with respect to τ",
     ),
     Variant(
-        "8.2",
+        "8.3",
         "s-ddot over T once",
         _quintic(s_ddot="(60 * tau - 180 * tau**2 + 120 * tau**3) / T"),
         points=0,
         mistake="divided by T only once",
     ),
     Variant(
-        "8.2",
+        "8.3",
         "not clipped",
         _quintic(tau="np.asarray(t, dtype=float) / T"),
         points=2,
         mistake="not clipped",
     ),
-    # ------------------------------------------------------------------------------ 8.3
+    # ------------------------------------------------------------------------------ 8.4
     Variant(
-        "8.3",
+        "8.4",
         "one T per joint",
         _duration(result="np.maximum(by_velocity, by_acceleration)"),
         points=0,
         mistake="one T per joint",
     ),
     Variant(
-        "8.3",
+        "8.4",
         "sum over joints",
         _duration(result="float(np.sum(np.maximum(by_velocity, by_acceleration)))"),
         points=0,
         mistake="joints' durations added",
     ),
     Variant(
-        "8.3",
+        "8.4",
         "velocity and acceleration times added",
         _duration(result="float(by_velocity.max() + by_acceleration.max())"),
         points=0,
         mistake="velocity-limited and acceleration-limited durations added",
     ),
     Variant(
-        "8.3",
+        "8.4",
         "cubic's peaks",
         _duration(velocity="1.5 * d / v", acceleration="np.sqrt(6 * d / a)"),
         points=0,
         mistake="cubic's peaks",
     ),
     Variant(
-        "8.3",
+        "8.4",
         "velocity only",
         _duration(result="float(np.max(by_velocity))"),
         points=0,
         mistake="only the velocity limit",
     ),
     Variant(
-        "8.3",
+        "8.4",
         "acceleration only",
         _duration(result="float(np.max(by_acceleration))"),
         points=0,
         mistake="only the acceleration limit",
     ),
     Variant(
-        "8.3",
+        "8.4",
         "signed distances, NaN",
         _duration(d="np.asarray(distance, dtype=float)"),
         points=0,
         mistake="signed distances",
     ),
     Variant(
-        "8.3",
+        "8.4",
         "signed distances, nanmax",
         _duration(
             d="np.asarray(distance, dtype=float)",
@@ -495,58 +495,58 @@ WRONG = [
         mistake="signed distances",
     ),
     Variant(
-        "8.3",
+        "8.4",
         "no ValueError",
         _duration(refuse="pass"),
         points=2,
         mistake="no ValueError",
     ),
-    # ------------------------------------------------------------------------------ 8.4
+    # ------------------------------------------------------------------------------ 8.2
     Variant(
-        "8.4",
+        "8.2",
         "seed 000's overwrite: a failed row left at zero",
         _track(rows="np.zeros((len(poses), 6))", failure="pass"),
         points=3,
         mistake="left unset",
     ),
     Variant(
-        "8.4",
+        "8.2",
         "a failed row left unset (NaN)",
         _track(rows="np.full((len(poses), 6), np.nan)", failure="pass"),
         points=3,
         mistake="left unset",
     ),
     Variant(
-        "8.4",
+        "8.2",
         "a failed row set to q0",
         _track(failure="q[k] = q0"),
         points=3,
         mistake="row is q0",
     ),
     Variant(
-        "8.4",
+        "8.2",
         "ok not recorded",
         _track(failure="q[k], ok[k] = previous, True"),
         points=3,
         mistake="ok not recorded",
     ),
-    Variant("8.4", "the first solution", _track(best="0"), points=0, mistake="first solution"),
+    Variant("8.2", "the first solution", _track(best="0"), points=0, mistake="first solution"),
     Variant(
-        "8.4",
+        "8.2",
         "nearest by plain differences",
         _track(gaps="np.linalg.norm(solutions - base, axis=1)"),
         points=2,
         mistake="without wrapping the difference",
     ),
     Variant(
-        "8.4",
+        "8.2",
         "solutions returned as they are",
         _track(continued="solutions[best]"),
         points=2,
         mistake="no shortest-turn continuation",
     ),
     Variant(
-        "8.4",
+        "8.2",
         "every pose compared with q0",
         _track(base="np.asarray(q0, dtype=float)"),
         points=3,

@@ -129,10 +129,10 @@ def _polyline_hypotheses(corners, step, closed, count: int) -> dict[str, Callabl
     hypotheses = {
         _FIXED_COUNT: fixed(True),
         _FIXED_COUNT + " ": fixed(False),
+        _ZERO_SEGMENT: lambda: _polyline_samples(corners, [max(n, 1) for n in ceil], closed),
         _REPEATED: lambda: _polyline_samples(corners, ceil, closed, ends=True),
         _ROUND: lambda: _polyline_samples(corners, [round(L / step) for L in lengths], closed),
         _FLOOR: lambda: _polyline_samples(corners, [int(L / step) for L in lengths], closed),
-        _ZERO_SEGMENT: lambda: _polyline_samples(corners, [max(n, 1) for n in ceil], closed),
     }
     if closed:
         hypotheses[_CLOSED_REPEATS] = lambda: np.concatenate(
@@ -158,7 +158,7 @@ def _sampled_mistake(got, hypotheses, answers) -> str | None:
 
 
 def _judge_polyline(sub, corners, step, closed, what, *, default_step=False, as_list=False):
-    inputs = {"corners": corners, "step": step, "closed": closed}
+    inputs = {"corners": corners, "step": step, "closed": str(closed)}
     argument = corners.tolist() if as_list else corners.copy()
     if default_step:
         value = sub.sample_polyline(argument, closed=closed)
@@ -201,13 +201,14 @@ def _judge_polyline(sub, corners, step, closed, what, *, default_step=False, as_
     )
 
 
-def _random_polyline(rng, closed: bool, fractions=(0.0, 1.0), rounds_down=True):
-    """Random corners (K, 3) and a step (m): segment lengths between 0.3 and 40 steps, each
-    length/step with its fractional part in ``fractions`` (away from whole numbers), and with
-    ``rounds_down`` some segment whose L/step rounds down (round() ≠ ceil())."""
+def _random_polyline(rng, closed: bool, fractions=(0.0, 1.0), rounds_down=True, fewest=None):
+    """Random corners (K, 3), K from ``fewest`` (2 open, 3 closed) to 6, and a step (m):
+    segment lengths between 0.3 and 40 steps, each length/step with its fractional part in
+    ``fractions`` (away from whole numbers), and with ``rounds_down`` some segment whose
+    L/step rounds down (round() ≠ ceil())."""
     while True:
         step = 10 ** rng.uniform(-3.7, -2.3)
-        K = int(rng.integers(3 if closed else 2, 7))
+        K = int(rng.integers(fewest or (3 if closed else 2), 7))
         corners = [rng.uniform(-0.5, 0.5, 3)]
         for _ in range(K - 1):
             corners.append(corners[-1] + _unit(rng) * step * rng.uniform(0.3, 40.0))
@@ -250,8 +251,9 @@ def _sample_closed(sub, rng):
 
 
 def _sample_edges(sub, rng):
-    # a repeated corner (zero-length segment), open; every L/step rounds up (round = ceil)
-    corners, step = _random_polyline(rng, False, (0.55, 0.95), rounds_down=False)
+    # a repeated corner (zero-length segment), open, among three other segments (so that a
+    # repeated corner and every corner repeated differ); every L/step rounds up (round = ceil)
+    corners, step = _random_polyline(rng, False, (0.55, 0.95), rounds_down=False, fewest=4)
     k = int(rng.integers(len(corners)))
     corners = np.insert(corners, k, corners[k], axis=0)
     _judge_polyline(
@@ -299,7 +301,7 @@ def _sample_edges(sub, rng):
     )
 
 
-# ----------------------------------------------------------------------- 8.2 quintic_scaling
+# ----------------------------------------------------------------------- 8.3 quintic_scaling
 
 _CUBIC = "the cubic s = 3τ² − 2τ³ (lesson's other profile): the quintic is 10τ³ − 15τ⁴ + 6τ⁵"
 _PER_TAU = (
@@ -410,7 +412,7 @@ def _quintic_outside(sub, rng):
         _judge_quintic(sub, t, T, "one time t (a float): three arrays of shape ()")
 
 
-# ---------------------------------------------------------------------- 8.3 minimum_duration
+# ---------------------------------------------------------------------- 8.4 minimum_duration
 
 _PER_JOINT = (
     "one T per joint: every joint follows the same s(t), so one duration, the largest, serves "
@@ -522,7 +524,8 @@ def _judge_duration(sub, d, v, a, what):
 def _duration_problem(rng, n: int, bound: str | None, *, still: int = 0, distinct=False):
     """Random distances (either sign) and limits; the slowest joint clearly bound by one limit,
     with ``bound`` ("velocity" or "acceleration") that one and its distance negative;
-    ``still`` joints that do not move; with ``distinct``, every named mistake wrong here."""
+    ``still`` joints that do not move; with ``distinct``, every named mistake wrong here (but
+    the limit that binds alone)."""
     while True:
         d = rng.uniform(-3.0, 3.0, n)
         d[rng.choice(n, still, replace=False)] = 0.0
@@ -539,9 +542,11 @@ def _duration_problem(rng, n: int, bound: str | None, *, still: int = 0, distinc
         if bound is not None and (which != bound or d[j] > 0):
             continue
         right = max(_duration(d, v, a))
+        same = {_VELOCITY_ONLY: "velocity", _ACCELERATION_ONLY: "acceleration"}
         if distinct and any(
             abs(float(compute()) - right) < 1e-6 * right
-            for compute in _duration_hypotheses(d, v, a).values()
+            for name, compute in _duration_hypotheses(d, v, a).items()
+            if same.get(name) != bound  # bound by velocity: velocity alone is right
         ):
             continue
         return d, v, a
@@ -564,8 +569,9 @@ def _duration_edges(sub, rng):
     n = int(rng.integers(2, 7))
     d, v, a = np.zeros(n), rng.uniform(0.3, 3.2, n), rng.uniform(0.5, 15.0, n)
     _judge_duration(sub, d, v, a, "no joint moves: T = 0.0")
-    d, v, a = _duration_problem(rng, 6, None, still=2, distinct=True)
-    _judge_duration(sub, d, v, a, "joints that do not move (d = 0) take no time")
+    for bound in ("velocity", "acceleration"):
+        d, v, a = _duration_problem(rng, 6, bound, still=2, distinct=True)
+        _judge_duration(sub, d, v, a, "joints that do not move (d = 0) take no time")
     for name in ("max_velocity", "max_acceleration"):
         d, v, a = _duration_problem(rng, 4, None)
         limits = {"max_velocity": v, "max_acceleration": a}
@@ -593,7 +599,7 @@ def _duration_edges(sub, rng):
         )
 
 
-# ------------------------------------------------------------------------- 8.4 track_nearest
+# ------------------------------------------------------------------------- 8.2 track_nearest
 
 _TRACK_TOL = 1e-9  # rad, and the pose error fk(q_k) − pose_k where ok
 
@@ -1048,9 +1054,9 @@ def _planted_flips(rng):
         M = 60
         s = np.linspace(0.0, 1.0, M)[:, None]
         Q = rng.uniform(-math.pi, math.pi, 6)
-        for m in (1, 2):
+        for m in (rng.uniform(0.6, 1.4, 6), rng.uniform(1.6, 2.4, 6)):  # cycles over the path
             phase = rng.uniform(0.0, _TURN, 6)
-            Q = Q + rng.uniform(0.0, 1.2 / m, 6) * np.sin(_TURN * m * s + phase)
+            Q = Q + rng.uniform(0.0, 1.2 / m) * np.sin(_TURN * m * s + phase)
         factors = _factors(arm, Q)
         if np.abs(factors).min() < 1e-4 or np.abs(Q[:, [2, 4]]).min() < 1e-4:
             continue
@@ -1152,40 +1158,6 @@ LESSON = Lesson(
         ),
         Exercise(
             id="8.2",
-            function="quintic_scaling",
-            title="the quintic time scaling s(t) and its derivatives",
-            checks=(
-                Check("s, ṡ, s̈ for times in [0, T], any shape of t", 2, _quintic_inside),
-                Check(
-                    "rests at (0, 0, 0) before 0 and at (1, 0, 0) after T; one float t",
-                    1,
-                    _quintic_outside,
-                ),
-            ),
-            answer=(trajectory,),
-        ),
-        Exercise(
-            id="8.3",
-            function="minimum_duration",
-            title="the shortest quintic move within joint velocity and acceleration limits",
-            checks=(
-                Check(
-                    "random distances of either sign and limits: the shortest T, at which a "
-                    "peak touches its limit",
-                    2,
-                    _duration_random,
-                ),
-                Check(
-                    "no motion gives 0.0; joints that do not move take no time; a limit ≤ 0 "
-                    "raises ValueError",
-                    1,
-                    _duration_edges,
-                ),
-            ),
-            answer=(trajectory,),
-        ),
-        Exercise(
-            id="8.4",
             function="track_nearest",
             title="nearest-solution tracking, continued by the shortest turn, holding on failure",
             checks=(
@@ -1208,6 +1180,40 @@ LESSON = Lesson(
                 ),
             ),
             answer=(tracking, *concepts.INVERSE_KINEMATICS),
+        ),
+        Exercise(
+            id="8.3",
+            function="quintic_scaling",
+            title="the quintic time scaling s(t) and its derivatives",
+            checks=(
+                Check("s, ṡ, s̈ for times in [0, T], any shape of t", 2, _quintic_inside),
+                Check(
+                    "rests at (0, 0, 0) before 0 and at (1, 0, 0) after T; one float t",
+                    1,
+                    _quintic_outside,
+                ),
+            ),
+            answer=(trajectory,),
+        ),
+        Exercise(
+            id="8.4",
+            function="minimum_duration",
+            title="the shortest quintic move within joint velocity and acceleration limits",
+            checks=(
+                Check(
+                    "random distances of either sign and limits: the shortest T, at which a "
+                    "peak touches its limit",
+                    2,
+                    _duration_random,
+                ),
+                Check(
+                    "no motion gives 0.0; joints that do not move take no time; a limit ≤ 0 "
+                    "raises ValueError",
+                    1,
+                    _duration_edges,
+                ),
+            ),
+            answer=(trajectory,),
         ),
         Exercise(
             id="8.5",
