@@ -209,6 +209,7 @@ check("8.1", sample_polyline)
 # %%
 seed_circle = seed000_run(ur3, seed000_circle(), SEED000_HOME)
 print(tracking_report(ur3, seed000_circle(), seed_circle.q))
+print(f"q3 reaches {np.degrees(seed_circle.q[:, 2].min()):.0f}°")
 
 # %% [markdown]
 # Read the report from the top. **Target spacing** 10.6 mm: the sampling of section 1.
@@ -224,7 +225,7 @@ print(tracking_report(ur3, seed000_circle(), seed_circle.q))
 # about 80 mm *below the mounting plane* $z = 0$ — frame 2, the elbow, under the table the
 # robot stands on. Nothing in the solver knows about the table; its first solve from home
 # went where its huge second step (lesson 05: about 13 rad) threw it. And **joints 3 and 4
-# are beyond their limits**: the min/max rows of the winding show $q_3$ near −600°.
+# are beyond their limits** of ±360°: $q_3$ reaches about −600°.
 #
 # Press "Home" again, then "Square":
 
