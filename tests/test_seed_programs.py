@@ -30,7 +30,9 @@ def _spacing(poses):
 def test_seed_000_samples_about_8_and_11_mm_not_1_mm_with_repeats():
     square, circle = seed000_square(), seed000_circle()
     assert _spacing(square).max() == pytest.approx(0.15 / 19)
-    assert _spacing(circle).max() == pytest.approx(2 * np.pi * 0.1 / 59 * np.sinc(1 / 59), rel=1e-12)
+    assert _spacing(circle).max() == pytest.approx(
+        2 * np.pi * 0.1 / 59 * np.sinc(1 / 59), rel=1e-12
+    )
     assert (_spacing(square) < 1e-12).sum() == 3  # three inner corners twice
     assert np.allclose(circle[0], circle[-1])  # the start once more at the end
     centre = np.array([0.25, 0.1, 0.3])
@@ -64,7 +66,9 @@ def test_seed_000_first_step_from_home_and_the_huge_second_one():
 
 def test_seed_000_overwrites_the_state_when_a_solve_fails():
     poses = np.broadcast_to(np.eye(4), (30, 4, 4)).copy()
-    poses[:, :3, 3] = np.column_stack([np.linspace(0.25, 0.7, 30), np.full(30, 0.1), np.full(30, 0.3)])
+    poses[:, :3, 3] = np.column_stack(
+        [np.linspace(0.25, 0.7, 30), np.full(30, 0.1), np.full(30, 0.3)]
+    )
     replay = seed000_run(UR3, poses, SEED000_HOME)
     failed = np.flatnonzero(~replay.converged)
     assert failed.size > 0 and failed[0] > 0
@@ -75,8 +79,9 @@ def test_seed_000_overwrites_the_state_when_a_solve_fails():
 def test_seed_002_published_formula_misses_by_centimetres_the_truth_within_its_test():
     side = np.linspace(0.0, 0.2, 41)[:-1]
     corners = np.array([[0.3, 0.2, 0.2], [0.5, 0.2, 0.2], [0.5, 0.4, 0.2], [0.3, 0.4, 0.2]])
-    points = np.vstack([a + np.outer(side / 0.2, b - a) for a, b in
-                        zip(corners, np.roll(corners, -1, axis=0))])
+    points = np.vstack(
+        [a + np.outer(side / 0.2, b - a) for a, b in zip(corners, np.roll(corners, -1, axis=0))]
+    )
     published, truth = seed002_run(points), seed002_run(points, published=False)
     assert published.converged.all() and truth.converged.all()
 

@@ -815,20 +815,32 @@ class JogPanel:
         raise ValueError(f"name must be one of {', '.join(self.buttons)}; got {name!r}")
 
     def redraw(self) -> None:
-        """Draw the current state and the tool trace into the output area (shown only under
-        IPython: elsewhere there is no front end to show it)."""
+        """Draw the current state and the tool trace into the output area.
+
+        The picture is set as the output widget's state (``Output.outputs``) rather than
+        displayed inside it: no message has to be routed by a front end, so nothing leaks
+        into the notebook cell when no front end runs the widget (a test runner, the docs).
+        """
+        import base64
+        import io
+
         import matplotlib.pyplot as plt
-        from IPython import get_ipython
-        from IPython.display import clear_output, display
 
         ax = draw_session(self.controller)
         try:
-            if get_ipython() is not None:
-                with self.output:
-                    clear_output(wait=True)
-                    display(ax.figure)
+            buffer = io.BytesIO()
+            ax.figure.savefig(buffer, format="png", dpi=80)
         finally:
             plt.close(ax.figure)
+        picture = {
+            "output_type": "display_data",
+            "data": {
+                "image/png": base64.b64encode(buffer.getvalue()).decode("ascii"),
+                "text/plain": f"<{self.controller.robot.name} after {self.controller.moves} moves>",
+            },
+            "metadata": {},
+        }
+        self.output.outputs = (picture,)
 
     def text(self) -> str:
         """The plain-text view of the panel."""

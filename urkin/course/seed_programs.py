@@ -108,8 +108,8 @@ def seed000_square(center: ArrayLike = SEED000_CENTER, side: float = 0.15) -> np
     c = np.asarray(center, dtype=float)
     h = side / 2
     corners = c + np.array([[0, -h, -h], [0, h, -h], [0, h, h], [0, -h, h], [0, -h, -h]])
-    t = np.linspace(0.0, 1.0, 20)[:, None]
-    points = np.vstack([a + (b - a) * t for a, b in zip(corners[:-1], corners[1:])])
+    t = np.linspace(0.0, 1.0, 20)[None, :, None]  # each side: both ends included, as printed
+    points = (corners[:-1, None] + (corners[1:] - corners[:-1])[:, None] * t).reshape(-1, 3)
     return _poses(points)
 
 
