@@ -155,8 +155,10 @@ def minimum_times() -> list[str]:
         row("---", "---", "---"),
     ]
     rng = np.random.default_rng(0)
+    # distances (rad), speed limits (rad/s) and acceleration limits (rad/s²) of a UR joint's
+    # order: URScript's movej defaults to 1.4 rad/s², its speed limits are π to 2π rad/s
     moves = [
-        (rng.uniform(0.05, 3.0), rng.uniform(0.3, 3.0), rng.uniform(0.5, 20.0)) for _ in range(200)
+        (rng.uniform(0.05, 3.0), rng.uniform(0.3, 3.0), rng.uniform(0.5, 10.0)) for _ in range(200)
     ]
     for jerk in (1e3, 1e5, 1e7):
         gap = relative = 0.0  # a jerk-limited ramp to a_max costs a_max / jerk more time
@@ -169,7 +171,7 @@ def minimum_times() -> list[str]:
             assert Ruckig(1).calculate(inp, trajectory) == Result.Working
             gap = max(gap, abs(ours - trajectory.duration))
             relative = max(relative, abs(ours - trajectory.duration) / (a_max / jerk))
-        lines.append(row(f"{jerk:.0e}", f"{gap:.1e} s", f"{relative:.3f}"))
+        lines.append(row(f"{jerk:.0e}", f"{gap:.3e} s", f"{relative:.3f}"))
     return lines
 
 
