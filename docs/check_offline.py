@@ -89,7 +89,7 @@ def play(page: Path, chromium: str) -> tuple[list[int], list[str]]:
 
 
 def main(argv: list[str]) -> int:
-    root = Path(argv[0]) if argv else Path("docs/_build/html")
+    root = (Path(argv[0]) if argv else Path("docs/_build/html")).resolve()
     problems = remote_resources(root)
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     pages = [p for p in sorted((root / "lessons").glob("*.html")) if "urkin-anim" in p.read_text()]

@@ -184,10 +184,10 @@ class TrackingReport:
     ) -> Figure:
         """The report's per-sample numbers in four panels.
 
-        (1) the spacing of the targets (mm) with the 1 mm line and the repeated samples;
-        (2) the position (m) and orientation (rad) error at each sample, on a log axis;
-        (3) the joint angles (degrees) with the joint limits, and the branch flips;
-        (4) the distance from each singular family (shoulder factor in m, ``|sin q3|``,
+        The panels show the spacing of the targets (mm) with the 1 mm line and the repeated
+        samples; the position (m) and orientation (rad) error at each sample, on a log axis;
+        the joint angles (degrees) with the joint limits and the branch flips; and the
+        distance from each singular family (shoulder factor in m, ``|sin q3|``,
         ``|sin q5|``), on a log axis, with the failed samples.  Drawn by
         :func:`urkin.plot.tracking_report_figure` (this imports matplotlib; ``import urkin``
         does not).
