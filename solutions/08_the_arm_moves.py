@@ -51,6 +51,7 @@ from urkin.course.seed_programs import (
     seed002_run,
 )
 from urkin.course.seeds import SEED002_ARM
+from urkin.jog import JogController, home_configuration, jog_panel
 from urkin.tracking import track
 from urkin.tracking_report import tracking_report
 from urkin.transforms import make_transform, rot_x, rot_z, wrap_angles
@@ -281,8 +282,11 @@ _ = report.plot(title="Seed 000's square, replayed from home")
 # 1. **Sample by arc length** (section 1): 604 samples on the square, 629 on the circle.
 # 2. **Start on a branch you chose.** Do not let a solver's first steps from home pick the
 #    branch. Lesson 07's closed form gives all eight configurations for the first pose; keep
-#    those whose joint origins are all above the mounting plane, of those the ones with the
-#    elbow (the origin of frame 2) highest, and of those the one nearest home.
+#    those whose joint origins are all above the mounting plane and whose elbow (the origin
+#    of frame 2) lies above the line from the shoulder to the wrist, and of those prefer the
+#    branch of UR's usual ready pose (the signs of the shoulder factor and of $\sin q_5$, as
+#    in lesson 04). `urkin.jog.home_configuration(robot, position, R)` makes that choice; it
+#    decides on signs, so round-off cannot change it.
 # 3. **Take the nearest closed-form solution at every sample** (lesson 07's
 #    `nearest_solution`, `urkin.ik_closest`): the branch is kept as long as it exists, and the
 #    answer is exact.
@@ -294,16 +298,9 @@ _ = report.plot(title="Seed 000's square, replayed from home")
 # compare.
 
 # %%
-def elbow_up_start(robot, T_first, q_home=SEED000_HOME):
-    """Of the closed-form solutions for T_first: above the table, elbow highest, nearest home."""
-    solutions = urkin.ik_analytic(robot, T_first)
-    heights = urkin.kinematics.fk_frames(robot, solutions)[:, 1:, 2, 3]  # frames 1-6
-    elbow = heights[:, 1]  # the origin of frame 2
-    above = heights.min(axis=1) > 0.0
-    best = above & (elbow >= elbow[above].max() - 1e-3)
-    candidates = solutions[best]
-    distance = np.linalg.norm(wrap_angles(candidates - q_home), axis=1)
-    return candidates[np.argmin(distance)]
+def elbow_up_start(robot, T_first):
+    """The elbow-up, above-the-table closed-form solution for the pose T_first."""
+    return home_configuration(robot, T_first[:3, 3], T_first[:3, :3])
 
 
 tracked = {}
@@ -324,7 +321,7 @@ for name, path in (("square", square), ("circle", circle)):
 # flip, no joint anywhere near ±360°, the elbow well above the table. The full report of the
 # circle is worth a look, in particular the last rows: the arm stays at least 0.22 m from
 # the shoulder singularity (the wrist point's distance from the base axis, minus $d_4$),
-# its elbow is far from straight ($|\sin q_3| \ge 0.57$), and the wrist is as far from its
+# its elbow is far from straight ($|\sin q_3| \ge 0.87$), and the wrist is as far from its
 # singularity as it can be: $q_5 = \pm 90°$ all along, because the flange keeps one
 # orientation.
 
@@ -742,7 +739,6 @@ urkin.plot.animate(SEED002_ARM, run_002.q, targets=points_002, max_frames=30,
 # controller is tested:
 
 # %%
-from urkin.jog import JogController, jog_panel
 
 jog = JogController(ur3)
 print("home:", jog.flange[:3, 3], "m")

@@ -145,3 +145,13 @@ def test_execute_names_an_unknown_lesson(course_copy, capsys):
     assert course.main(["execute", "99_nothing", "--root", str(course_copy)]) == 2
     error = capsys.readouterr().err
     assert "no lesson named 99_nothing" in error and "00_" in error
+
+
+def test_stored_solution_notebooks_keep_no_embedded_pictures_in_html():
+    # nbval compares HTML after replacing base64 payloads (tests/nbval_sanitize.cfg); the
+    # frames of an animation would only make the stored notebooks megabytes larger
+    for path in sorted((ROOT / "solutions").glob("[0-9][0-9]_*.ipynb")):
+        for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]:
+            for output in cell.get("outputs", []):
+                html = "".join(output.get("data", {}).get("text/html", ""))
+                assert "base64," not in html.replace("base64,DATA", ""), path.name

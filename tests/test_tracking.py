@@ -2,6 +2,8 @@
 and never winds a joint past its limits.  Every reached sample is re-measured with urkin.fk
 here; branches are read off urkin.ik_analytic's row order (its documented branch bits)."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -373,3 +375,15 @@ def test_a_report_without_per_sample_arrays_cannot_be_drawn_and_import_stays_lig
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_the_printed_table_states_round_off_as_a_bound():
+    # poses of the configurations themselves: the errors are round-off, whose digits vary by CPU
+    q = np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.5]) + np.linspace(0, 0.5, 50)[:, None]
+    text = str(tracking_report(UR5, urkin.fk(UR5, q), q))
+    assert "position error max / rms           below 1e-12 / below 1e-12 m" in text
+    assert re.search(r"\de-1[3-9]", text) is None
+    # a real error keeps its digits
+    poses = urkin.fk(UR5, q)
+    poses[:, 0, 3] += 2.5e-4
+    assert "2.50e-04 / 2.50e-04 m" in str(tracking_report(UR5, poses, q))

@@ -229,8 +229,13 @@ class TrackingReport:
         return tracking_report_figure(self, title=title, figsize=figsize)
 
 
+def _size(value: float) -> str:
+    """A measured error, as a bound once it is round-off (its digits differ between CPUs)."""
+    return "below 1e-12" if value < 1e-12 else f"{value:.2e}"
+
+
 def _pair(values: tuple[float, float], unit: str) -> str:
-    return f"{values[0]:.2e} / {values[1]:.2e} {unit}"
+    return f"{_size(values[0])} / {_size(values[1])} {unit}"
 
 
 def _joints(joints: np.ndarray) -> str:

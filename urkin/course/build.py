@@ -164,6 +164,25 @@ def normalise_solution(notebook: dict, lesson: str) -> dict:
     return out
 
 
+_EMBEDDED = re.compile(r"base64,[A-Za-z0-9+/=]+")
+
+
+def _drop_embedded_pictures(notebook: dict) -> None:
+    """Replace the pictures embedded in HTML outputs (an animation's frames) by ``DATA``.
+
+    The stored solution notebooks exist for nbval, which compares HTML outputs only after
+    the same substitution (``tests/nbval_sanitize.cfg``); the frames would make lesson 08's
+    notebook 6 MB in every commit.  Image outputs (figures, keyframe strips) stay; re-running
+    a cell brings its animation back.
+    """
+    for cell in notebook["cells"]:
+        for output in cell.get("outputs", []):
+            html = output.get("data", {}).get("text/html")
+            if html is not None:
+                text = "".join(html) if isinstance(html, list) else html
+                output["data"]["text/html"] = _EMBEDDED.sub("base64,DATA", text)
+
+
 def _dumps(notebook: dict) -> str:
     return json.dumps(notebook, indent=1, sort_keys=True, ensure_ascii=False) + "\n"
 
@@ -508,6 +527,7 @@ def execute(root: Path, names: list[str] | None = None, timeout: int = 120) -> l
         client.execute()
         target = pair.with_suffix(".ipynb")
         data = normalise_solution(json.loads(nbformat.writes(notebook)), _lesson_number(pair))
+        _drop_embedded_pictures(data)
         target.write_text(_dumps(data), encoding="utf-8")
         done.append(target)
     return done
