@@ -44,10 +44,13 @@ def _c_function(name: str, function) -> str:
     """A C loop over N configurations of a generated ``*_one`` function's expressions."""
     lines = inspect.getsource(function).splitlines()
     body, entries = [], []
-    for line in lines[2:]:
+    body_start = next(i for i, line in enumerate(lines) if line.rstrip().endswith('"""')) + 1
+    for line in lines[body_start:]:
         text = line.strip()
-        if text.startswith(("out = ", "if out is None")) or text == "return out":
+        if text.startswith(("out = ", "if out is", "return (")) or text == "return out":
             continue
+        if text.endswith((" = q", " = lengths")):
+            continue  # the C loop reads the angles and lengths itself
         match = re.match(r"_pack\d+\(out, at, (.*)\)$", text)
         if match:
             entries = _split(match.group(1))

@@ -51,7 +51,7 @@ _ROUTES = {
     ),
     "route_generated": _fk(
         "    from urkin._generated import ur_kinematics as g\n"
-        "    return g.t06_one(*q, *robot.lengths)\n"
+        "    return g.t06_one(list(q), robot.lengths)\n"
     ),
     "route_symbolic": _fk(
         "    f = sp.lambdify((Q, LENGTHS), urkin.symbolic.ur_t06(), 'numpy')\n"

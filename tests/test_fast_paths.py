@@ -129,7 +129,7 @@ def test_the_float_rotation_log_matches_the_stacked_one_near_a_half_turn():
     R = so3_exp(axis * angle[:, None])
     _, theta, omega = rotation_parts(R)
     for i in range(len(R)):
-        _, t, w = _rotation_parts_one(R[i].tolist())
+        _, t, w = _rotation_parts_one(*R[i].ravel().tolist())
         assert abs(t - theta[i]) < 1e-15
         np.testing.assert_allclose(w, omega[i], rtol=0, atol=1e-12)
 

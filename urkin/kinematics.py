@@ -133,23 +133,30 @@ _FLOAT = np.dtype(float)
 
 
 def _six(q: ArrayLike) -> list[float] | None:
-    """The scalar fast path's test: the six floats of ``q`` when it is one configuration, as
-    a float array, finite and within ±:data:`MAX_JOINT_ANGLE`; else None (and the general
-    path checks ``q`` and explains what is wrong)."""
-    if type(q) is np.ndarray and q.shape == (6,) and q.dtype is _FLOAT:
-        values = q.tolist()
-        if _in_range(values):
+    """The scalar fast path's test: the six floats of ``q`` when it is one configuration, of
+    shape (6,) or a stack of one (1, 6), as a float array, finite and within
+    ±:data:`MAX_JOINT_ANGLE`; else None (and the general path checks ``q`` and explains what is
+    wrong).
+
+    One sum of squares decides (NaN and inf fail it; an overflow gives inf): it is below
+    ``MAX_JOINT_ANGLE²`` only when every angle is in range, and the rare configuration with
+    every angle in range but a larger sum takes the general path, which checks each angle."""
+    if type(q) is np.ndarray and q.dtype is _FLOAT:
+        shape = q.shape
+        if shape == _SIX:
+            values = q.tolist()
+        elif shape == _ONE_ROW:
+            (values,) = q.tolist()
+        else:
+            return None
+        a, b, c, d, e, f = values
+        if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
             return values
     return None
 
 
-def _one_row(q: ArrayLike) -> list[float] | None:
-    """:func:`_six` for a stack of one configuration, shape (1, 6)."""
-    if type(q) is np.ndarray and q.shape == (1, 6) and q.dtype is _FLOAT:
-        (values,) = q.tolist()
-        if _in_range(values):
-            return values
-    return None
+_SIX, _ONE_ROW = (6,), (1, 6)
+_MAX_SQUARED = MAX_JOINT_ANGLE**2
 
 
 def _few(q: ArrayLike) -> list[list[float]] | None:
@@ -181,16 +188,13 @@ def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> 
     """A generated function at ``q``: the scalar code for one real configuration, the column
     code for a stack (and for complex angles), with the leading axes kept."""
     values = _six(q)
-    if values is not None:
-        return one(*values, *robot.lengths)
-    values = _one_row(q)
     if values is not None:  # a stack of one pose costs what one pose does
-        return one(*values, *robot.lengths)[None]
+        return one(values, robot.lengths, None if q.ndim == 1 else np.empty((1, *shape)))
     rows = _few(q)
     if rows is None:
         array, lead, values = _joints(q, complex_ok=True)
         if values is not None:
-            return one(*values, *robot.lengths)
+            return one(values, robot.lengths)
         if len(array) > _FEW or array.dtype.kind != "f":
             return unstack(_many(many, array, robot, shape), lead)
         rows = array.tolist()
@@ -202,7 +206,7 @@ def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> 
     out = np.empty((len(rows), *shape))
     size = 8 * math.prod(shape)
     for i, row in enumerate(rows):
-        one(*row, *lengths, out, i * size)
+        one(row, lengths, out, i * size)
     return out if len(lead) == 1 else unstack(out, lead)
 
 
@@ -235,6 +239,10 @@ def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> fk(ur5, np.zeros((10, 6))).shape
     (10, 4, 4)
     """
+    values = _six(q)
+    if values is not None and type(robot) is Robot and robot._plain:  # one pose: no detour
+        out = None if q.ndim == 1 else np.empty((1, 4, 4))  # a stack of one
+        return _gen.t06_one(values, robot.lengths, out)
     robot = check_robot(robot)
     T = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))
     if robot._plain:
@@ -326,6 +334,10 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> J[3:, 0]  # joint 1 turns about the base z axis
     array([0., 0., 1.])
     """
+    values = _six(q)
+    if values is not None and type(robot) is Robot and robot._plain:  # one pose: no detour
+        out = None if q.ndim == 1 else np.empty((1, 6, 6))  # a stack of one
+        return _gen.jacobian_one(values, robot.lengths, out)
     robot = check_robot(robot)
     J = _evaluate(robot, q, _gen.jacobian_one, _gen.jacobian_many, (6, 6))
     if robot._plain:
@@ -355,6 +367,10 @@ def position_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> position_jacobian(urkin.robot("ur5"), np.zeros((4, 6))).shape
     (4, 3, 6)
     """
+    values = _six(q)
+    if values is not None and type(robot) is Robot and robot._plain:  # one pose: no detour
+        out = None if q.ndim == 1 else np.empty((1, 3, 6))  # a stack of one
+        return _gen.position_jacobian_one(values, robot.lengths, out)
     robot = check_robot(robot)
     if not robot._plain:
         return jacobian(robot, q)[..., :3, :]

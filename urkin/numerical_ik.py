@@ -170,54 +170,71 @@ class _Problem:
         return T, np.concatenate([e_p, e_o], axis=-1), position_error, theta
 
     def evaluate_one(self, q: np.ndarray):
-        """:meth:`evaluate` for one configuration (6,) against the only target: ``T`` (4, 4),
-        ``e`` (m,) and the two errors as floats."""
-        T = (
-            _gen.t06_one(*q.tolist(), *self.robot.lengths)
-            if self.robot._plain
-            else fk(self.robot, q)
-        )
-        (a, b, c, x), (d, e, f, y), (g, h, i, z), _ = T.tolist()
+        """:meth:`evaluate` for one configuration (6,) against the only target, with its
+        Jacobian: the pose as a tuple of its 16 entries (row by row), ``e`` (m,), the two
+        errors as floats and ``J`` (m, 6).  The plain kinematics give the pose and the
+        Jacobian from one generated function (they share every cosine and sine)."""
+        robot = self.robot
+        if robot._plain:
+            J = np.empty((6, 6))
+            pose = _gen.pose_jacobian_one(q.tolist(), robot.lengths, J)
+        else:
+            pose = tuple(fk(robot, q).ravel().tolist())
+            J = jacobian(robot, q)
+        a, b, c, x, d, e, f, y, g, h, i, z, *_ = pose
         tx, ty, tz = self.target_one[0]
         x, y, z = tx - x, ty - y, tz - z
         position_error = math.sqrt(x * x + y * y + z * z)
         if self.R is None:
-            return T, np.array((x, y, z)), position_error, 0.0
+            return pose, np.array((x, y, z)), position_error, 0.0, J[:3]
         (t0, t1, t2), (t3, t4, t5), (t6, t7, t8) = self.target_one[1]
-        R_error = (  # R_target R_currentᵀ
-            (t0 * a + t1 * b + t2 * c, t0 * d + t1 * e + t2 * f, t0 * g + t1 * h + t2 * i),
-            (t3 * a + t4 * b + t5 * c, t3 * d + t4 * e + t5 * f, t3 * g + t4 * h + t5 * i),
-            (t6 * a + t7 * b + t8 * c, t6 * d + t7 * e + t8 * f, t6 * g + t7 * h + t8 * i),
+        sin_axis, theta, omega = _rotation_parts_one(  # of R_target R_currentᵀ
+            t0 * a + t1 * b + t2 * c,
+            t0 * d + t1 * e + t2 * f,
+            t0 * g + t1 * h + t2 * i,
+            t3 * a + t4 * b + t5 * c,
+            t3 * d + t4 * e + t5 * f,
+            t3 * g + t4 * h + t5 * i,
+            t6 * a + t7 * b + t8 * c,
+            t6 * d + t7 * e + t8 * f,
+            t6 * g + t7 * h + t8 * i,
         )
-        sin_axis, theta, omega = _rotation_parts_one(R_error)
-        e_o = omega if self.form == "log" else sin_axis
-        return T, np.array((x, y, z, *e_o)), position_error, theta
+        u, v, w = omega if self.form == "log" else sin_axis
+        return pose, np.array((x, y, z, u, v, w)), position_error, theta, J
 
     def jacobians(self, Q: np.ndarray) -> np.ndarray:
         J = jacobian(self.robot, Q)
         return J if self.R is not None else J[..., :3, :]
 
-    def jacobian_one(self, q: np.ndarray) -> np.ndarray:
-        J = (
-            _gen.jacobian_one(*q.tolist(), *self.robot.lengths)
-            if self.robot._plain
-            else jacobian(self.robot, q)
-        )
-        return J if self.R is not None else J[:3]
-
     def wrap(self, q: np.ndarray) -> np.ndarray:
-        if q.ndim == 1 and self.wide_limits:
+        if q.ndim == 1 and self.wide_limits:  # one configuration: Python floats
             values = q.tolist()
             if -math.pi < min(values) and max(values) <= math.pi:
-                return q  # one configuration, already wrapped: the common case
+                return q  # already wrapped: the common case
+            return np.array([_wrap_float(x) for x in values])
         wrapped = wrap_angles(q, check=False)
         return wrapped if self.wide_limits else np.clip(wrapped, self.lower, self.upper)
 
 
-def _rotation_parts_one(R: list[list[float]]) -> tuple[list[float], float, list[float]]:
-    """:func:`urkin.transforms.rotation_parts` of one rotation, with Python floats (the hot path
-    of a single solve)."""
-    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = R
+def _wrap_float(x: float) -> float:
+    """:func:`urkin.transforms.wrap_angles` of one float, with the same operations (so the
+    single and the stacked paths wrap to the same bits)."""
+    return x - math.ceil((x - math.pi) / (2.0 * math.pi)) * (2.0 * math.pi)
+
+
+def _rotation_parts_one(
+    r00: float,
+    r01: float,
+    r02: float,
+    r10: float,
+    r11: float,
+    r12: float,
+    r20: float,
+    r21: float,
+    r22: float,
+) -> tuple[list[float], float, list[float]]:
+    """:func:`urkin.transforms.rotation_parts` of one rotation given as its nine entries (row
+    by row), with Python floats (the hot path of a single solve)."""
     s = [0.5 * (r21 - r12), 0.5 * (r02 - r20), 0.5 * (r10 - r01)]
     sin_theta = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
     cos_theta = 0.5 * (r00 + r11 + r22 - 1.0)
@@ -258,14 +275,19 @@ class StepRule:
     patience : int
         An attempt restarts when its error has not fallen below 99 % of its best for this many
         iterations.
+    uses_pose : bool
+        Whether :meth:`step` reads ``T``; the single-target path, which works on Python floats,
+        builds the (4, 4) array only for rules that do, and passes None to the others.
     """
 
     name = ""
     max_step = 1.0
     patience = 6
+    uses_pose = False
 
     def start(self, n: int) -> None:
-        """Per-target state for a stack of ``n`` targets (none by default)."""
+        """Per-target state for a stack of ``n`` targets (none by default); ``start(1)`` also
+        begins an attempt on the single-target path."""
 
     def restart(self, rows: np.ndarray) -> None:
         """A new attempt begins for these targets (nothing to reset by default)."""
@@ -286,6 +308,10 @@ class StepRule:
         return np.ones(np.shape(rows), dtype=bool)
 
     def given_up(self, rows: np.ndarray) -> np.ndarray | bool:
+        return False
+
+    def given_up_one(self) -> bool:
+        """:meth:`given_up` on the single-target path (after :meth:`start` ``(1)``)."""
         return False
 
     def stall_reason(self) -> str:
@@ -370,23 +396,29 @@ class LevenbergMarquardt(StepRule):
     def start(self, n):
         self.mu = np.full(n, np.nan)  # NaN: not yet set for this attempt
         self.nu = np.full(n, 2.0)
+        self.mu_one, self.nu_one = math.nan, 2.0  # the same, as floats, for one target
 
     def restart(self, rows):
         self.mu[rows], self.nu[rows] = np.nan, 2.0
 
     def for_row(self, row):
         one = copy.copy(self)
-        one.mu, one.nu = self.mu[row : row + 1].copy(), self.nu[row : row + 1].copy()
+        one.start(1)
+        one.mu_one, one.nu_one = float(self.mu[row]), float(self.nu[row])
         return one
 
     def step(self, problem, rows, T, J, e):
         if J.ndim == 2:  # one target (rows is its index): the same step, fewer numpy calls
-            A = J.T @ J
-            mu = self.mu[rows]
+            Jt = J.T
+            A = Jt.dot(J)  # ndarray.dot: half the overhead of the @ operator on 6×6
+            mu = self.mu_one
             if mu != mu:  # NaN: a new attempt
-                mu = self.mu[rows] = _TAU * A.diagonal().max()
-            A.flat[:: A.shape[0] + 1] += mu
-            return _solve_positive_definite(A, e @ J) if mu > 0 else np.linalg.solve(A, e @ J)
+                mu = self.mu_one = _TAU * max(A.diagonal().tolist())
+            A.ravel()[:: A.shape[0] + 1] += mu
+            g = Jt.dot(e)
+            dq = _solve_positive_definite(A, g) if mu > 0 else np.linalg.solve(A, g)
+            self.last_step = (dq, g, mu)  # for accept's predicted reduction
+            return dq
         Jt = np.swapaxes(J, -1, -2)
         A = Jt @ J
         g = (Jt @ e[..., None])[..., 0]
@@ -401,17 +433,20 @@ class LevenbergMarquardt(StepRule):
     def accept(self, rows, e, e_trial, J, dq):
         # gain ratio: actual reduction of |e|² over the reduction the linear model predicts
         if J.ndim == 2:  # one target, in floats
-            Jdq = J @ dq
-            predicted = float(Jdq @ (2.0 * e - Jdq))
-            rho = float(e @ e - e_trial @ e_trial) / predicted if predicted > 0 else -1.0
-            mu, nu = float(self.mu[rows]), float(self.nu[rows])
-            if rho > 0:
-                self.mu[rows], self.nu[rows] = (
-                    mu * max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3),
-                    2.0,
-                )
+            step, g, mu = self.last_step
+            if dq is step:  # not shortened: (JᵀJ + μI) Δq = g gives |JΔq|² = Δq·g − μ|Δq|²
+                predicted = float(dq.dot(g)) + mu * float(dq.dot(dq))
             else:
-                self.mu[rows], self.nu[rows] = mu * nu, 2.0 * nu
+                Jdq = J.dot(dq)
+                predicted = float(Jdq.dot(e + e - Jdq))
+            actual = float(e.dot(e)) - float(e_trial.dot(e_trial))
+            rho = actual / predicted if predicted > 0 else -1.0
+            if rho > 0:
+                self.mu_one *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
+                self.nu_one = 2.0
+            else:
+                self.mu_one *= self.nu_one
+                self.nu_one *= 2.0
             return rho > 0
         Jdq = (J @ dq[..., None])[..., 0]
         predicted = np.sum(Jdq * (2.0 * e - Jdq), axis=-1)
@@ -427,6 +462,9 @@ class LevenbergMarquardt(StepRule):
     def given_up(self, rows):
         return self.mu[rows] >= _MU_GIVE_UP
 
+    def given_up_one(self):
+        return self.mu_one >= _MU_GIVE_UP
+
 
 class MatrixLog(StepRule):
     """Modern Robotics' ``IKinSpace``: ``Δq = J_s⁺ V_s``, ``V_s = log(T_target T⁻¹)``.
@@ -435,6 +473,7 @@ class MatrixLog(StepRule):
     exact iteration (the default keeps the 1 rad limit of the other rules)."""
 
     name = "poe"
+    uses_pose = True
 
     def step(self, problem, rows, T, J, e):
         p, R = T[..., :3, 3], T[..., :3, :3]
@@ -505,35 +544,43 @@ def _iterate_one(
         attempt, since_progress, attempt_best = 0, 0, math.inf
     else:
         attempt, since_progress, attempt_best = attempt_state
-    T, e, pos, rot = problem.evaluate_one(q)
+    tol_position, tol_orientation = problem.tol_position, problem.tol_orientation
+    patience, limit_steps, uses_pose = rule.patience, max_step != math.inf, rule.uses_pose
+    wide_limits = problem.wide_limits
+    pose, e, pos, rot, J = problem.evaluate_one(q)
     while True:
-        residual = max(pos, rot)
+        residual = pos if pos > rot else rot
         if residual < best:
             best, best_q = residual, q
-        since_progress = 0 if residual < _PROGRESS * attempt_best else since_progress + 1
-        attempt_best = min(attempt_best, residual)
-        if pos <= problem.tol_position and rot <= problem.tol_orientation:
-            return best_q, True, iterations, restarts, best
-        if _stalled(attempt, since_progress, rule.given_up(0), rule.patience, max_iterations):
+        if residual < _PROGRESS * attempt_best:
+            since_progress = 0
+        else:
+            since_progress += 1
+        if residual < attempt_best:
+            attempt_best = residual
+        if pos <= tol_position and rot <= tol_orientation:
+            return problem.wrap(best_q), True, iterations, restarts, best
+        if attempt >= max_iterations or since_progress >= patience or rule.given_up_one():
             if restarts >= max_restarts:
-                return best_q, False, iterations, restarts, best
+                return problem.wrap(best_q), False, iterations, restarts, best
             restarts += 1
             attempt, since_progress, attempt_best = 0, 0, math.inf
-            rule.restart(0)
+            rule.start(1)
             rng = np.random.default_rng(seed) if rng is None else rng
             q = random_configurations(problem.robot, (), rng)
-            T, e, pos, rot = problem.evaluate_one(q)
+            pose, e, pos, rot, J = problem.evaluate_one(q)
             continue
-        J = problem.jacobian_one(q)
-        dq = rule.step(problem, 0, T, J, e)
-        if max_step != math.inf:
+        dq = rule.step(problem, 0, np.reshape(pose, (4, 4)) if uses_pose else None, J, e)
+        if limit_steps:
             largest = max(map(abs, dq.tolist()))
             if largest > max_step:
                 dq = dq * (max_step / largest)
-        trial = problem.wrap(q + dq)
-        T_trial, e_trial, pos_trial, rot_trial = problem.evaluate_one(trial)
+        # angles may leave (−π, π] while iterating when every angle is allowed (the one-pose
+        # kinematics take any angle); the configuration returned is wrapped
+        trial = q + dq if wide_limits else problem.wrap(q + dq)
+        pose_trial, e_trial, pos_trial, rot_trial, J_trial = problem.evaluate_one(trial)
         if rule.accept(0, e, e_trial, J, dq):
-            q, T, e, pos, rot = trial, T_trial, e_trial, pos_trial, rot_trial
+            q, pose, e, pos, rot, J = trial, pose_trial, e_trial, pos_trial, rot_trial, J_trial
         iterations += 1
         attempt += 1
 
@@ -746,7 +793,10 @@ def ik(
                 f"q0 holds {math.prod(guess_lead)} configurations for {n} targets: give one "
                 f"guess, or one per target (shape {(*lead, 6)}); got shape {(*guess_lead, 6)}"
             )
-        Q0 = np.broadcast_to(guess, (n, 6)).copy() if guess_lead == () else guess.copy()
+        if guess_lead != ():
+            Q0 = guess.copy()
+        else:
+            Q0 = guess.reshape(1, 6).copy() if n == 1 else np.broadcast_to(guess, (n, 6)).copy()
     if 1 < n <= _HAND_OFF:  # a few targets: each solved as if alone, on the single path
         alone = {
             "method": rule,
@@ -794,7 +844,11 @@ def ik(
         iterations, restarts = np.array([single[2]]), np.array([single[3]])
     else:
         q, found, iterations, restarts = _iterate(problem, rule, Q0, ~bad, **settings)
-    for i in np.flatnonzero(~bad & (skew_angle > tol_orientation)):
+    if n == 1:
+        skewed = [0] if not bad[0] and skew_angle[0] > tol_orientation else []
+    else:
+        skewed = np.flatnonzero(~bad & (skew_angle > tol_orientation))
+    for i in skewed:
         reasons[i] = (
             f"the target's rotation is {skew_angle[i]:.2e} rad from the nearest rotation matrix, "
             f"more than tol_orientation = {tol_orientation:g}: no configuration can match it "

@@ -114,6 +114,13 @@ class Robot:
     source: str = field(default=_UR_DH_SOURCE, repr=False)
     notes: str = field(default="", repr=False)
     _plain: bool = field(init=False, repr=False, default=True)
+    #: The six DH lengths ``(d1, a2, a3, d4, d5, d6)`` in metres, as floats.
+    lengths: tuple[float, float, float, float, float, float] = field(
+        init=False,
+        repr=False,
+        compare=False,
+        default=(),  # type: ignore[assignment]
+    )
 
     def __post_init__(self) -> None:
         lengths = (self.d1, self.a2, self.a3, self.d4, self.d5, self.d6)
@@ -131,11 +138,7 @@ class Robot:
         object.__setattr__(self, "tool", _frozen(self.tool))
         plain = np.array_equal(self.base, np.eye(4)) and np.array_equal(self.tool, np.eye(4))
         object.__setattr__(self, "_plain", bool(plain))
-
-    @property
-    def lengths(self) -> tuple[float, float, float, float, float, float]:
-        """The six DH lengths ``(d1, a2, a3, d4, d5, d6)`` in metres."""
-        return (self.d1, self.a2, self.a3, self.d4, self.d5, self.d6)
+        object.__setattr__(self, "lengths", tuple(float(x) for x in lengths))
 
     @property
     def d(self) -> np.ndarray:

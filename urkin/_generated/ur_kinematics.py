@@ -39,8 +39,12 @@ def _cos_sin(angles, c, s):
     np.subtract(c, 1.0, out=c)
 
 
-def t06_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6, out=None, at=0):
-    """Flange pose T_0_6 (one pose; written into ``out`` from byte ``at`` if given)."""
+def t06_one(q, lengths, out=None, at=0):
+    """Flange pose T_0_6 (one pose: ``q`` six floats, ``lengths`` the six link lengths; written
+    into ``out`` from byte ``at`` if given; ``out=tuple``: the entries as a tuple of
+    floats, row by row, for loops on Python floats)."""
+    q1, q2, q3, q4, q5, q6 = q
+    d1, a2, a3, d4, d5, d6 = lengths
     q23 = q2 + q3
     q234 = q23 + q4
     c1 = cos(q1)
@@ -56,22 +60,22 @@ def t06_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6, out=None, at=0):
     c234 = cos(q234)
     s234 = sin(q234)
     x0 = s1*s5
-    x1 = c1*s234
-    x2 = c1*c5
-    x3 = c234*c6
-    x4 = c234*s6
-    x5 = c1*s5
-    x6 = c234*x5
-    x7 = a2*c2
-    x8 = a3*c23
-    x9 = c5*s1
-    x10 = s1*s234
-    x11 = c234*x0
-    x12 = c5*s234
-    x13 = s234*s5
+    x1 = s234*s6
+    x2 = c234*c6
+    x3 = c5*x2 - x1
+    x4 = c6*s234
+    x5 = c234*s6
+    x6 = c5*x5 + x4
+    x7 = c234*s5
+    x8 = c5*d6 + d4
+    x9 = a2*c2 + a3*c23 + d5*s234 - d6*x7
+    x10 = c1*s5
+    x11 = s234*s5
+    if out is tuple:
+        return (c1*x3 + c6*x0, -c1*x6 - s6*x0, -c1*x7 + c5*s1, c1*x9 + s1*x8, -c6*x10 + s1*x3, -s1*x6 + s6*x10, -c1*c5 - c234*x0, -c1*x8 + s1*x9, c5*x4 + x5, -c5*x1 + x2, -x11, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x11, 0.0, 0.0, 0.0, 1.0)
     if out is None:
         out = np.empty((4, 4))
-    _pack16(out, at, c6*x0 - s6*x1 + x2*x3, -c6*x1 - s6*x0 - x2*x4, c5*s1 - x6, c1*x7 + c1*x8 + d4*s1 + d5*x1 - d6*x6 + d6*x9, c234*c5*c6*s1 - c6*x5 - s6*x10, c1*s5*s6 - c6*x10 - x4*x9, -x11 - x2, -c1*d4 + d5*x10 - d6*x11 - d6*x2 + s1*x7 + s1*x8, c6*x12 + x4, -s6*x12 + x3, -x13, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x13, 0, 0, 0, 1)
+    _pack16(out, at, c1*x3 + c6*x0, -c1*x6 - s6*x0, -c1*x7 + c5*s1, c1*x9 + s1*x8, -c6*x10 + s1*x3, -s1*x6 + s6*x10, -c1*c5 - c234*x0, -c1*x8 + s1*x9, c5*x4 + x5, -c5*x1 + x2, -x11, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x11, 0.0, 0.0, 0.0, 1.0)
     return out
 
 
@@ -81,7 +85,7 @@ def t06_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
     n = q.shape[0]
     if out is None:
         out = np.empty((n, 4, 4), dtype=q.dtype)
-    w = np.empty((49, n), dtype=q.dtype) if work is None else work[:, :n]
+    w = np.empty((47, n), dtype=q.dtype) if work is None else work[:, :n]
     q1 = w[0]
     np.copyto(q1, q[:, 0])
     q2 = w[1]
@@ -110,119 +114,103 @@ def t06_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
     x0 = w[18]
     np.multiply(s1, s5, out=x0)
     x1 = w[19]
-    np.multiply(c1, s234, out=x1)
+    np.multiply(s234, s6, out=x1)
     x2 = w[20]
-    np.multiply(c1, c5, out=x2)
+    np.multiply(c234, c6, out=x2)
     x3 = w[21]
-    np.multiply(c234, c6, out=x3)
+    np.multiply(x2, c5, out=x3)
+    np.subtract(x3, x1, out=x3)
     x4 = w[22]
-    np.multiply(c234, s6, out=x4)
+    np.multiply(c6, s234, out=x4)
     x5 = w[23]
-    np.multiply(c1, s5, out=x5)
+    np.multiply(c234, s6, out=x5)
     x6 = w[24]
-    np.multiply(x5, c234, out=x6)
-    x7 = w[25]
-    np.multiply(c2, a2, out=x7)
-    x8 = w[26]
-    np.multiply(c23, a3, out=x8)
-    x9 = w[27]
-    np.multiply(c5, s1, out=x9)
-    x10 = w[28]
-    np.multiply(s1, s234, out=x10)
-    x11 = w[29]
-    np.multiply(x0, c234, out=x11)
-    x12 = w[30]
-    np.multiply(c5, s234, out=x12)
-    x13 = w[31]
-    np.multiply(s234, s5, out=x13)
-    e0 = w[32]
+    w25 = w[25]
+    np.multiply(x5, c5, out=w25)
+    np.add(x4, w25, out=x6)
+    x7 = w[26]
+    np.multiply(c234, s5, out=x7)
+    x8 = w[27]
+    np.multiply(c5, d6, out=x8)
+    np.add(x8, d4, out=x8)
+    x9 = w[28]
+    np.multiply(c2, a2, out=x9)
+    np.multiply(c23, a3, out=w25)
+    np.add(x9, w25, out=x9)
+    np.multiply(s234, d5, out=w25)
+    np.add(x9, w25, out=x9)
+    np.multiply(x7, d6, out=w25)
+    np.subtract(x9, w25, out=x9)
+    x10 = w[29]
+    np.multiply(c1, s5, out=x10)
+    x11 = w[30]
+    np.multiply(s234, s5, out=x11)
+    e0 = w[31]
     np.multiply(x0, c6, out=e0)
-    w48 = w[48]
-    np.multiply(x2, x3, out=w48)
-    np.add(e0, w48, out=e0)
-    np.multiply(x1, s6, out=w48)
-    np.subtract(e0, w48, out=e0)
-    e1 = w[33]
+    np.multiply(x3, c1, out=w25)
+    np.add(e0, w25, out=e0)
+    e1 = w[32]
     np.multiply(x0, s6, out=e1)
     np.negative(e1, out=e1)
-    np.multiply(x1, c6, out=w48)
-    np.subtract(e1, w48, out=e1)
-    np.multiply(x2, x4, out=w48)
-    np.subtract(e1, w48, out=e1)
-    e2 = w[34]
+    np.multiply(x6, c1, out=w25)
+    np.subtract(e1, w25, out=e1)
+    e2 = w[33]
     np.multiply(c5, s1, out=e2)
-    np.subtract(e2, x6, out=e2)
-    e3 = w[35]
-    np.multiply(x1, d5, out=e3)
-    np.multiply(x7, c1, out=w48)
-    np.add(e3, w48, out=e3)
-    np.multiply(x8, c1, out=w48)
-    np.add(e3, w48, out=e3)
-    np.multiply(x9, d6, out=w48)
-    np.add(e3, w48, out=e3)
-    np.multiply(s1, d4, out=w48)
-    np.add(e3, w48, out=e3)
-    np.multiply(x6, d6, out=w48)
-    np.subtract(e3, w48, out=e3)
-    e4 = w[36]
-    np.multiply(c234, c5, out=e4)
-    np.multiply(e4, c6, out=e4)
-    np.multiply(e4, s1, out=e4)
-    np.multiply(x10, s6, out=w48)
-    np.subtract(e4, w48, out=e4)
-    np.multiply(x5, c6, out=w48)
-    np.subtract(e4, w48, out=e4)
-    e5 = w[37]
-    np.multiply(c1, s5, out=e5)
-    np.multiply(e5, s6, out=e5)
-    np.multiply(x10, c6, out=w48)
-    np.subtract(e5, w48, out=e5)
-    np.multiply(x4, x9, out=w48)
-    np.subtract(e5, w48, out=e5)
-    e6 = w[38]
-    np.copyto(e6, x11)
+    np.multiply(x7, c1, out=w25)
+    np.subtract(e2, w25, out=e2)
+    e3 = w[34]
+    np.multiply(x8, s1, out=e3)
+    np.multiply(x9, c1, out=w25)
+    np.add(e3, w25, out=e3)
+    e4 = w[35]
+    np.multiply(x3, s1, out=e4)
+    np.multiply(x10, c6, out=w25)
+    np.subtract(e4, w25, out=e4)
+    e5 = w[36]
+    np.multiply(x10, s6, out=e5)
+    np.multiply(x6, s1, out=w25)
+    np.subtract(e5, w25, out=e5)
+    e6 = w[37]
+    np.multiply(x0, c234, out=e6)
     np.negative(e6, out=e6)
-    np.subtract(e6, x2, out=e6)
-    e7 = w[39]
-    np.multiply(x10, d5, out=e7)
-    np.multiply(x7, s1, out=w48)
-    np.add(e7, w48, out=e7)
-    np.multiply(x8, s1, out=w48)
-    np.add(e7, w48, out=e7)
-    np.multiply(x11, d6, out=w48)
-    np.subtract(e7, w48, out=e7)
-    np.multiply(x2, d6, out=w48)
-    np.subtract(e7, w48, out=e7)
-    np.multiply(c1, d4, out=w48)
-    np.subtract(e7, w48, out=e7)
-    e8 = w[40]
-    np.multiply(x12, c6, out=w48)
-    np.add(x4, w48, out=e8)
-    e9 = w[41]
-    np.multiply(x12, s6, out=w48)
-    np.subtract(x3, w48, out=e9)
-    e10 = w[42]
-    np.negative(x13, out=e10)
-    e11 = w[43]
+    np.multiply(c1, c5, out=w25)
+    np.subtract(e6, w25, out=e6)
+    e7 = w[38]
+    np.multiply(x9, s1, out=e7)
+    np.multiply(x8, c1, out=w25)
+    np.subtract(e7, w25, out=e7)
+    e8 = w[39]
+    np.multiply(x4, c5, out=w25)
+    np.add(x5, w25, out=e8)
+    e9 = w[40]
+    np.multiply(x1, c5, out=w25)
+    np.subtract(x2, w25, out=e9)
+    e10 = w[41]
+    np.negative(x11, out=e10)
+    e11 = w[42]
     np.multiply(s2, a2, out=e11)
-    np.multiply(s23, a3, out=w48)
-    np.add(e11, w48, out=e11)
-    np.multiply(x13, d6, out=w48)
-    np.subtract(e11, w48, out=e11)
-    np.multiply(c234, d5, out=w48)
-    np.subtract(e11, w48, out=e11)
+    np.multiply(s23, a3, out=w25)
+    np.add(e11, w25, out=e11)
+    np.multiply(x11, d6, out=w25)
+    np.subtract(e11, w25, out=e11)
+    np.multiply(c234, d5, out=w25)
+    np.subtract(e11, w25, out=e11)
     np.add(e11, d1, out=e11)
-    w[44:47] = 0
-    w[47:48] = 1
-    out.reshape(n, 16)[...] = w[32:48].T
+    w[43:46] = 0
+    w[46:47] = 1
+    out.reshape(n, 16)[...] = w[31:47].T
     return out
 
 
-t06_many.work_rows = 49
+t06_many.work_rows = 47
 
 
-def frames_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6, out=None, at=0):
-    """Frames T_0_i, i = 0 … 6 (one pose; written into ``out`` from byte ``at`` if given)."""
+def frames_one(q, lengths, out=None, at=0):
+    """Frames T_0_i, i = 0 … 6 (one pose: ``q`` six floats, ``lengths`` the six link lengths; written
+    into ``out`` from byte ``at`` if given; ``out=tuple``: the entries as a tuple of
+    floats, row by row, for loops on Python floats)."""
+    q1, q2, q3, q4, q5, q6 = q
+    d1, a2, a3, d4, d5, d6 = lengths
     q23 = q2 + q3
     q234 = q23 + q4
     c1 = cos(q1)
@@ -239,37 +227,37 @@ def frames_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6, out=None, at=0):
     s234 = sin(q234)
     x0 = -c1
     x1 = c1*c2
-    x2 = a2*x1
-    x3 = c2*s1
-    x4 = a2*x3
-    x5 = a2*s2 + d1
-    x6 = c1*c23
-    x7 = a3*c23
-    x8 = a2*c2 + x7
-    x9 = a3*s23 + x5
-    x10 = c1*c234
-    x11 = c1*s234
-    x12 = a3*x6 + d4*s1 + x2
-    x13 = c234*s1
-    x14 = s1*s234
-    x15 = -c1*d4 + s1*x7 + x4
-    x16 = s1*s5
-    x17 = c5*x10
-    x18 = s5*x10
-    x19 = c5*s1 - x18
-    x20 = d5*x11 + x12
-    x21 = c1*s5
-    x22 = c1*c5
-    x23 = s5*x13
-    x24 = -x22 - x23
-    x25 = d5*x14 + x15
-    x26 = c5*s234
-    x27 = s234*s5
-    x28 = -x27
-    x29 = -c234*d5 + x9
+    x2 = c2*s1
+    x3 = a2*s2 + d1
+    x4 = a2*c2 + a3*c23
+    x5 = c1*x4
+    x6 = a3*s23 + x3
+    x7 = c1*c234
+    x8 = c1*s234
+    x9 = d4*s1
+    x10 = c234*s1
+    x11 = s1*s234
+    x12 = c1*d4
+    x13 = s1*s5
+    x14 = c5*s1 - s5*x7
+    x15 = d5*s234 + x4
+    x16 = c1*s5
+    x17 = -c1*c5 - s5*x10
+    x18 = c5*s234
+    x19 = s234*s5
+    x20 = -x19
+    x21 = -c234*d5 + x6
+    x22 = c234*c6
+    x23 = c5*x22 - s234*s6
+    x24 = c234*s6
+    x25 = c5*x24 + c6*s234
+    x26 = c5*d6 + d4
+    x27 = -c234*d6*s5 + x15
+    if out is tuple:
+        return (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, c1, 0.0, s1, 0.0, s1, 0.0, x0, 0.0, 0.0, 1.0, 0.0, d1, 0.0, 0.0, 0.0, 1.0, x1, -c1*s2, s1, a2*x1, x2, -s1*s2, x0, a2*x2, s2, c2, 0.0, x3, 0.0, 0.0, 0.0, 1.0, c1*c23, -c1*s23, s1, x5, c23*s1, -s1*s23, x0, s1*x4, s23, c23, 0.0, x6, 0.0, 0.0, 0.0, 1.0, x7, s1, x8, x5 + x9, x10, x0, x11, s1*x4 - x12, s234, 0.0, -c234, x6, 0.0, 0.0, 0.0, 1.0, c5*x7 + x13, -x8, x14, c1*x15 + x9, c234*c5*s1 - x16, -x11, x17, s1*x15 - x12, x18, c234, x20, x21, 0.0, 0.0, 0.0, 1.0, c1*x23 + c6*x13, -c1*x25 - s6*x13, x14, c1*x27 + s1*x26, -c6*x16 + s1*x23, -s1*x25 + s6*x16, x17, -c1*x26 + s1*x27, c6*x18 + x24, -s6*x18 + x22, x20, -d6*x19 + x21, 0.0, 0.0, 0.0, 1.0)
     if out is None:
         out = np.empty((7, 4, 4))
-    _pack112(out, at, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, c1, 0, s1, 0, s1, 0, x0, 0, 0, 1, 0, d1, 0, 0, 0, 1, x1, -c1*s2, s1, x2, x3, -s1*s2, x0, x4, s2, c2, 0, x5, 0, 0, 0, 1, x6, -c1*s23, s1, c1*x8, c23*s1, -s1*s23, x0, s1*x8, s23, c23, 0, x9, 0, 0, 0, 1, x10, s1, x11, x12, x13, x0, x14, x15, s234, 0, -c234, x9, 0, 0, 0, 1, x16 + x17, -x11, x19, x20, c234*c5*s1 - x21, -x14, x24, x25, x26, c234, x28, x29, 0, 0, 0, 1, c6*x16 + c6*x17 - s6*x11, -c6*x11 - s6*x16 - s6*x17, x19, c5*d6*s1 - d6*x18 + x20, c234*c5*c6*s1 - c6*x21 - s6*x14, c1*s5*s6 - c5*s6*x13 - c6*x14, x24, -d6*x22 - d6*x23 + x25, c234*s6 + c6*x26, c234*c6 - s6*x26, x28, -d6*x27 + x29, 0, 0, 0, 1)
+    _pack112(out, at, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, c1, 0.0, s1, 0.0, s1, 0.0, x0, 0.0, 0.0, 1.0, 0.0, d1, 0.0, 0.0, 0.0, 1.0, x1, -c1*s2, s1, a2*x1, x2, -s1*s2, x0, a2*x2, s2, c2, 0.0, x3, 0.0, 0.0, 0.0, 1.0, c1*c23, -c1*s23, s1, x5, c23*s1, -s1*s23, x0, s1*x4, s23, c23, 0.0, x6, 0.0, 0.0, 0.0, 1.0, x7, s1, x8, x5 + x9, x10, x0, x11, s1*x4 - x12, s234, 0.0, -c234, x6, 0.0, 0.0, 0.0, 1.0, c5*x7 + x13, -x8, x14, c1*x15 + x9, c234*c5*s1 - x16, -x11, x17, s1*x15 - x12, x18, c234, x20, x21, 0.0, 0.0, 0.0, 1.0, c1*x23 + c6*x13, -c1*x25 - s6*x13, x14, c1*x27 + s1*x26, -c6*x16 + s1*x23, -s1*x25 + s6*x16, x17, -c1*x26 + s1*x27, c6*x18 + x24, -s6*x18 + x22, x20, -d6*x19 + x21, 0.0, 0.0, 0.0, 1.0)
     return out
 
 
@@ -279,7 +267,7 @@ def frames_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
     n = q.shape[0]
     if out is None:
         out = np.empty((n, 7, 4, 4), dtype=q.dtype)
-    w = np.empty((161, n), dtype=q.dtype) if work is None else work[:, :n]
+    w = np.empty((159, n), dtype=q.dtype) if work is None else work[:, :n]
     q1 = w[0]
     np.copyto(q1, q[:, 0])
     q2 = w[1]
@@ -310,277 +298,267 @@ def frames_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
     x1 = w[19]
     np.multiply(c1, c2, out=x1)
     x2 = w[20]
-    np.multiply(x1, a2, out=x2)
+    np.multiply(c2, s1, out=x2)
     x3 = w[21]
-    np.multiply(c2, s1, out=x3)
+    np.multiply(s2, a2, out=x3)
+    np.add(x3, d1, out=x3)
     x4 = w[22]
-    np.multiply(x3, a2, out=x4)
-    x5 = w[23]
-    np.multiply(s2, a2, out=x5)
-    np.add(x5, d1, out=x5)
-    x6 = w[24]
-    np.multiply(c1, c23, out=x6)
-    x7 = w[25]
-    np.multiply(c23, a3, out=x7)
-    x8 = w[26]
-    w27 = w[27]
-    np.multiply(c2, a2, out=w27)
-    np.add(x7, w27, out=x8)
+    np.multiply(c2, a2, out=x4)
+    w23 = w[23]
+    np.multiply(c23, a3, out=w23)
+    np.add(x4, w23, out=x4)
+    x5 = w[24]
+    np.multiply(x4, c1, out=x5)
+    x6 = w[25]
+    np.multiply(s23, a3, out=w23)
+    np.add(x3, w23, out=x6)
+    x7 = w[26]
+    np.multiply(c1, c234, out=x7)
+    x8 = w[27]
+    np.multiply(c1, s234, out=x8)
     x9 = w[28]
-    np.multiply(s23, a3, out=w27)
-    np.add(x5, w27, out=x9)
+    np.multiply(s1, d4, out=x9)
     x10 = w[29]
-    np.multiply(c1, c234, out=x10)
+    np.multiply(c234, s1, out=x10)
     x11 = w[30]
-    np.multiply(c1, s234, out=x11)
+    np.multiply(s1, s234, out=x11)
     x12 = w[31]
-    np.multiply(x6, a3, out=w27)
-    np.add(x2, w27, out=x12)
-    np.multiply(s1, d4, out=w27)
-    np.add(x12, w27, out=x12)
+    np.multiply(c1, d4, out=x12)
     x13 = w[32]
-    np.multiply(c234, s1, out=x13)
+    np.multiply(s1, s5, out=x13)
     x14 = w[33]
-    np.multiply(s1, s234, out=x14)
+    np.multiply(c5, s1, out=x14)
+    np.multiply(x7, s5, out=w23)
+    np.subtract(x14, w23, out=x14)
     x15 = w[34]
-    np.multiply(x7, s1, out=w27)
-    np.add(x4, w27, out=x15)
-    np.multiply(c1, d4, out=w27)
-    np.subtract(x15, w27, out=x15)
+    np.multiply(s234, d5, out=w23)
+    np.add(x4, w23, out=x15)
     x16 = w[35]
-    np.multiply(s1, s5, out=x16)
+    np.multiply(c1, s5, out=x16)
     x17 = w[36]
-    np.multiply(x10, c5, out=x17)
+    np.multiply(x10, s5, out=x17)
+    np.negative(x17, out=x17)
+    np.multiply(c1, c5, out=w23)
+    np.subtract(x17, w23, out=x17)
     x18 = w[37]
-    np.multiply(x10, s5, out=x18)
+    np.multiply(c5, s234, out=x18)
     x19 = w[38]
-    np.multiply(c5, s1, out=x19)
-    np.subtract(x19, x18, out=x19)
+    np.multiply(s234, s5, out=x19)
     x20 = w[39]
-    np.multiply(x11, d5, out=w27)
-    np.add(x12, w27, out=x20)
+    np.negative(x19, out=x20)
     x21 = w[40]
-    np.multiply(c1, s5, out=x21)
+    np.multiply(c234, d5, out=w23)
+    np.subtract(x6, w23, out=x21)
     x22 = w[41]
-    np.multiply(c1, c5, out=x22)
+    np.multiply(c234, c6, out=x22)
     x23 = w[42]
-    np.multiply(x13, s5, out=x23)
+    np.multiply(x22, c5, out=x23)
+    np.multiply(s234, s6, out=w23)
+    np.subtract(x23, w23, out=x23)
     x24 = w[43]
-    np.copyto(x24, x22)
-    np.negative(x24, out=x24)
-    np.subtract(x24, x23, out=x24)
+    np.multiply(c234, s6, out=x24)
     x25 = w[44]
-    np.multiply(x14, d5, out=w27)
-    np.add(x15, w27, out=x25)
+    np.multiply(x24, c5, out=x25)
+    np.multiply(c6, s234, out=w23)
+    np.add(x25, w23, out=x25)
     x26 = w[45]
-    np.multiply(c5, s234, out=x26)
+    np.multiply(c5, d6, out=x26)
+    np.add(x26, d4, out=x26)
     x27 = w[46]
-    np.multiply(s234, s5, out=x27)
-    x28 = w[47]
-    np.negative(x27, out=x28)
-    x29 = w[48]
-    np.multiply(c234, d5, out=w27)
-    np.subtract(x9, w27, out=x29)
-    e16 = w[65]
+    np.multiply(c234, s5, out=w23)
+    np.multiply(w23, d6, out=w23)
+    np.subtract(x15, w23, out=x27)
+    e16 = w[63]
     np.copyto(e16, c1)
-    e18 = w[67]
+    e18 = w[65]
     np.copyto(e18, s1)
-    e20 = w[69]
+    e20 = w[67]
     np.copyto(e20, s1)
-    e22 = w[71]
+    e22 = w[69]
     np.copyto(e22, x0)
-    e27 = w[76]
+    e27 = w[74]
     e27[...] = d1
-    e32 = w[81]
+    e32 = w[79]
     np.copyto(e32, x1)
-    e33 = w[82]
+    e33 = w[80]
     np.multiply(c1, s2, out=e33)
     np.negative(e33, out=e33)
-    e34 = w[83]
+    e34 = w[81]
     np.copyto(e34, s1)
-    e35 = w[84]
-    np.copyto(e35, x2)
-    e36 = w[85]
-    np.copyto(e36, x3)
-    e37 = w[86]
+    e35 = w[82]
+    np.multiply(x1, a2, out=e35)
+    e36 = w[83]
+    np.copyto(e36, x2)
+    e37 = w[84]
     np.multiply(s1, s2, out=e37)
     np.negative(e37, out=e37)
-    e38 = w[87]
+    e38 = w[85]
     np.copyto(e38, x0)
-    e39 = w[88]
-    np.copyto(e39, x4)
-    e40 = w[89]
+    e39 = w[86]
+    np.multiply(x2, a2, out=e39)
+    e40 = w[87]
     np.copyto(e40, s2)
-    e41 = w[90]
+    e41 = w[88]
     np.copyto(e41, c2)
-    e43 = w[92]
-    np.copyto(e43, x5)
-    e48 = w[97]
-    np.copyto(e48, x6)
-    e49 = w[98]
+    e43 = w[90]
+    np.copyto(e43, x3)
+    e48 = w[95]
+    np.multiply(c1, c23, out=e48)
+    e49 = w[96]
     np.multiply(c1, s23, out=e49)
     np.negative(e49, out=e49)
-    e50 = w[99]
+    e50 = w[97]
     np.copyto(e50, s1)
-    e51 = w[100]
-    np.multiply(x8, c1, out=e51)
-    e52 = w[101]
+    e51 = w[98]
+    np.copyto(e51, x5)
+    e52 = w[99]
     np.multiply(c23, s1, out=e52)
-    e53 = w[102]
+    e53 = w[100]
     np.multiply(s1, s23, out=e53)
     np.negative(e53, out=e53)
-    e54 = w[103]
+    e54 = w[101]
     np.copyto(e54, x0)
-    e55 = w[104]
-    np.multiply(x8, s1, out=e55)
-    e56 = w[105]
+    e55 = w[102]
+    np.multiply(x4, s1, out=e55)
+    e56 = w[103]
     np.copyto(e56, s23)
-    e57 = w[106]
+    e57 = w[104]
     np.copyto(e57, c23)
-    e59 = w[108]
-    np.copyto(e59, x9)
-    e64 = w[113]
-    np.copyto(e64, x10)
-    e65 = w[114]
+    e59 = w[106]
+    np.copyto(e59, x6)
+    e64 = w[111]
+    np.copyto(e64, x7)
+    e65 = w[112]
     np.copyto(e65, s1)
-    e66 = w[115]
-    np.copyto(e66, x11)
-    e67 = w[116]
-    np.copyto(e67, x12)
-    e68 = w[117]
-    np.copyto(e68, x13)
-    e69 = w[118]
+    e66 = w[113]
+    np.copyto(e66, x8)
+    e67 = w[114]
+    np.add(x5, x9, out=e67)
+    e68 = w[115]
+    np.copyto(e68, x10)
+    e69 = w[116]
     np.copyto(e69, x0)
-    e70 = w[119]
-    np.copyto(e70, x14)
-    e71 = w[120]
-    np.copyto(e71, x15)
-    e72 = w[121]
+    e70 = w[117]
+    np.copyto(e70, x11)
+    e71 = w[118]
+    np.multiply(x4, s1, out=e71)
+    np.subtract(e71, x12, out=e71)
+    e72 = w[119]
     np.copyto(e72, s234)
-    e74 = w[123]
+    e74 = w[121]
     np.negative(c234, out=e74)
-    e75 = w[124]
-    np.copyto(e75, x9)
-    e80 = w[129]
-    np.add(x16, x17, out=e80)
-    e81 = w[130]
-    np.negative(x11, out=e81)
-    e82 = w[131]
-    np.copyto(e82, x19)
-    e83 = w[132]
-    np.copyto(e83, x20)
-    e84 = w[133]
+    e75 = w[122]
+    np.copyto(e75, x6)
+    e80 = w[127]
+    np.multiply(x7, c5, out=w23)
+    np.add(x13, w23, out=e80)
+    e81 = w[128]
+    np.negative(x8, out=e81)
+    e82 = w[129]
+    np.copyto(e82, x14)
+    e83 = w[130]
+    np.multiply(x15, c1, out=w23)
+    np.add(x9, w23, out=e83)
+    e84 = w[131]
     np.multiply(c234, c5, out=e84)
     np.multiply(e84, s1, out=e84)
-    np.subtract(e84, x21, out=e84)
-    e85 = w[134]
-    np.negative(x14, out=e85)
-    e86 = w[135]
-    np.copyto(e86, x24)
-    e87 = w[136]
-    np.copyto(e87, x25)
-    e88 = w[137]
-    np.copyto(e88, x26)
-    e89 = w[138]
+    np.subtract(e84, x16, out=e84)
+    e85 = w[132]
+    np.negative(x11, out=e85)
+    e86 = w[133]
+    np.copyto(e86, x17)
+    e87 = w[134]
+    np.multiply(x15, s1, out=e87)
+    np.subtract(e87, x12, out=e87)
+    e88 = w[135]
+    np.copyto(e88, x18)
+    e89 = w[136]
     np.copyto(e89, c234)
-    e90 = w[139]
-    np.copyto(e90, x28)
-    e91 = w[140]
-    np.copyto(e91, x29)
-    e96 = w[145]
-    np.multiply(x16, c6, out=e96)
-    np.multiply(x17, c6, out=w27)
-    np.add(e96, w27, out=e96)
-    np.multiply(x11, s6, out=w27)
-    np.subtract(e96, w27, out=e96)
-    e97 = w[146]
-    np.multiply(x11, c6, out=e97)
+    e90 = w[137]
+    np.copyto(e90, x20)
+    e91 = w[138]
+    np.copyto(e91, x21)
+    e96 = w[143]
+    np.multiply(x13, c6, out=e96)
+    np.multiply(x23, c1, out=w23)
+    np.add(e96, w23, out=e96)
+    e97 = w[144]
+    np.multiply(x13, s6, out=e97)
     np.negative(e97, out=e97)
-    np.multiply(x16, s6, out=w27)
-    np.subtract(e97, w27, out=e97)
-    np.multiply(x17, s6, out=w27)
-    np.subtract(e97, w27, out=e97)
-    e98 = w[147]
-    np.copyto(e98, x19)
-    e99 = w[148]
-    np.multiply(c5, s1, out=w27)
-    np.multiply(w27, d6, out=w27)
-    np.add(x20, w27, out=e99)
-    np.multiply(x18, d6, out=w27)
-    np.subtract(e99, w27, out=e99)
-    e100 = w[149]
-    np.multiply(c234, c5, out=e100)
-    np.multiply(e100, c6, out=e100)
-    np.multiply(e100, s1, out=e100)
-    np.multiply(x14, s6, out=w27)
-    np.subtract(e100, w27, out=e100)
-    np.multiply(x21, c6, out=w27)
-    np.subtract(e100, w27, out=e100)
-    e101 = w[150]
-    np.multiply(c1, s5, out=e101)
-    np.multiply(e101, s6, out=e101)
-    np.multiply(x14, c6, out=w27)
-    np.subtract(e101, w27, out=e101)
-    np.multiply(x13, c5, out=w27)
-    np.multiply(w27, s6, out=w27)
-    np.subtract(e101, w27, out=e101)
-    e102 = w[151]
-    np.copyto(e102, x24)
-    e103 = w[152]
-    np.multiply(x22, d6, out=w27)
-    np.subtract(x25, w27, out=e103)
-    np.multiply(x23, d6, out=w27)
-    np.subtract(e103, w27, out=e103)
-    e104 = w[153]
-    np.multiply(x26, c6, out=e104)
-    np.multiply(c234, s6, out=w27)
-    np.add(e104, w27, out=e104)
-    e105 = w[154]
-    np.multiply(c234, c6, out=e105)
-    np.multiply(x26, s6, out=w27)
-    np.subtract(e105, w27, out=e105)
-    e106 = w[155]
-    np.copyto(e106, x28)
-    e107 = w[156]
-    np.multiply(x27, d6, out=w27)
-    np.subtract(x29, w27, out=e107)
-    w[49:50] = 1
-    w[50:54] = 0
-    w[54:55] = 1
-    w[55:59] = 0
-    w[59:60] = 1
-    w[60:64] = 0
-    w[64:65] = 1
+    np.multiply(x25, c1, out=w23)
+    np.subtract(e97, w23, out=e97)
+    e98 = w[145]
+    np.copyto(e98, x14)
+    e99 = w[146]
+    np.multiply(x26, s1, out=e99)
+    np.multiply(x27, c1, out=w23)
+    np.add(e99, w23, out=e99)
+    e100 = w[147]
+    np.multiply(x23, s1, out=e100)
+    np.multiply(x16, c6, out=w23)
+    np.subtract(e100, w23, out=e100)
+    e101 = w[148]
+    np.multiply(x16, s6, out=e101)
+    np.multiply(x25, s1, out=w23)
+    np.subtract(e101, w23, out=e101)
+    e102 = w[149]
+    np.copyto(e102, x17)
+    e103 = w[150]
+    np.multiply(x27, s1, out=e103)
+    np.multiply(x26, c1, out=w23)
+    np.subtract(e103, w23, out=e103)
+    e104 = w[151]
+    np.multiply(x18, c6, out=w23)
+    np.add(x24, w23, out=e104)
+    e105 = w[152]
+    np.multiply(x18, s6, out=w23)
+    np.subtract(x22, w23, out=e105)
+    e106 = w[153]
+    np.copyto(e106, x20)
+    e107 = w[154]
+    np.multiply(x19, d6, out=w23)
+    np.subtract(x21, w23, out=e107)
+    w[47:48] = 1
+    w[48:52] = 0
+    w[52:53] = 1
+    w[53:57] = 0
+    w[57:58] = 1
+    w[58:62] = 0
+    w[62:63] = 1
+    w[64:65] = 0
     w[66:67] = 0
     w[68:69] = 0
-    w[70:71] = 0
-    w[72:74] = 0
-    w[74:75] = 1
-    w[75:76] = 0
-    w[77:80] = 0
-    w[80:81] = 1
-    w[91:92] = 0
-    w[93:96] = 0
-    w[96:97] = 1
-    w[107:108] = 0
-    w[109:112] = 0
-    w[112:113] = 1
-    w[122:123] = 0
-    w[125:128] = 0
-    w[128:129] = 1
-    w[141:144] = 0
-    w[144:145] = 1
-    w[157:160] = 0
-    w[160:161] = 1
-    out.reshape(n, 112)[...] = w[49:161].T
+    w[70:72] = 0
+    w[72:73] = 1
+    w[73:74] = 0
+    w[75:78] = 0
+    w[78:79] = 1
+    w[89:90] = 0
+    w[91:94] = 0
+    w[94:95] = 1
+    w[105:106] = 0
+    w[107:110] = 0
+    w[110:111] = 1
+    w[120:121] = 0
+    w[123:126] = 0
+    w[126:127] = 1
+    w[139:142] = 0
+    w[142:143] = 1
+    w[155:158] = 0
+    w[158:159] = 1
+    out.reshape(n, 112)[...] = w[47:159].T
     return out
 
 
-frames_many.work_rows = 161
+frames_many.work_rows = 159
 
 
-def jacobian_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6, out=None, at=0):
-    """Geometric Jacobian [v; ω] of the flange origin (one pose; written into ``out`` from byte ``at`` if given)."""
+def jacobian_one(q, lengths, out=None, at=0):
+    """Geometric Jacobian [v; ω] of the flange origin (one pose: ``q`` six floats, ``lengths`` the six link lengths; written
+    into ``out`` from byte ``at`` if given; ``out=tuple``: the entries as a tuple of
+    floats, row by row, for loops on Python floats)."""
+    q1, q2, q3, q4, q5, _ = q
+    _, a2, a3, d4, d5, d6 = lengths
     q23 = q2 + q3
     q234 = q23 + q4
     c1 = cos(q1)
@@ -593,27 +571,27 @@ def jacobian_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6, out=None, at=0)
     s23 = sin(q23)
     c234 = cos(q234)
     s234 = sin(q234)
-    x0 = a2*c2
-    x1 = a3*c23
-    x2 = d5*s234
-    x3 = a3*s23
-    x4 = c234*d5
-    x5 = s234*s5
-    x6 = d6*x5
-    x7 = a2*s2 + x3 - x4 - x6
-    x8 = x4 + x6
-    x9 = -x3 + x8
-    x10 = s1*s5
-    x11 = c1*c5
-    x12 = c5*s1
-    x13 = c1*s5
-    x14 = c234*d6
-    x15 = s5*x14
-    x16 = x1 - x15 + x2
-    x17 = -c1
+    x0 = c5*d6
+    x1 = d4 + x0
+    x2 = c234*d6*s5
+    x3 = a3*c23 + d5*s234 - x2
+    x4 = a2*c2 + x3
+    x5 = a3*s23
+    x6 = c234*d5
+    x7 = s234*s5
+    x8 = d6*x7
+    x9 = a2*s2 + x5 - x6 - x8
+    x10 = x6 + x8
+    x11 = x10 - x5
+    x12 = s1*s5
+    x13 = c1*c5
+    x14 = c1*s5
+    x15 = -c1
+    if out is tuple:
+        return (c1*x1 - s1*x4, -c1*x9, c1*x11, c1*x10, -d6*(c234*x13 + x12), 0.0, c1*x4 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(-c234*c5*s1 + x14), 0.0, 0.0, x4, x3, d5*s234 - x2, -s234*x0, 0.0, 0.0, s1, s1, s1, c1*s234, -c234*x14 + c5*s1, 0.0, x15, x15, x15, s1*s234, -c234*x12 - x13, 1.0, 0.0, 0.0, 0.0, -c234, -x7)
     if out is None:
         out = np.empty((6, 6))
-    _pack36(out, at, c1*c5*d6 + c1*d4 + c234*d6*s1*s5 - s1*x0 - s1*x1 - s1*x2, -c1*x7, c1*x9, c1*x8, -d6*(c234*x11 + x10), 0, c1*x0 + c1*x1 + c1*x2 + d4*s1 + d6*x12 - x13*x14, -s1*x7, s1*x9, s1*x8, d6*(-c234*x12 + x13), 0, 0, x0 + x16, x16, d5*s234 - x15, -c5*d6*s234, 0, 0, s1, s1, s1, c1*s234, -c234*x13 + c5*s1, 0, x17, x17, x17, s1*s234, -c234*x10 - x11, 1, 0, 0, 0, -c234, -x5)
+    _pack36(out, at, c1*x1 - s1*x4, -c1*x9, c1*x11, c1*x10, -d6*(c234*x13 + x12), 0.0, c1*x4 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(-c234*c5*s1 + x14), 0.0, 0.0, x4, x3, d5*s234 - x2, -s234*x0, 0.0, 0.0, s1, s1, s1, c1*s234, -c234*x14 + c5*s1, 0.0, x15, x15, x15, s1*s234, -c234*x12 - x13, 1.0, 0.0, 0.0, 0.0, -c234, -x7)
     return out
 
 
@@ -623,7 +601,7 @@ def jacobian_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
     n = q.shape[0]
     if out is None:
         out = np.empty((n, 6, 6), dtype=q.dtype)
-    w = np.empty((70, n), dtype=q.dtype) if work is None else work[:, :n]
+    w = np.empty((68, n), dtype=q.dtype) if work is None else work[:, :n]
     q1 = w[0]
     np.copyto(q1, q[:, 0])
     q2 = w[1]
@@ -646,149 +624,136 @@ def jacobian_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
     c234 = w[9]
     s234 = w[14]
     x0 = w[15]
-    np.multiply(c2, a2, out=x0)
+    np.multiply(c5, d6, out=x0)
     x1 = w[16]
-    np.multiply(c23, a3, out=x1)
+    np.copyto(x1, x0)
+    np.add(x1, d4, out=x1)
     x2 = w[17]
-    np.multiply(s234, d5, out=x2)
+    np.multiply(c234, s5, out=x2)
+    np.multiply(x2, d6, out=x2)
     x3 = w[18]
-    np.multiply(s23, a3, out=x3)
-    x4 = w[19]
-    np.multiply(c234, d5, out=x4)
-    x5 = w[20]
-    np.multiply(s234, s5, out=x5)
-    x6 = w[21]
-    np.multiply(x5, d6, out=x6)
-    x7 = w[22]
-    w23 = w[23]
-    np.multiply(s2, a2, out=w23)
-    np.add(x3, w23, out=x7)
-    np.subtract(x7, x4, out=x7)
-    np.subtract(x7, x6, out=x7)
+    np.multiply(c23, a3, out=x3)
+    w19 = w[19]
+    np.multiply(s234, d5, out=w19)
+    np.add(x3, w19, out=x3)
+    np.subtract(x3, x2, out=x3)
+    x4 = w[20]
+    np.multiply(c2, a2, out=w19)
+    np.add(x3, w19, out=x4)
+    x5 = w[21]
+    np.multiply(s23, a3, out=x5)
+    x6 = w[22]
+    np.multiply(c234, d5, out=x6)
+    x7 = w[23]
+    np.multiply(s234, s5, out=x7)
     x8 = w[24]
-    np.add(x4, x6, out=x8)
+    np.multiply(x7, d6, out=x8)
     x9 = w[25]
-    np.subtract(x8, x3, out=x9)
+    np.multiply(s2, a2, out=w19)
+    np.add(x5, w19, out=x9)
+    np.subtract(x9, x6, out=x9)
+    np.subtract(x9, x8, out=x9)
     x10 = w[26]
-    np.multiply(s1, s5, out=x10)
+    np.add(x6, x8, out=x10)
     x11 = w[27]
-    np.multiply(c1, c5, out=x11)
+    np.subtract(x10, x5, out=x11)
     x12 = w[28]
-    np.multiply(c5, s1, out=x12)
+    np.multiply(s1, s5, out=x12)
     x13 = w[29]
-    np.multiply(c1, s5, out=x13)
+    np.multiply(c1, c5, out=x13)
     x14 = w[30]
-    np.multiply(c234, d6, out=x14)
+    np.multiply(c1, s5, out=x14)
     x15 = w[31]
-    np.multiply(x14, s5, out=x15)
-    x16 = w[32]
-    np.add(x1, x2, out=x16)
-    np.subtract(x16, x15, out=x16)
-    x17 = w[33]
-    np.negative(c1, out=x17)
-    e0 = w[34]
-    np.multiply(c1, d4, out=e0)
-    np.multiply(c1, c5, out=w23)
-    np.multiply(w23, d6, out=w23)
-    np.add(e0, w23, out=e0)
-    np.multiply(c234, s1, out=w23)
-    np.multiply(w23, s5, out=w23)
-    np.multiply(w23, d6, out=w23)
-    np.add(e0, w23, out=e0)
-    np.multiply(x0, s1, out=w23)
-    np.subtract(e0, w23, out=e0)
-    np.multiply(x1, s1, out=w23)
-    np.subtract(e0, w23, out=e0)
-    np.multiply(x2, s1, out=w23)
-    np.subtract(e0, w23, out=e0)
-    e1 = w[35]
-    np.multiply(x7, c1, out=e1)
+    np.negative(c1, out=x15)
+    e0 = w[32]
+    np.multiply(x1, c1, out=e0)
+    np.multiply(x4, s1, out=w19)
+    np.subtract(e0, w19, out=e0)
+    e1 = w[33]
+    np.multiply(x9, c1, out=e1)
     np.negative(e1, out=e1)
-    e2 = w[36]
-    np.multiply(x9, c1, out=e2)
-    e3 = w[37]
-    np.multiply(x8, c1, out=e3)
-    e4 = w[38]
-    np.multiply(x11, c234, out=w23)
-    np.add(x10, w23, out=e4)
+    e2 = w[34]
+    np.multiply(x11, c1, out=e2)
+    e3 = w[35]
+    np.multiply(x10, c1, out=e3)
+    e4 = w[36]
+    np.multiply(x13, c234, out=w19)
+    np.add(x12, w19, out=e4)
     np.multiply(e4, -d6, out=e4)
-    e6 = w[40]
-    np.multiply(x0, c1, out=e6)
-    np.multiply(x1, c1, out=w23)
-    np.add(e6, w23, out=e6)
-    np.multiply(x12, d6, out=w23)
-    np.add(e6, w23, out=e6)
-    np.multiply(x2, c1, out=w23)
-    np.add(e6, w23, out=e6)
-    np.multiply(s1, d4, out=w23)
-    np.add(e6, w23, out=e6)
-    np.multiply(x13, x14, out=w23)
-    np.subtract(e6, w23, out=e6)
-    e7 = w[41]
-    np.multiply(x7, s1, out=e7)
+    e6 = w[38]
+    np.multiply(x1, s1, out=e6)
+    np.multiply(x4, c1, out=w19)
+    np.add(e6, w19, out=e6)
+    e7 = w[39]
+    np.multiply(x9, s1, out=e7)
     np.negative(e7, out=e7)
-    e8 = w[42]
-    np.multiply(x9, s1, out=e8)
-    e9 = w[43]
-    np.multiply(x8, s1, out=e9)
-    e10 = w[44]
-    np.multiply(x12, c234, out=w23)
-    np.subtract(x13, w23, out=e10)
+    e8 = w[40]
+    np.multiply(x11, s1, out=e8)
+    e9 = w[41]
+    np.multiply(x10, s1, out=e9)
+    e10 = w[42]
+    np.multiply(c234, c5, out=w19)
+    np.multiply(w19, s1, out=w19)
+    np.subtract(x14, w19, out=e10)
     np.multiply(e10, d6, out=e10)
-    e13 = w[47]
-    np.add(x0, x16, out=e13)
-    e14 = w[48]
-    np.copyto(e14, x16)
-    e15 = w[49]
+    e13 = w[45]
+    np.copyto(e13, x4)
+    e14 = w[46]
+    np.copyto(e14, x3)
+    e15 = w[47]
     np.multiply(s234, d5, out=e15)
-    np.subtract(e15, x15, out=e15)
-    e16 = w[50]
-    np.multiply(c5, s234, out=e16)
-    np.multiply(e16, -d6, out=e16)
-    e19 = w[53]
+    np.subtract(e15, x2, out=e15)
+    e16 = w[48]
+    np.multiply(x0, s234, out=e16)
+    np.negative(e16, out=e16)
+    e19 = w[51]
     np.copyto(e19, s1)
-    e20 = w[54]
+    e20 = w[52]
     np.copyto(e20, s1)
-    e21 = w[55]
+    e21 = w[53]
     np.copyto(e21, s1)
-    e22 = w[56]
+    e22 = w[54]
     np.multiply(c1, s234, out=e22)
-    e23 = w[57]
+    e23 = w[55]
     np.multiply(c5, s1, out=e23)
-    np.multiply(x13, c234, out=w23)
-    np.subtract(e23, w23, out=e23)
-    e25 = w[59]
-    np.copyto(e25, x17)
-    e26 = w[60]
-    np.copyto(e26, x17)
-    e27 = w[61]
-    np.copyto(e27, x17)
-    e28 = w[62]
+    np.multiply(x14, c234, out=w19)
+    np.subtract(e23, w19, out=e23)
+    e25 = w[57]
+    np.copyto(e25, x15)
+    e26 = w[58]
+    np.copyto(e26, x15)
+    e27 = w[59]
+    np.copyto(e27, x15)
+    e28 = w[60]
     np.multiply(s1, s234, out=e28)
-    e29 = w[63]
-    np.copyto(e29, x11)
+    e29 = w[61]
+    np.copyto(e29, x13)
     np.negative(e29, out=e29)
-    np.multiply(x10, c234, out=w23)
-    np.subtract(e29, w23, out=e29)
-    e34 = w[68]
+    np.multiply(x12, c234, out=w19)
+    np.subtract(e29, w19, out=e29)
+    e34 = w[66]
     np.negative(c234, out=e34)
-    e35 = w[69]
-    np.negative(x5, out=e35)
-    w[39:40] = 0
-    w[45:47] = 0
-    w[51:53] = 0
-    w[58:59] = 0
-    w[64:65] = 1
-    w[65:68] = 0
-    out.reshape(n, 36)[...] = w[34:70].T
+    e35 = w[67]
+    np.negative(x7, out=e35)
+    w[37:38] = 0
+    w[43:45] = 0
+    w[49:51] = 0
+    w[56:57] = 0
+    w[62:63] = 1
+    w[63:66] = 0
+    out.reshape(n, 36)[...] = w[32:68].T
     return out
 
 
-jacobian_many.work_rows = 70
+jacobian_many.work_rows = 68
 
 
-def position_jacobian_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6, out=None, at=0):
-    """Position Jacobian ∂p/∂q (one pose; written into ``out`` from byte ``at`` if given)."""
+def position_jacobian_one(q, lengths, out=None, at=0):
+    """Position Jacobian ∂p/∂q (one pose: ``q`` six floats, ``lengths`` the six link lengths; written
+    into ``out`` from byte ``at`` if given; ``out=tuple``: the entries as a tuple of
+    floats, row by row, for loops on Python floats)."""
+    q1, q2, q3, q4, q5, _ = q
+    _, a2, a3, d4, d5, d6 = lengths
     q23 = q2 + q3
     q234 = q23 + q4
     c1 = cos(q1)
@@ -801,23 +766,24 @@ def position_jacobian_one(q1, q2, q3, q4, q5, q6, d1, a2, a3, d4, d5, d6, out=No
     s23 = sin(q23)
     c234 = cos(q234)
     s234 = sin(q234)
-    x0 = a2*c2
-    x1 = a3*c23
-    x2 = d5*s234
-    x3 = a3*s23
-    x4 = c234*d5
-    x5 = d6*s5
-    x6 = s234*x5
-    x7 = a2*s2 + x3 - x4 - x6
-    x8 = x4 + x6
-    x9 = -x3 + x8
-    x10 = c5*s1
-    x11 = c1*s5
-    x12 = c234*x5
-    x13 = x1 - x12 + x2
+    x0 = c5*d6
+    x1 = d4 + x0
+    x2 = d6*s5
+    x3 = c234*x2
+    x4 = a3*c23 + d5*s234 - x3
+    x5 = a2*c2 + x4
+    x6 = a3*s23
+    x7 = c234*d5
+    x8 = s234*x2
+    x9 = a2*s2 + x6 - x7 - x8
+    x10 = x7 + x8
+    x11 = x10 - x6
+    x12 = c234*c5
+    if out is tuple:
+        return (c1*x1 - s1*x5, -c1*x9, c1*x11, c1*x10, -d6*(c1*x12 + s1*s5), 0.0, c1*x5 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(c1*s5 - s1*x12), 0.0, 0.0, x5, x4, d5*s234 - x3, -s234*x0, 0.0)
     if out is None:
         out = np.empty((3, 6))
-    _pack18(out, at, c1*c5*d6 + c1*d4 + c234*d6*s1*s5 - s1*x0 - s1*x1 - s1*x2, -c1*x7, c1*x9, c1*x8, -d6*(c1*c234*c5 + s1*s5), 0, c1*x0 + c1*x1 + c1*x2 - c234*d6*x11 + d4*s1 + d6*x10, -s1*x7, s1*x9, s1*x8, d6*(-c234*x10 + x11), 0, 0, x0 + x13, x13, d5*s234 - x12, -c5*d6*s234, 0)
+    _pack18(out, at, c1*x1 - s1*x5, -c1*x9, c1*x11, c1*x10, -d6*(c1*x12 + s1*s5), 0.0, c1*x5 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(c1*s5 - s1*x12), 0.0, 0.0, x5, x4, d5*s234 - x3, -s234*x0, 0.0)
     return out
 
 
@@ -827,7 +793,7 @@ def position_jacobian_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
     n = q.shape[0]
     if out is None:
         out = np.empty((n, 3, 6), dtype=q.dtype)
-    w = np.empty((48, n), dtype=q.dtype) if work is None else work[:, :n]
+    w = np.empty((47, n), dtype=q.dtype) if work is None else work[:, :n]
     q1 = w[0]
     np.copyto(q1, q[:, 0])
     q2 = w[1]
@@ -850,105 +816,139 @@ def position_jacobian_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
     c234 = w[9]
     s234 = w[14]
     x0 = w[15]
-    np.multiply(c2, a2, out=x0)
+    np.multiply(c5, d6, out=x0)
     x1 = w[16]
-    np.multiply(c23, a3, out=x1)
+    np.copyto(x1, x0)
+    np.add(x1, d4, out=x1)
     x2 = w[17]
-    np.multiply(s234, d5, out=x2)
+    np.multiply(s5, d6, out=x2)
     x3 = w[18]
-    np.multiply(s23, a3, out=x3)
+    np.multiply(x2, c234, out=x3)
     x4 = w[19]
-    np.multiply(c234, d5, out=x4)
-    x5 = w[20]
-    np.multiply(s5, d6, out=x5)
-    x6 = w[21]
-    np.multiply(x5, s234, out=x6)
-    x7 = w[22]
-    w23 = w[23]
-    np.multiply(s2, a2, out=w23)
-    np.add(x3, w23, out=x7)
-    np.subtract(x7, x4, out=x7)
-    np.subtract(x7, x6, out=x7)
+    np.multiply(c23, a3, out=x4)
+    w20 = w[20]
+    np.multiply(s234, d5, out=w20)
+    np.add(x4, w20, out=x4)
+    np.subtract(x4, x3, out=x4)
+    x5 = w[21]
+    np.multiply(c2, a2, out=w20)
+    np.add(x4, w20, out=x5)
+    x6 = w[22]
+    np.multiply(s23, a3, out=x6)
+    x7 = w[23]
+    np.multiply(c234, d5, out=x7)
     x8 = w[24]
-    np.add(x4, x6, out=x8)
+    np.multiply(x2, s234, out=x8)
     x9 = w[25]
-    np.subtract(x8, x3, out=x9)
+    np.multiply(s2, a2, out=w20)
+    np.add(x6, w20, out=x9)
+    np.subtract(x9, x7, out=x9)
+    np.subtract(x9, x8, out=x9)
     x10 = w[26]
-    np.multiply(c5, s1, out=x10)
+    np.add(x7, x8, out=x10)
     x11 = w[27]
-    np.multiply(c1, s5, out=x11)
+    np.subtract(x10, x6, out=x11)
     x12 = w[28]
-    np.multiply(x5, c234, out=x12)
-    x13 = w[29]
-    np.add(x1, x2, out=x13)
-    np.subtract(x13, x12, out=x13)
-    e0 = w[30]
-    np.multiply(c1, d4, out=e0)
-    np.multiply(c1, c5, out=w23)
-    np.multiply(w23, d6, out=w23)
-    np.add(e0, w23, out=e0)
-    np.multiply(c234, s1, out=w23)
-    np.multiply(w23, s5, out=w23)
-    np.multiply(w23, d6, out=w23)
-    np.add(e0, w23, out=e0)
-    np.multiply(x0, s1, out=w23)
-    np.subtract(e0, w23, out=e0)
-    np.multiply(x1, s1, out=w23)
-    np.subtract(e0, w23, out=e0)
-    np.multiply(x2, s1, out=w23)
-    np.subtract(e0, w23, out=e0)
-    e1 = w[31]
-    np.multiply(x7, c1, out=e1)
+    np.multiply(c234, c5, out=x12)
+    e0 = w[29]
+    np.multiply(x1, c1, out=e0)
+    np.multiply(x5, s1, out=w20)
+    np.subtract(e0, w20, out=e0)
+    e1 = w[30]
+    np.multiply(x9, c1, out=e1)
     np.negative(e1, out=e1)
-    e2 = w[32]
-    np.multiply(x9, c1, out=e2)
-    e3 = w[33]
-    np.multiply(x8, c1, out=e3)
-    e4 = w[34]
-    np.multiply(s1, s5, out=e4)
-    np.multiply(c1, c234, out=w23)
-    np.multiply(w23, c5, out=w23)
-    np.add(e4, w23, out=e4)
+    e2 = w[31]
+    np.multiply(x11, c1, out=e2)
+    e3 = w[32]
+    np.multiply(x10, c1, out=e3)
+    e4 = w[33]
+    np.multiply(x12, c1, out=e4)
+    np.multiply(s1, s5, out=w20)
+    np.add(e4, w20, out=e4)
     np.multiply(e4, -d6, out=e4)
-    e6 = w[36]
-    np.multiply(x0, c1, out=e6)
-    np.multiply(x1, c1, out=w23)
-    np.add(e6, w23, out=e6)
-    np.multiply(x10, d6, out=w23)
-    np.add(e6, w23, out=e6)
-    np.multiply(x2, c1, out=w23)
-    np.add(e6, w23, out=e6)
-    np.multiply(s1, d4, out=w23)
-    np.add(e6, w23, out=e6)
-    np.multiply(x11, c234, out=w23)
-    np.multiply(w23, d6, out=w23)
-    np.subtract(e6, w23, out=e6)
-    e7 = w[37]
-    np.multiply(x7, s1, out=e7)
+    e6 = w[35]
+    np.multiply(x1, s1, out=e6)
+    np.multiply(x5, c1, out=w20)
+    np.add(e6, w20, out=e6)
+    e7 = w[36]
+    np.multiply(x9, s1, out=e7)
     np.negative(e7, out=e7)
-    e8 = w[38]
-    np.multiply(x9, s1, out=e8)
-    e9 = w[39]
-    np.multiply(x8, s1, out=e9)
-    e10 = w[40]
-    np.multiply(x10, c234, out=w23)
-    np.subtract(x11, w23, out=e10)
+    e8 = w[37]
+    np.multiply(x11, s1, out=e8)
+    e9 = w[38]
+    np.multiply(x10, s1, out=e9)
+    e10 = w[39]
+    np.multiply(c1, s5, out=e10)
+    np.multiply(x12, s1, out=w20)
+    np.subtract(e10, w20, out=e10)
     np.multiply(e10, d6, out=e10)
-    e13 = w[43]
-    np.add(x0, x13, out=e13)
-    e14 = w[44]
-    np.copyto(e14, x13)
-    e15 = w[45]
+    e13 = w[42]
+    np.copyto(e13, x5)
+    e14 = w[43]
+    np.copyto(e14, x4)
+    e15 = w[44]
     np.multiply(s234, d5, out=e15)
-    np.subtract(e15, x12, out=e15)
-    e16 = w[46]
-    np.multiply(c5, s234, out=e16)
-    np.multiply(e16, -d6, out=e16)
-    w[35:36] = 0
-    w[41:43] = 0
-    w[47:48] = 0
-    out.reshape(n, 18)[...] = w[30:48].T
+    np.subtract(e15, x3, out=e15)
+    e16 = w[45]
+    np.multiply(x0, s234, out=e16)
+    np.negative(e16, out=e16)
+    w[34:35] = 0
+    w[40:42] = 0
+    w[46:47] = 0
+    out.reshape(n, 18)[...] = w[29:47].T
     return out
 
 
-position_jacobian_many.work_rows = 48
+position_jacobian_many.work_rows = 47
+
+
+def pose_jacobian_one(q, lengths, out):
+    """Flange pose T_0_6 and geometric Jacobian [v; ω] of the flange origin for
+    one pose (``q`` six floats, ``lengths`` the six link lengths): writes the
+    Jacobian into ``out`` (6, 6) and returns the pose's 16 entries as a tuple,
+    row by row."""
+    q1, q2, q3, q4, q5, q6 = q
+    d1, a2, a3, d4, d5, d6 = lengths
+    q23 = q2 + q3
+    q234 = q23 + q4
+    c1 = cos(q1)
+    s1 = sin(q1)
+    c2 = cos(q2)
+    s2 = sin(q2)
+    c5 = cos(q5)
+    s5 = sin(q5)
+    c6 = cos(q6)
+    s6 = sin(q6)
+    c23 = cos(q23)
+    s23 = sin(q23)
+    c234 = cos(q234)
+    s234 = sin(q234)
+    x0 = s1*s5
+    x1 = s234*s6
+    x2 = c234*c6
+    x3 = c5*x2 - x1
+    x4 = c6*s234
+    x5 = c234*s6
+    x6 = c5*x5 + x4
+    x7 = c1*s5
+    x8 = -c234*x7 + c5*s1
+    x9 = c5*d6
+    x10 = d4 + x9
+    x11 = c234*d6*s5
+    x12 = a3*c23 + d5*s234 - x11
+    x13 = a2*c2 + x12
+    x14 = c1*x13 + s1*x10
+    x15 = c1*c5
+    x16 = -c234*x0 - x15
+    x17 = c1*x10 - s1*x13
+    x18 = s234*s5
+    x19 = -x18
+    x20 = a3*s23
+    x21 = c234*d5
+    x22 = d6*x18
+    x23 = a2*s2 + x20 - x21 - x22
+    x24 = x21 + x22
+    x25 = -x20 + x24
+    x26 = -c1
+    _pack36(out, 0, x17, -c1*x23, c1*x25, c1*x24, -d6*(c234*x15 + x0), 0.0, x14, -s1*x23, s1*x25, s1*x24, d6*(-c234*c5*s1 + x7), 0.0, 0.0, x13, x12, d5*s234 - x11, -s234*x9, 0.0, 0.0, s1, s1, s1, c1*s234, x8, 0.0, x26, x26, x26, s1*s234, x16, 1.0, 0.0, 0.0, 0.0, -c234, x19)
+    return (c1*x3 + c6*x0, -c1*x6 - s6*x0, x8, x14, -c6*x7 + s1*x3, -s1*x6 + s6*x7, x16, -x17, c5*x4 + x5, -c5*x1 + x2, x19, d1 + x23, 0.0, 0.0, 0.0, 1.0)
