@@ -5,7 +5,7 @@ targets.
 ``fk(robot, q) ≈ target``.  The core owns everything the step rules share, with the same rules
 for one target (:func:`_iterate_one`, bookkeeping in Python floats on the generated one-pose
 kinematics) and for a stack (:func:`_iterate`, every unsolved target a row; a stack of up to
-eight targets is solved target by target, and a stack's last few unsolved targets are handed to
+sixteen targets is solved target by target, and a stack's last few unsolved targets are handed to
 the single path, each continuing its attempt):
 
 * an error that is re-measured after every step (a step rule may reject a trial step);
@@ -586,8 +586,9 @@ def _iterate_one(
 
 
 #: When this few targets are still unsolved, each goes on alone on the single-target path: a
-#: pass of the stacked loop costs about eight single iterations whatever the number of rows.
-_HAND_OFF = 8
+#: pass of the stacked loop costs about sixteen single iterations whatever the number of rows
+#: (bench/ik.py's batch-size table: with 8, a stack of 9 cost 1.2× single solves per target).
+_HAND_OFF = 16
 
 
 def _iterate(problem, rule, Q0, candidates, *, max_iterations, max_restarts, max_step, seed):
