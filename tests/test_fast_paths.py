@@ -207,3 +207,70 @@ def test_a_dwindling_batch_hands_its_last_targets_to_the_single_path(monkeypatch
     assert result.success.all()
     position, angle = pose_error(urkin.fk(arm, result.q), targets)
     assert position.max() <= 1e-10 and angle.max() <= 1e-10
+
+
+@pytest.mark.parametrize("arm", ARMS[:2], ids=lambda arm: arm.name)
+def test_the_combined_pose_and_jacobian_code_gives_fk_and_the_jacobian(arm):
+    """numerical IK's one generated call per trial equals the two separate generated calls."""
+    from urkin._generated import ur_kinematics as generated
+
+    for q in _configurations(np.random.default_rng(31), 200):
+        J = np.empty((6, 6))
+        pose = generated.pose_jacobian_one(q.tolist(), arm.lengths, J)
+        np.testing.assert_allclose(np.reshape(pose, (4, 4)), urkin.fk(arm, q), rtol=0, atol=1e-15)
+        np.testing.assert_allclose(J, urkin.jacobian(arm, q), rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize(
+    "function, shape",
+    [
+        (urkin.fk, (4, 4)),
+        (urkin.jacobian, (6, 6)),
+        (urkin.position_jacobian, (3, 6)),
+        (urkin.fk_frames, (7, 4, 4)),
+    ],
+    ids=lambda x: getattr(x, "__name__", ""),
+)
+def test_a_stack_of_one_keeps_its_axis_and_equals_the_single_call(function, shape):
+    arm = urkin.robot("ur5")
+    q = np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.2])
+    stacked_one = function(arm, q[None])
+    assert stacked_one.shape == (1, *shape)
+    np.testing.assert_array_equal(stacked_one[0], function(arm, q))
+
+
+def test_in_range_angles_whose_squares_add_up_past_the_bound_take_the_general_path():
+    """The one-pose test is one sum of squares; six angles each within ±8π can exceed it, and
+    must still be computed (by the checked path), not refused."""
+    arm = urkin.robot("ur5")
+    q = np.full(6, 7.5 * np.pi)
+    assert float(np.sum(q * q)) > (8 * np.pi) ** 2
+    np.testing.assert_allclose(urkin.fk(arm, q), urkin.fk(arm, q[None])[0], rtol=0, atol=0)
+    np.testing.assert_allclose(urkin.fk(arm, q), urkin.fk(arm, wrap_angles(q)), rtol=0, atol=1e-13)
+
+
+def test_the_float_wrap_of_the_single_ik_path_is_wrap_angles_to_the_bit():
+    rng = np.random.default_rng(8)
+    x = np.concatenate(
+        [
+            rng.uniform(-30.0, 30.0, 2000),
+            [np.pi, -np.pi, 3 * np.pi, -3 * np.pi, 0.0, -0.0, np.nextafter(np.pi, 4.0)],
+        ]
+    )
+    floats = np.array([numerical_ik._wrap_float(value) for value in x.tolist()])
+    np.testing.assert_array_equal(floats, wrap_angles(x))
+
+
+@pytest.mark.parametrize("max_step", [0.05, 1.0, np.inf])
+def test_a_single_solve_returns_wrapped_angles_whatever_the_step_limit(max_step):
+    """The single path lets angles leave (−π, π] while it iterates (every angle is allowed on
+    a UR arm) and wraps the configuration it returns; a shortened step uses the general
+    predicted reduction of LM's gain ratio, a full one the shortcut (JᵀJ + μI)Δq = g."""
+    arm = urkin.robot("ur5")
+    targets = urkin.fk(arm, random_configurations(arm, 12, seed=9))
+    for T in targets:
+        result = urkin.ik(arm, T, q0=np.full(6, 3.0), max_step=max_step, max_iterations=400)
+        assert result.success, result.reason
+        assert np.all(result.q > -np.pi) and np.all(result.q <= np.pi)
+        position, angle = pose_error(urkin.fk(arm, result.q), T)
+        assert position <= 1e-10 and angle <= 1e-10

@@ -491,10 +491,16 @@ def pose_text(T: ArrayLike) -> str:
     >>> print(pose_text(np.eye(4)))
     position (m)     x  0.000   y  0.000   z  0.000
     roll/pitch/yaw   r    0.0°  p    0.0°  y    0.0°
+    >>> flip = np.diag([-1.0, -1.0, 1.0, 1.0])  # a half turn about z, yaw ±180°
+    >>> flip[0, 1], flip[1, 0] = 1e-17, -1e-17  # round-off on either side of ±π
+    >>> pose_text(flip) == pose_text(np.diag([-1.0, -1.0, 1.0, 1.0]))
+    True
     """
     pose = check_transform(T)
     x, y, z = np.round(pose[:3, 3], 3) + 0.0  # + 0.0: no "-0.000"
-    roll, pitch, yaw = np.round(np.degrees(rotation_to_rpy(pose[:3, :3])), 1) + 0.0
+    angles = np.round(np.degrees(rotation_to_rpy(pose[:3, :3])), 1) + 0.0
+    # a half turn prints as 180.0 whichever side of ±π round-off put it (atan2 gives either)
+    roll, pitch, yaw = np.where(angles == -180.0, 180.0, angles)
     return (
         f"position (m)     x {x:6.3f}   y {y:6.3f}   z {z:6.3f}\n"
         f"roll/pitch/yaw   r {roll:6.1f}°  p {pitch:6.1f}°  y {yaw:6.1f}°"
