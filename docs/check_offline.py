@@ -53,39 +53,61 @@ def _net_events(path: Path) -> list[dict]:
         return json.loads(text.rstrip().rstrip(",") + "]}")["events"]
 
 
+def browse(
+    page: Path, chromium: str, scratch: Path, budget_ms: int = 6000
+) -> tuple[str, list[str], list[str]]:
+    """Open ``page`` in headless Chromium with every host name unresolvable, for ``budget_ms``
+    of virtual time (``scratch``: a folder for its profile and net log).
+
+    Returns the DOM then, the network URLs the page itself requested, and every network URL
+    in the log (the browser's own background requests too)."""
+    net = scratch / "net.json"
+    command = [
+        chromium,
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        f"--user-data-dir={scratch / 'profile'}",
+        "--host-resolver-rules=MAP * ~NOTFOUND",
+        f"--log-net-log={net}",
+        f"--virtual-time-budget={budget_ms}",
+        "--dump-dom",
+        page.as_uri(),
+    ]
+    done = subprocess.run(command, capture_output=True, text=True, timeout=120)
+    if done.returncode != 0:
+        raise RuntimeError(f"chromium failed on {page}: {done.stderr[-1000:]}")
+    by_page, everywhere = [], []
+    for event in _net_events(net):
+        params = event.get("params") or {}
+        url = params.get("url")
+        if not isinstance(url, str):
+            continue
+        if NETWORK.match(url):
+            everywhere.append(url)
+        # the page's own requests have its (opaque, file) origin as initiator; the browser's
+        # background requests (clock, account checks) have none ("not an origin")
+        if "initiator" in params and params["initiator"] != "not an origin":
+            by_page.append(url)
+    return done.stdout, by_page, everywhere
+
+
+def frames(dom: str) -> list[int]:
+    """The frame each animation player of a DOM shows."""
+    return [int(k) for k in FRAME.findall(dom)]
+
+
 def play(page: Path, chromium: str) -> tuple[list[int], list[str]]:
-    """Open ``page`` offline for 6 s of virtual time: each player's frame, and what the page
-    requested from the network."""
+    """Open ``page`` offline for 6 s of virtual time: each player's frame, and the network
+    URLs the page requested."""
     with tempfile.TemporaryDirectory() as scratch:
-        net = Path(scratch) / "net.json"
-        command = [
-            chromium,
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            f"--user-data-dir={Path(scratch) / 'profile'}",
-            "--host-resolver-rules=MAP * ~NOTFOUND",
-            f"--log-net-log={net}",
-            "--virtual-time-budget=6000",
-            "--dump-dom",
-            page.as_uri(),
-        ]
-        done = subprocess.run(command, capture_output=True, text=True, timeout=120)
-        if done.returncode != 0:
-            raise RuntimeError(f"chromium failed on {page}: {done.stderr[-1000:]}")
-        requested = []
-        for event in _net_events(net):
-            params = event.get("params") or {}
-            url = params.get("url")
-            initiator = params.get("initiator", "not an origin")
-            if isinstance(url, str) and NETWORK.match(url) and initiator != "not an origin":
-                requested.append(url)
-        return [int(k) for k in FRAME.findall(done.stdout)], requested
+        dom, by_page, _ = browse(page, chromium, Path(scratch))
+    return frames(dom), [url for url in by_page if NETWORK.match(url)]
 
 
 def main(argv: list[str]) -> int:

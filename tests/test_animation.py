@@ -1,12 +1,14 @@
 """urkin.animation: frames chosen and rendered within budget, a self-contained HTML player that
 plays (in headless Chromium) without touching the network, a keyframe strip and a GIF."""
 
+import importlib.util
 import io
 import json
 import re
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -285,7 +287,11 @@ def test_no_pyplot_figure_is_left_open(small):
 # in a browser: headless Chromium, offline
 # ---------------------------------------------------------------------------------------------
 
-NETWORK = re.compile(r"^(https?|wss?|ftp)://", re.IGNORECASE)
+_spec = importlib.util.spec_from_file_location(
+    "check_offline", Path(__file__).parents[1] / "docs" / "check_offline.py"
+)
+check_offline = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(check_offline)
 
 
 def _chromium() -> str:
@@ -295,61 +301,20 @@ def _chromium() -> str:
     return found
 
 
-def _net_log(path) -> list[dict]:
-    text = path.read_text()
-    try:
-        return json.loads(text)["events"]
-    except json.JSONDecodeError:  # a log left unfinished
-        return json.loads(text.rstrip().rstrip(",") + "]}")["events"]
-
-
 def _browse(body: str, tmp_path, budget_ms: int = 5000) -> tuple[str, list[str], list[str]]:
-    """Open a page with ``body`` offline; the DOM after ``budget_ms`` of virtual time, the
-    URLs the page requested, and every network URL in the log (the browser's own too)."""
-    chromium = _chromium()
+    """Open a page with ``body`` offline (docs/check_offline.py's browser, the one the docs
+    build uses): the DOM after ``budget_ms`` of virtual time, the URLs the page requested,
+    and every network URL in the log."""
     page = tmp_path / "page.html"
     page.write_text(
         f"<!DOCTYPE html>\n<html><head><meta charset='utf-8'></head><body>\n{body}"
         "\n</body></html>\n",
         encoding="utf-8",
     )
-    net = tmp_path / "net.json"
-    command = [
-        chromium,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        f"--user-data-dir={tmp_path / 'profile'}",
-        "--host-resolver-rules=MAP * ~NOTFOUND",
-        f"--log-net-log={net}",
-        f"--virtual-time-budget={budget_ms}",
-        "--dump-dom",
-        page.as_uri(),
-    ]
-    done = subprocess.run(command, capture_output=True, text=True, timeout=60)
-    assert done.returncode == 0, done.stderr[-2000:]
-    by_page, everywhere = [], []
-    for event in _net_log(net):
-        params = event.get("params") or {}
-        url = params.get("url")
-        if not isinstance(url, str):
-            continue
-        if NETWORK.match(url):
-            everywhere.append(url)
-        # the page's own requests have its (opaque, file) origin as initiator; the browser's
-        # background requests (clock, account checks) have none ("not an origin")
-        if "initiator" in params and params["initiator"] != "not an origin":
-            by_page.append(url)
-    return done.stdout, by_page, everywhere
+    return check_offline.browse(page, _chromium(), tmp_path, budget_ms)
 
 
-def _frames_reached(dom: str) -> list[int]:
-    return [int(k) for k in re.findall(r'class="urkin-anim" data-frame="(\d+)"', dom)]
+_frames_reached = check_offline.frames
 
 
 def _script_text(html: str) -> str:

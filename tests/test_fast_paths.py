@@ -263,9 +263,9 @@ def test_the_float_wrap_of_the_single_ik_path_is_wrap_angles_to_the_bit():
 
 @pytest.mark.parametrize("max_step", [0.05, 1.0, np.inf])
 def test_a_single_solve_returns_wrapped_angles_whatever_the_step_limit(max_step):
-    """The single path lets angles leave (−π, π] while it iterates (every angle is allowed on
-    a UR arm) and wraps the configuration it returns; a shortened step uses the general
-    predicted reduction of LM's gain ratio, a full one the shortcut (JᵀJ + μI)Δq = g."""
+    """The single path wraps every trial into (−π, π] (in Python floats), however long the
+    steps; a shortened step uses the general predicted reduction of LM's gain ratio, a full
+    one the shortcut (JᵀJ + μI)Δq = g."""
     arm = urkin.robot("ur5")
     targets = urkin.fk(arm, random_configurations(arm, 12, seed=9))
     for T in targets:

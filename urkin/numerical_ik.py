@@ -546,7 +546,6 @@ def _iterate_one(
         attempt, since_progress, attempt_best = attempt_state
     tol_position, tol_orientation = problem.tol_position, problem.tol_orientation
     patience, limit_steps, uses_pose = rule.patience, max_step != math.inf, rule.uses_pose
-    wide_limits = problem.wide_limits
     pose, e, pos, rot, J = problem.evaluate_one(q)
     while True:
         residual = pos if pos > rot else rot
@@ -559,10 +558,10 @@ def _iterate_one(
         if residual < attempt_best:
             attempt_best = residual
         if pos <= tol_position and rot <= tol_orientation:
-            return problem.wrap(best_q), True, iterations, restarts, best
-        if attempt >= max_iterations or since_progress >= patience or rule.given_up_one():
+            return best_q, True, iterations, restarts, best
+        if _stalled(attempt, since_progress, rule.given_up_one(), patience, max_iterations):
             if restarts >= max_restarts:
-                return problem.wrap(best_q), False, iterations, restarts, best
+                return best_q, False, iterations, restarts, best
             restarts += 1
             attempt, since_progress, attempt_best = 0, 0, math.inf
             rule.start(1)
@@ -575,9 +574,7 @@ def _iterate_one(
             largest = max(map(abs, dq.tolist()))
             if largest > max_step:
                 dq = dq * (max_step / largest)
-        # angles may leave (−π, π] while iterating when every angle is allowed (the one-pose
-        # kinematics take any angle); the configuration returned is wrapped
-        trial = q + dq if wide_limits else problem.wrap(q + dq)
+        trial = problem.wrap(q + dq)
         pose_trial, e_trial, pos_trial, rot_trial, J_trial = problem.evaluate_one(trial)
         if rule.accept(0, e, e_trial, J, dq):
             q, pose, e, pos, rot, J = trial, pose_trial, e_trial, pos_trial, rot_trial, J_trial
