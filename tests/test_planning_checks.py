@@ -1,0 +1,167 @@
+"""Scenes, collision checks, clearances and edge checks of urkin.planning.
+
+Signed distances are held to closest points computed another way (clipping into the box,
+clamping onto the cylinder, dense sampling of a capsule's segment); checks to their
+definitions; edge sampling to the distance every sphere centre really moves.
+"""
+
+import numpy as np
+import pytest
+
+import urkin
+from urkin import planning
+from urkin.transforms import random_rotations
+
+UR5 = urkin.robot("ur5")
+MODEL = planning.sphere_model(UR5)
+# the table top 1 cm below the mounting plane (the shoulder's sphere reaches 4.5 mm below it)
+TABLE = planning.Scene(boxes=[planning.Box([0, 0, -0.06], [2, 2, 0.1], name="table")])
+UP = np.array([0, -np.pi / 2, 0, -np.pi / 2, 0, 0])
+
+
+def test_box_distances_against_the_clipped_closest_point(rng):
+    R = random_rotations(1, seed=3)[0]
+    box = planning.Box([0.2, -0.1, 0.3], [0.3, 0.2, 0.1], R)
+    scene = planning.Scene(boxes=[box])
+    points = rng.uniform(-0.5, 0.8, (2000, 3))
+    local = (points - box.centre) @ R
+    half = box.size / 2
+    closest = np.clip(local, -half, half)
+    outside = np.linalg.norm(local - closest, axis=1)
+    inside = -np.min(half - np.abs(local), axis=1)
+    expected = np.where(np.all(np.abs(local) <= half, axis=1), inside, outside)
+    np.testing.assert_allclose(scene.signed_distances(points)[:, 0], expected, atol=1e-12)
+
+
+def test_cylinder_distances_against_the_clamped_closest_point(rng):
+    cylinder = planning.Cylinder([0.1, 0.2, 0.0], [1.0, 1.0, 0.0], radius=0.1, length=0.4)
+    scene = planning.Scene(cylinders=[cylinder])
+    points = rng.uniform(-0.5, 0.6, (2000, 3))
+    d = points - cylinder.centre
+    t = d @ cylinder.axis
+    radial = d - t[:, None] * cylinder.axis
+    rho = np.linalg.norm(radial, axis=1)
+    tc = np.clip(t, -0.2, 0.2)
+    rc = np.minimum(rho, 0.1)
+    direction = radial / rho[:, None]
+    closest = cylinder.centre + tc[:, None] * cylinder.axis + rc[:, None] * direction
+    outside = np.linalg.norm(points - closest, axis=1)
+    inside = -np.minimum(0.1 - rho, 0.2 - np.abs(t))
+    expected = np.where((rho <= 0.1) & (np.abs(t) <= 0.2), inside, outside)
+    np.testing.assert_allclose(scene.signed_distances(points)[:, 0], expected, atol=1e-12)
+
+
+def test_sphere_and_capsule_distances(rng):
+    a, b = np.array([0.0, 0.0, 0.0]), np.array([0.3, 0.1, -0.2])
+    scene = planning.Scene(
+        spheres=[planning.Sphere([0.1, 0.1, 0.1], 0.05)], capsules=[planning.Capsule(a, b, 0.04)]
+    )
+    points = rng.uniform(-0.4, 0.5, (500, 3))
+    segment = a + np.linspace(0, 1, 200_001)[:, None] * (b - a)
+    nearest = np.array([np.min(np.linalg.norm(segment - p, axis=1)) for p in points])
+    got = scene.signed_distances(points)
+    np.testing.assert_allclose(got[:, 0], np.linalg.norm(points - 0.1, axis=1) - 0.05, atol=1e-12)
+    np.testing.assert_allclose(got[:, 1], nearest - 0.04, atol=1e-6)
+    assert scene.names == ("sphere 0", "capsule 0")
+
+
+def test_scene_keeps_leading_axes_and_refuses_bad_obstacles():
+    scene = planning.Scene(boxes=[{"centre": [0, 0, 0], "size": [1, 1, 1]}])
+    assert scene.signed_distances(np.zeros((2, 3, 3))).shape == (2, 3, 1)
+    assert planning.Scene().signed_distances(np.zeros((4, 3))).shape == (4, 0)
+    with pytest.raises(ValueError, match="box size must be three positive edge lengths"):
+        planning.Box([0, 0, 0], [1, -1, 1])
+    with pytest.raises(ValueError, match="rotation"):
+        planning.Box([0, 0, 0], [1, 1, 1], rotation=np.ones((3, 3)))
+    with pytest.raises(ValueError, match="cylinder axis must be a non-zero direction"):
+        planning.Cylinder([0, 0, 0], [0, 0, 0], 0.1, 0.2)
+    with pytest.raises(ValueError, match="sphere radius must be positive"):
+        planning.Sphere([0, 0, 0], 0.0)
+    with pytest.raises(ValueError, match="box centre must be a 3-vector"):
+        planning.Box([0, 0], [1, 1, 1])
+    with pytest.raises(TypeError, match=r"boxes\[0\] must be a planning.Box"):
+        planning.Scene(boxes=[planning.Sphere([0, 0, 0], 1.0)])
+    with pytest.raises(ValueError, match="points must have shape"):
+        scene.signed_distances([1.0, 2.0])
+
+
+def test_is_free_matches_the_sign_of_the_clearance(rng):
+    Q = rng.uniform(-np.pi, np.pi, (3000, 6))
+    free = planning.is_free(MODEL, TABLE, Q)
+    c = planning.clearance(MODEL, TABLE, Q)
+    np.testing.assert_array_equal(free, c.distance > 0)
+    assert free.any() and not free.all()
+    grid = Q[:12].reshape(3, 4, 6)
+    assert planning.is_free(MODEL, TABLE, grid).shape == (3, 4)
+    assert planning.clearance(MODEL, TABLE, grid).distance.shape == (3, 4)
+    assert planning.is_free(MODEL, TABLE, UP) is True
+
+
+def test_clearance_is_the_smallest_gap_of_every_pair(rng):
+    Q = rng.uniform(-np.pi, np.pi, (50, 6))
+    c = planning.clearance(MODEL, TABLE, Q)
+    W = MODEL.place(Q)
+    moving = MODEL.frames > 0
+    env = TABLE.signed_distances(W[:, moving])[..., 0] - MODEL.radii[moving]
+    i, j = MODEL.pairs.T
+    own = np.linalg.norm(W[:, i] - W[:, j], axis=-1) - MODEL.radii[i] - MODEL.radii[j]
+    np.testing.assert_allclose(c.distance, np.minimum(env.min(1), own.min(1)), atol=1e-12)
+    is_self = c.obstacle < 0
+    np.testing.assert_array_equal(is_self, c.other >= 0)
+
+
+def test_explain_names_the_pair_and_the_depth():
+    assert planning.explain(MODEL, TABLE, [0, 0.5, 0, 0, 0, 0]).startswith(
+        "in collision: upper arm sphere"
+    )
+    assert "box 'table'" in planning.explain(MODEL, TABLE, [0, 0.5, 0, 0, 0, 0])
+    assert planning.explain(MODEL, TABLE, UP).startswith("free: the closest pair is")
+    stick = planning.SphereModel.from_rows(
+        UR5, [[1, 0, 0, 0, 0.05], [3, 0, 0, 0, 0.05]], pairs=[[0, 1]]
+    )
+    folded = [0, 0, np.pi, 0, 0, 0]  # the forearm folded back onto the shoulder
+    text = planning.explain(stick, planning.Scene(), folded)
+    assert "(self-collision)" in text
+    assert planning.explain(
+        planning.SphereModel.from_rows(UR5, [[1, 0, 0, 0, 0.05]]), planning.Scene(), UP
+    ).startswith("free: nothing to collide with")
+    with pytest.raises(ValueError, match="explain takes one configuration"):
+        planning.explain(MODEL, TABLE, np.zeros((2, 6)))
+
+
+def test_edges_catch_a_collision_between_free_ends():
+    assert planning.is_free(MODEL, TABLE, UP)
+    through = UP.copy()
+    through[1] += np.pi  # the upper arm pointing straight down: in the table
+    assert not planning.is_free(MODEL, TABLE, through)
+    around = UP.copy()
+    around[0] += 2.0
+    result = planning.edges_free(MODEL, TABLE, [UP, UP], [around, through])
+    np.testing.assert_array_equal(result, [True, False])
+
+
+def test_edge_samples_bound_how_far_every_sphere_moves(rng):
+    for resolution in (0.01, 0.003):
+        A = rng.uniform(-np.pi, np.pi, (20, 6))
+        B = A + rng.uniform(-1, 1, (20, 6))
+        counts = planning.edge_samples(MODEL, A, B, resolution)
+        for a, b, n in zip(A, B, counts):
+            t = np.linspace(0, 1, 20 * n + 1)  # finer than the samples
+            W = MODEL.place(a + t[:, None] * (b - a))
+            moved = np.linalg.norm(np.diff(W, axis=0), axis=-1).sum(axis=0)  # path length
+            assert moved.max() <= n * resolution * (1 + 1e-9)
+
+
+def test_checks_refuse_bad_arguments():
+    with pytest.raises(TypeError, match=r"model must be a planning\.SphereModel"):
+        planning.is_free(UR5, TABLE, UP)
+    with pytest.raises(TypeError, match=r"scene must be a planning\.Scene"):
+        planning.is_free(MODEL, [], UP)
+    with pytest.raises(ValueError, match="q must be 6 joint angles"):
+        planning.is_free(MODEL, TABLE, [0, 0, 0])
+    with pytest.raises(ValueError, match="NaN"):
+        planning.clearance(MODEL, TABLE, [0, 0, 0, 0, 0, np.nan])
+    with pytest.raises(ValueError, match="qa and qb must have the same shape"):
+        planning.edges_free(MODEL, TABLE, UP, np.zeros((2, 6)))
+    with pytest.raises(ValueError, match="resolution must be a positive distance"):
+        planning.edges_free(MODEL, TABLE, UP, UP, resolution=0.0)

@@ -1,0 +1,99 @@
+"""The fitted sphere models cover the ROS-Industrial collision meshes of their arms.
+
+The meshes are placed by the URDF chain (tests/robot_models.py, no urkin) and the spheres by
+``SphereModel.place`` (``urkin.fk_frames``), both in ``base_link``, at random configurations;
+points are sampled afresh on every link's surface.
+"""
+
+import numpy as np
+import pytest
+
+import urkin
+from urkin import planning
+
+from .robot_models import posed_meshes, sample_surface
+
+
+@pytest.mark.parametrize("name", ["UR3", "UR5", "UR10"])
+def test_spheres_cover_the_collision_meshes(name):
+    arm = urkin.robot(name)
+    model = planning.sphere_model(arm)
+    rng = np.random.default_rng(12)
+    link = np.minimum(model.frames, 6)
+    for q in rng.uniform(-np.pi, np.pi, (4, 6)):
+        centres = model.place(q) @ urkin.T_BASE_LINK_BASE[:3, :3].T
+        for k, triangles in enumerate(posed_meshes(name, q)):
+            points = sample_surface(triangles, 4000, rng)
+            own = np.abs(link - k) <= 1  # the same or an adjacent link
+            outside = (
+                np.linalg.norm(points[:, None] - centres[own][None], axis=-1) - model.radii[own]
+            ).min(axis=1)
+            inside = np.mean(outside <= 0)
+            assert inside >= 0.995, f"{name} link {k}: {inside:.2%} of the surface covered"
+            assert outside.max() <= 0.005, f"{name} link {k}: sticks out {outside.max():.4f} m"
+
+
+def test_every_link_has_spheres_and_the_table_is_metres():
+    for name in ("UR3", "UR5", "UR10"):
+        model = planning.sphere_model(urkin.robot(name))
+        assert set(model.frames.tolist()) == set(range(7))
+        assert np.all((model.radii > 0.02) & (model.radii < 0.2))
+
+
+def test_models_follow_the_base_and_refuse_other_arms():
+    ur5 = urkin.robot("ur5")
+    moved = ur5.with_base(urkin.transforms.make_transform(p=[1.0, 2.0, 3.0]))
+    q = np.array([0.3, -1.0, 1.2, 0.1, 0.5, -0.4])
+    np.testing.assert_allclose(
+        planning.sphere_model(moved).place(q),
+        planning.sphere_model(ur5).place(q) + np.array([1.0, 2.0, 3.0]),
+        atol=1e-12,
+    )
+    with pytest.raises(ValueError, match="no fitted sphere model for the UR5e"):
+        planning.sphere_model(urkin.robot("ur5e"))
+    other = urkin.Robot("UR5", 0.1, -0.425, -0.39225, 0.10915, 0.09465, 0.0823)
+    with pytest.raises(ValueError, match="DH lengths"):
+        planning.sphere_model(other)
+
+
+def test_self_pairs_follow_the_stated_rule():
+    model = planning.sphere_model(urkin.robot("ur5"))
+    link = np.minimum(model.frames, 6)
+    i, j = model.pairs.T
+    assert np.all(i < j) and np.all(np.abs(link[i] - link[j]) >= 2)
+    # every pair the rule drops never comes within 2 cm, or always overlaps, over fresh samples
+    Q = urkin.robots.random_configurations(model.robot, 3000, np.random.default_rng(5))
+    W = model.place(Q)
+    a, b = np.triu_indices(len(model), k=1)
+    candidate = np.abs(link[a] - link[b]) >= 2
+    kept = {(int(x), int(y)) for x, y in model.pairs}
+    dropped = [(x, y) for x, y, c in zip(a, b, candidate) if c and (x, y) not in kept]
+    for x, y in dropped:
+        gap = np.linalg.norm(W[:, x] - W[:, y], axis=-1) - model.radii[x] - model.radii[y]
+        assert gap.min() > 0.0 or gap.max() <= 0.0, (model.names[x], model.names[y])
+
+
+def test_tool_spheres_join_the_model_with_derived_pairs():
+    model = planning.sphere_model(urkin.robot("ur5"))
+    gripper = model.with_tool_spheres([[0, 0, 0.06], [0, 0, 0.12]], 0.035, name="block")
+    assert len(gripper) == len(model) + 2
+    assert gripper.names[-1] == "block sphere 1"
+    new = gripper.pairs[~np.isin(gripper.pairs, np.arange(len(model))).all(axis=1)]
+    assert len(new) and np.all(np.max(new, axis=1) >= len(model))
+    assert np.all(np.minimum(gripper.frames[new.min(axis=1)], 6) <= 4)  # never wrist 2/3
+
+
+def test_hand_built_models_check_their_rows():
+    ur5 = urkin.robot("ur5")
+    with pytest.raises(ValueError, match=r"rows must have shape \(S, 5\)"):
+        planning.SphereModel.from_rows(ur5, [[1, 0, 0, 0.1]])
+    with pytest.raises(ValueError, match=r"rows\[1\]: the frame must be an integer 0 … 7"):
+        planning.SphereModel.from_rows(ur5, [[1, 0, 0, 0, 0.1], [8, 0, 0, 0, 0.1]])
+    with pytest.raises(ValueError, match=r"rows\[0\]: the radius must be positive"):
+        planning.SphereModel.from_rows(ur5, [[1, 0, 0, 0, -0.1]])
+    with pytest.raises(ValueError, match="NaN"):
+        planning.SphereModel.from_rows(ur5, [[1, 0, 0, np.nan, 0.1]])
+    with pytest.raises(ValueError, match="two different spheres"):
+        planning.SphereModel.from_rows(ur5, [[1, 0, 0, 0, 0.1], [4, 0, 0, 0, 0.1]], [[0, 5]])
+    with pytest.raises(TypeError, match="robot must be a urkin Robot"):
+        planning.SphereModel.from_rows("ur5", [[1, 0, 0, 0, 0.1]])

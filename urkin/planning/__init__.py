@@ -1,0 +1,47 @@
+"""Collision checking and motion planning with sphere models of the arms.
+
+::
+
+    from urkin import planning
+    model = planning.sphere_model(ur5)                      # spheres fixed in the DH frames
+    scene = planning.Scene(boxes=[planning.Box(centre, size, name="shelf")])
+    planning.is_free(model, scene, Q)                       # (N,) bool
+    planning.clearance(model, scene, Q)                     # signed distance and the pair
+    planning.explain(model, scene, q)                       # a sentence
+    planning.edges_free(model, scene, QA, QB)               # (K,) bool, straight edges
+    plan = planning.rrt_connect(model, scene, q_start, goals, seed=0)
+
+Modules: :mod:`~urkin.planning.spheres` (sphere models), :mod:`~urkin.planning.scene`
+(obstacles, signed distances), :mod:`~urkin.planning.checks` (configurations, clearances,
+edges), :mod:`~urkin.planning.rrt` (RRT-Connect, shortcutting).
+"""
+
+from urkin.planning.checks import (
+    Clearance,
+    clearance,
+    edge_samples,
+    edges_free,
+    explain,
+    is_free,
+)
+from urkin.planning.scene import Box, Capsule, Cylinder, Scene, Sphere
+from urkin.planning.spheres import FRAME_NAMES, TOOL_FRAME, SphereModel, self_pairs, sphere_model
+
+__all__ = [
+    "FRAME_NAMES",
+    "TOOL_FRAME",
+    "Box",
+    "Capsule",
+    "Clearance",
+    "Cylinder",
+    "Scene",
+    "Sphere",
+    "SphereModel",
+    "clearance",
+    "edge_samples",
+    "edges_free",
+    "explain",
+    "is_free",
+    "self_pairs",
+    "sphere_model",
+]

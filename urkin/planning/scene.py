@@ -1,0 +1,260 @@
+"""Scenes of obstacles — boxes, cylinders, spheres and capsules — and exact signed distances.
+
+Every obstacle is convex, so the distance from a sphere to it is the distance from the
+sphere's centre to the obstacle minus the radius; inside an obstacle the centre's distance is
+negative (minus the depth to its surface), and the difference is how deep the sphere goes in.
+:meth:`Scene.signed_distances` evaluates it for many points against every obstacle at once,
+with no Python loop over points or obstacles of one kind.
+
+Obstacles are given in the robot's base frame (DH frame 0 moved by the robot's ``base``), in
+metres; sizes are full lengths (a box's edges, a cylinder's length), as a catalogue states them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from urkin._inputs import real
+from urkin.transforms import check_rotation
+
+__all__ = ["Box", "Capsule", "Cylinder", "Scene", "Sphere"]
+
+
+def _vector(x: ArrayLike, name: str) -> np.ndarray:
+    v = real(x, name)
+    if v.shape != (3,):
+        raise ValueError(f"{name} must be a 3-vector (metres); got shape {v.shape}")
+    return v
+
+
+def _length(x: float, name: str, *, zero_ok: bool = False) -> float:
+    value = float(real(x, name))
+    if value < 0 or (value == 0 and not zero_ok):
+        raise ValueError(f"{name} must be positive (metres); got {value:g}")
+    return value
+
+
+@dataclass(frozen=True)
+class Box:
+    """A box: ``centre``, full edge lengths ``size`` along its own axes, and ``rotation`` (its
+    axes in the base frame; identity by default)."""
+
+    centre: ArrayLike
+    size: ArrayLike
+    rotation: ArrayLike | None = None
+    name: str | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "centre", _vector(self.centre, "box centre"))
+        size = _vector(self.size, "box size")
+        if np.any(size <= 0):
+            raise ValueError(f"box size must be three positive edge lengths (m); got {size}")
+        object.__setattr__(self, "size", size)
+        R = np.eye(3) if self.rotation is None else check_rotation(self.rotation, name="rotation")
+        object.__setattr__(self, "rotation", R)
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    """A solid cylinder with flat caps: ``centre``, unit ``axis`` direction, ``radius`` and full
+    ``length`` along the axis."""
+
+    centre: ArrayLike
+    axis: ArrayLike
+    radius: float
+    length: float
+    name: str | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "centre", _vector(self.centre, "cylinder centre"))
+        axis = _vector(self.axis, "cylinder axis")
+        norm = float(np.linalg.norm(axis))
+        if norm == 0:
+            raise ValueError("cylinder axis must be a non-zero direction")
+        object.__setattr__(self, "axis", axis / norm)
+        object.__setattr__(self, "radius", _length(self.radius, "cylinder radius"))
+        object.__setattr__(self, "length", _length(self.length, "cylinder length"))
+
+
+@dataclass(frozen=True)
+class Sphere:
+    """A ball: ``centre`` and ``radius``."""
+
+    centre: ArrayLike
+    radius: float
+    name: str | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "centre", _vector(self.centre, "sphere centre"))
+        object.__setattr__(self, "radius", _length(self.radius, "sphere radius"))
+
+
+@dataclass(frozen=True)
+class Capsule:
+    """The points within ``radius`` of the segment from ``a`` to ``b``."""
+
+    a: ArrayLike
+    b: ArrayLike
+    radius: float
+    name: str | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "a", _vector(self.a, "capsule a"))
+        object.__setattr__(self, "b", _vector(self.b, "capsule b"))
+        object.__setattr__(self, "radius", _length(self.radius, "capsule radius"))
+
+
+_KINDS = (
+    ("boxes", Box, "box"),
+    ("cylinders", Cylinder, "cylinder"),
+    ("spheres", Sphere, "sphere"),
+    ("capsules", Capsule, "capsule"),
+)
+
+
+@dataclass(frozen=True, eq=False)
+class Scene:
+    """Obstacles in the robot's base frame.
+
+    Parameters
+    ----------
+    boxes, cylinders, spheres, capsules : sequence
+        Obstacles of each kind: :class:`Box`, :class:`Cylinder`, :class:`Sphere`,
+        :class:`Capsule` objects (or dicts of their arguments).
+
+    Attributes
+    ----------
+    names : tuple of str
+        One name per obstacle, boxes first, then cylinders, spheres and capsules (the order of
+        :meth:`signed_distances`' columns): an obstacle's ``name``, or ``"box 2"`` etc.
+
+    Examples
+    --------
+    >>> from urkin import planning
+    >>> scene = planning.Scene(boxes=[planning.Box([0.5, 0, 0.2], [0.1, 0.4, 0.4], name="wall")])
+    >>> scene.signed_distances([[0.3, 0, 0.2], [0.5, 0, 0.2]]).round(3)
+    array([[ 0.15],
+           [-0.05]])
+    """
+
+    boxes: Sequence[Box] = ()
+    cylinders: Sequence[Cylinder] = ()
+    spheres: Sequence[Sphere] = ()
+    capsules: Sequence[Capsule] = ()
+    names: tuple[str, ...] = field(init=False)
+
+    def __post_init__(self) -> None:
+        names: list[str] = []
+        for attribute, kind, label in _KINDS:
+            given = getattr(self, attribute)
+            if given is None:
+                given = ()
+            if isinstance(given, (kind, dict)):
+                given = (given,)
+            items = []
+            for k, item in enumerate(given):
+                if isinstance(item, dict):
+                    item = kind(**item)
+                elif not isinstance(item, kind):
+                    raise TypeError(
+                        f"{attribute}[{k}] must be a planning.{kind.__name__} (or a dict of its "
+                        f"arguments); got {type(item).__name__}"
+                    )
+                items.append(item)
+                names.append(item.name if item.name else f"{label} {k}")
+            object.__setattr__(self, attribute, tuple(items))
+        object.__setattr__(self, "names", tuple(names))
+        boxes = self.boxes
+        # boxes: rows of Rᵀ stacked as one (3, 3B) matrix, so one product places every point
+        # in every box's frame
+        self._set(
+            "_box_Rt",
+            np.concatenate([b.rotation for b in boxes], axis=1) if boxes else np.zeros((3, 0)),
+        )
+        self._set(
+            "_box_c",
+            np.concatenate([b.rotation.T @ b.centre for b in boxes]) if boxes else np.zeros(0),
+        )
+        self._set("_box_h", np.concatenate([b.size / 2 for b in boxes]) if boxes else np.zeros(0))
+        cyl = self.cylinders
+        self._set("_cyl_c", np.array([c.centre for c in cyl]).reshape(-1, 3))
+        self._set("_cyl_a", np.array([c.axis for c in cyl]).reshape(-1, 3))
+        self._set("_cyl_r", np.array([c.radius for c in cyl]))
+        self._set("_cyl_h", np.array([c.length / 2 for c in cyl]))
+        sph = self.spheres
+        self._set("_sph_c", np.array([s.centre for s in sph]).reshape(-1, 3))
+        self._set("_sph_r", np.array([s.radius for s in sph]))
+        cap = self.capsules
+        self._set("_cap_a", np.array([c.a for c in cap]).reshape(-1, 3))
+        self._set("_cap_d", np.array([c.b - c.a for c in cap]).reshape(-1, 3))
+        self._set("_cap_r", np.array([c.radius for c in cap]))
+
+    def _set(self, name: str, value: np.ndarray) -> None:
+        value = np.ascontiguousarray(value, dtype=float)
+        value.setflags(write=False)
+        object.__setattr__(self, name, value)
+
+    def __len__(self) -> int:
+        return len(self.names)
+
+    def __repr__(self) -> str:
+        counts = ", ".join(f"{len(getattr(self, a))} {a}" for a, _, _ in _KINDS if getattr(self, a))
+        return f"Scene({counts or 'empty'})"
+
+    def signed_distances(self, points: ArrayLike) -> np.ndarray:
+        """Signed distance from each point to each obstacle: positive outside, negative inside
+        (minus the distance to the surface).
+
+        Parameters
+        ----------
+        points : array_like, shape (..., 3)
+
+        Returns
+        -------
+        ndarray, shape (..., len(scene))
+            Columns in the order of :attr:`names`.
+        """
+        P = real(points, "points")
+        if P.shape[-1:] != (3,):
+            raise ValueError(f"points must have shape (..., 3); got shape {P.shape}")
+        lead = P.shape[:-1]
+        flat = P.reshape(-1, 3)
+        return self._distances(flat).reshape(*lead, len(self))
+
+    def _distances(self, P: np.ndarray) -> np.ndarray:
+        """:meth:`signed_distances` of checked points (M, 3): (M, len(scene))."""
+        parts = []
+        if self.boxes:
+            B = len(self.boxes)
+            q = np.abs(P @ self._box_Rt - self._box_c) - self._box_h  # (M, 3B)
+            q = q.reshape(len(P), B, 3)
+            outside = np.sqrt(np.sum(np.maximum(q, 0.0) ** 2, axis=-1))
+            parts.append(outside + np.minimum(q.max(axis=-1), 0.0))
+        if self.cylinders:
+            d = P[:, None, :] - self._cyl_c  # (M, C, 3)
+            t = np.einsum("mci,ci->mc", d, self._cyl_a)
+            radial = np.sqrt(np.maximum(np.sum(d * d, axis=-1) - t * t, 0.0))
+            u = radial - self._cyl_r
+            v = np.abs(t) - self._cyl_h
+            outside = np.hypot(np.maximum(u, 0.0), np.maximum(v, 0.0))
+            parts.append(outside + np.minimum(np.maximum(u, v), 0.0))
+        if self.spheres:
+            d = P[:, None, :] - self._sph_c
+            parts.append(np.sqrt(np.sum(d * d, axis=-1)) - self._sph_r)
+        if self.capsules:
+            d = P[:, None, :] - self._cap_a  # (M, K, 3)
+            length2 = np.sum(self._cap_d**2, axis=-1)
+            s = np.clip(
+                np.einsum("mki,ki->mk", d, self._cap_d) / np.where(length2 > 0, length2, 1.0),
+                0.0,
+                1.0,
+            )
+            e = d - s[..., None] * self._cap_d
+            parts.append(np.sqrt(np.sum(e * e, axis=-1)) - self._cap_r)
+        if not parts:
+            return np.zeros((len(P), 0))
+        return np.concatenate(parts, axis=-1) if len(parts) > 1 else parts[0]

@@ -1,0 +1,376 @@
+"""Sphere models of the arms: spheres attached to DH frames, placed by ``fk_frames``.
+
+A :class:`SphereModel` is a list of spheres, each fixed in one frame of the arm — DH frame 0
+(the base) to 6 (the flange), or 7, the tool frame (the flange moved by the robot's ``tool``
+transform: a gripper, a held block) — with the pairs of spheres that self-collision checks
+test.  :func:`sphere_model` gives the fitted models of the UR3, UR5 and UR10; a model can also
+be built by hand from ``(frame, x, y, z, radius)`` rows (:meth:`SphereModel.from_rows`) and
+given extra spheres on the tool (:meth:`SphereModel.with_tool_spheres`).
+
+Provenance of the fitted models
+    Fitted to the ROS-Industrial ``ur_description`` collision meshes (BSD; copied from the
+    ``example-robot-data`` 6.0.0 wheel into ``tests/data/meshes``) by ``python -m
+    tests.fit_spheres``: each link's mesh in its DH frame, split into pieces no longer than
+    12 mm, grouped by k-means, each group enclosed by a sphere through the group's vertices
+    (plus 0.5 mm).  A ball holding a triangle's corners holds the whole triangle, so the
+    spheres cover every point of the mesh surface; ``tests/test_planning_spheres.py`` checks
+    it on fresh surface samples, the meshes placed by the URDF and the spheres by
+    :func:`urkin.fk_frames`, at random configurations.  The spheres reach 1–3 cm beyond the
+    surface (they are conservative: a sphere cannot follow a flat face).
+
+Self-collision pairs (the stated rule)
+    Two spheres are tested against each other unless their links are the same or adjacent
+    (frames ``i`` and ``i ± 1``; the tool frame is part of link 6), or, over 20,000 random
+    configurations within the joint limits (seed 0), they never came within 2 cm of each
+    other (they cannot meet in practice) or always overlapped (a fixed overlap of the
+    housings, which would make every configuration a collision).  :func:`self_pairs` applies
+    the rule; it runs once per model (about a second) and is cached.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from urkin._inputs import real
+from urkin.kinematics import fk_frames
+from urkin.planning._sphere_tables import FITTED
+from urkin.robots import Robot, check_robot, random_configurations
+from urkin.robots import robot as _robot_by_name
+
+__all__ = ["FRAME_NAMES", "TOOL_FRAME", "SphereModel", "self_pairs", "sphere_model"]
+
+#: Names of the frames spheres attach to: DH frames 0 … 6, then the tool frame.
+FRAME_NAMES = ("base", "shoulder", "upper arm", "forearm", "wrist 1", "wrist 2", "wrist 3", "tool")
+#: The index of the tool frame (the flange moved by the robot's ``tool`` transform).
+TOOL_FRAME = 7
+
+#: The self-pair rule's sampling (see the module notes).
+_PAIR_SAMPLES, _PAIR_MARGIN, _PAIR_SEED = 20_000, 0.02, 0
+
+
+@dataclass(frozen=True, eq=False)
+class SphereModel:
+    """Spheres fixed in the frames of an arm, and the sphere pairs self-collision tests.
+
+    Attributes
+    ----------
+    robot : Robot
+        The arm whose frames place the spheres.
+    frames : ndarray, shape (S,)
+        The frame of each sphere: 0 … 6 (DH frames, as :func:`urkin.fk_frames` numbers them)
+        or 7 (:data:`TOOL_FRAME`).
+    centres : ndarray, shape (S, 3)
+        Each centre in its frame, metres.
+    radii : ndarray, shape (S,)
+        Radii, metres.
+    pairs : ndarray, shape (P, 2)
+        Sphere indices ``(i, j)``, ``i < j``, tested for self-collision.
+    names : tuple of str
+        A label per sphere, e.g. ``"forearm sphere 2"`` (numbered within its frame or group).
+    source : str
+        Where the spheres come from.
+    """
+
+    robot: Robot
+    frames: np.ndarray
+    centres: np.ndarray
+    radii: np.ndarray
+    pairs: np.ndarray
+    names: tuple[str, ...]
+    source: str = ""
+    _moving: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        for name in ("frames", "centres", "radii", "pairs"):
+            getattr(self, name).setflags(write=False)
+        moving = np.flatnonzero(self.frames > 0)  # the base's spheres never move
+        moving.setflags(write=False)
+        object.__setattr__(self, "_moving", moving)
+
+    def __len__(self) -> int:
+        return len(self.radii)
+
+    def __repr__(self) -> str:
+        return (
+            f"SphereModel({self.robot.name}: {len(self)} spheres, {len(self.pairs)} "
+            "self-collision pairs)"
+        )
+
+    @classmethod
+    def from_rows(
+        cls,
+        robot: Robot,
+        rows: ArrayLike,
+        pairs: ArrayLike | str = "derive",
+        *,
+        names: Sequence[str] | None = None,
+        source: str = "built by hand",
+    ) -> SphereModel:
+        """A model from rows ``(frame, x, y, z, radius)``.
+
+        Parameters
+        ----------
+        robot : Robot
+        rows : array_like, shape (S, 5)
+            Per sphere: the frame it is fixed in (0 … 6, or 7 for the tool frame; an integer),
+            its centre in that frame and its radius (metres, > 0).
+        pairs : (P, 2) array_like of sphere indices, or "derive"
+            The self-collision pairs, or ``"derive"`` for :func:`self_pairs`'s rule.
+        names : sequence of str, optional
+            A label per sphere (default: ``"<frame name> sphere <k>"``).
+        source : str
+            Provenance, shown in reports.
+
+        Examples
+        --------
+        >>> import urkin
+        >>> from urkin import planning
+        >>> ur5 = urkin.robot("ur5")
+        >>> stick = planning.SphereModel.from_rows(ur5, [[3, 0.2, 0, 0, 0.05], [6, 0, 0, 0, 0.04]])
+        >>> stick.names
+        ('forearm sphere 0', 'wrist 3 sphere 0')
+        """
+        robot = check_robot(robot)
+        table = real(rows, "rows")
+        if table.ndim != 2 or table.shape[1] != 5 or len(table) == 0:
+            raise ValueError(
+                "rows must have shape (S, 5), one (frame, x, y, z, radius) per sphere; got "
+                f"shape {table.shape}"
+            )
+        frames = table[:, 0]
+        if np.any(frames != np.round(frames)) or np.any((frames < 0) | (frames > TOOL_FRAME)):
+            bad = int(np.flatnonzero((frames != np.round(frames)) | (frames < 0) | (frames > 7))[0])
+            raise ValueError(
+                f"rows[{bad}]: the frame must be an integer 0 … 7 (DH frames 0 … 6, 7 the tool "
+                f"frame); got {frames[bad]:g}"
+            )
+        radii = table[:, 4].copy()
+        if np.any(radii <= 0) or np.any(radii > 2.0):
+            bad = int(np.flatnonzero((radii <= 0) | (radii > 2.0))[0])
+            raise ValueError(
+                f"rows[{bad}]: the radius must be positive and in metres; got {radii[bad]:g}"
+            )
+        frames = frames.astype(np.intp)
+        if names is None:
+            names = _default_names(frames)
+        elif len(names) != len(frames):
+            raise ValueError(f"names holds {len(names)} labels for {len(frames)} spheres")
+        model = cls(
+            robot,
+            frames,
+            np.ascontiguousarray(table[:, 1:4]),
+            radii,
+            np.zeros((0, 2), dtype=np.intp),
+            tuple(str(n) for n in names),
+            source,
+        )
+        return model.with_pairs(pairs)
+
+    def with_pairs(self, pairs: ArrayLike | str = "derive") -> SphereModel:
+        """This model with other self-collision pairs (``"derive"``: :func:`self_pairs`)."""
+        if isinstance(pairs, str):
+            if pairs != "derive":
+                raise ValueError(f"pairs must be an (P, 2) array or 'derive'; got {pairs!r}")
+            chosen = self_pairs(self)
+        else:
+            chosen = np.asarray(pairs)
+            if chosen.size == 0:
+                chosen = np.zeros((0, 2), dtype=np.intp)
+            if chosen.ndim != 2 or chosen.shape[1] != 2 or chosen.dtype.kind not in "iu":
+                raise ValueError(
+                    f"pairs must be integer sphere indices of shape (P, 2); got {pairs!r:.60}"
+                )
+            if (
+                np.any(chosen < 0)
+                or np.any(chosen >= len(self))
+                or np.any(chosen[:, 0] == chosen[:, 1])
+            ):
+                raise ValueError(f"pairs must name two different spheres among 0 … {len(self) - 1}")
+            chosen = np.unique(np.sort(chosen, axis=1), axis=0).astype(np.intp)
+        return SphereModel(
+            self.robot, self.frames, self.centres, self.radii, chosen, self.names, self.source
+        )
+
+    def with_tool_spheres(
+        self, centres: ArrayLike, radii: ArrayLike, name: str = "tool"
+    ) -> SphereModel:
+        """This model with extra spheres fixed in the tool frame (a gripper, a held object).
+
+        Parameters
+        ----------
+        centres : array_like, shape (K, 3)
+            Centres in the tool frame (the flange when the robot has no tool), metres.
+        radii : array_like, shape (K,) or float
+            Radii, metres.
+        name : str
+            Label of the group: the spheres are named ``"<name> sphere <k>"``.
+
+        The new spheres' self-collision pairs follow :func:`self_pairs`'s rule (the old pairs
+        are kept).
+        """
+        c = real(centres, "centres").reshape(-1, 3) if np.size(centres) % 3 == 0 else None
+        if c is None or len(c) == 0:
+            raise ValueError(f"centres must have shape (K, 3); got shape {np.shape(centres)}")
+        r = np.broadcast_to(real(radii, "radii"), (len(c),)).astype(float)
+        rows = np.column_stack([np.full(len(c), TOOL_FRAME), c, r])
+        extra = SphereModel.from_rows(self.robot, rows, pairs=np.zeros((0, 2), dtype=np.intp))
+        names = self.names + tuple(f"{name} sphere {k}" for k in range(len(c)))
+        merged = SphereModel(
+            self.robot,
+            np.concatenate([self.frames, extra.frames]),
+            np.concatenate([self.centres, extra.centres]),
+            np.concatenate([self.radii, extra.radii]),
+            self.pairs,
+            names,
+            self.source + f"; {len(c)} {name} spheres",
+        )
+        new = self_pairs(merged, only=np.arange(len(self), len(merged)))
+        return SphereModel(
+            merged.robot,
+            merged.frames,
+            merged.centres,
+            merged.radii,
+            np.concatenate([self.pairs, new]).astype(np.intp),
+            merged.names,
+            merged.source,
+        )
+
+    def place(self, q: ArrayLike) -> np.ndarray:
+        """World (base-frame) centres of every sphere at joint angles ``q``.
+
+        Returns
+        -------
+        ndarray, shape (S, 3) for q (6,), or (..., S, 3) for q (..., 6)
+        """
+        frames = frames_with_tool(self.robot, q)
+        R = frames[..., self.frames, :3, :3]
+        p = frames[..., :3, 3][..., self.frames, :]
+        return np.einsum("...sij,sj->...si", R, self.centres) + p
+
+
+def frames_with_tool(robot: Robot, q: ArrayLike) -> np.ndarray:
+    """:func:`urkin.fk_frames` with the tool frame appended: (..., 8, 4, 4)."""
+    frames = fk_frames(robot, q)
+    tool = frames[..., 6:7, :, :] @ robot.tool
+    return np.concatenate([frames, tool], axis=-3)
+
+
+def _default_names(frames: Iterable[int]) -> tuple[str, ...]:
+    counts: dict[int, int] = {}
+    names = []
+    for frame in frames:
+        k = counts.get(int(frame), 0)
+        counts[int(frame)] = k + 1
+        names.append(f"{FRAME_NAMES[int(frame)]} sphere {k}")
+    return tuple(names)
+
+
+def self_pairs(model: SphereModel, only: ArrayLike | None = None) -> np.ndarray:
+    """The self-collision pairs of ``model`` by the stated rule (module notes).
+
+    Parameters
+    ----------
+    model : SphereModel
+    only : array_like of int, optional
+        Derive only the pairs that involve these spheres (the others are not returned).
+
+    Returns
+    -------
+    ndarray, shape (P, 2)
+        Sphere indices ``(i, j)``, ``i < j``.
+    """
+    link = np.minimum(model.frames, 6)  # the tool frame moves with link 6
+    i, j = np.triu_indices(len(model), k=1)
+    keep = np.abs(link[i] - link[j]) >= 2
+    if only is not None:
+        chosen = np.zeros(len(model), dtype=bool)
+        chosen[np.asarray(only, dtype=np.intp)] = True
+        keep &= chosen[i] | chosen[j]
+    i, j = i[keep], j[keep]
+    if len(i) == 0:
+        return np.zeros((0, 2), dtype=np.intp)
+    near, apart = _contacts(model, i, j)
+    rule = near & apart  # within the margin sometimes, and not always overlapping
+    return np.column_stack([i[rule], j[rule]]).astype(np.intp)
+
+
+def _contacts(model: SphereModel, i: np.ndarray, j: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Over the rule's random configurations: whether each pair ever came within the margin,
+    and whether it was ever apart."""
+    rng = np.random.default_rng(_PAIR_SEED)
+    near = np.zeros(len(i), dtype=bool)
+    apart = np.zeros(len(i), dtype=bool)
+    reach = model.radii[i] + model.radii[j]
+    for _ in range(_PAIR_SAMPLES // 2000):
+        W = model.place(random_configurations(model.robot, 2000, rng))
+        gap = np.linalg.norm(W[:, i] - W[:, j], axis=-1) - reach
+        near |= np.any(gap <= _PAIR_MARGIN, axis=0)
+        apart |= np.any(gap > 0.0, axis=0)
+    return near, apart
+
+
+@functools.lru_cache(maxsize=16)
+def _fitted(name: str) -> SphereModel:
+    arm = _robot_by_name(name)
+    rows = FITTED[name.lower()]
+    return SphereModel.from_rows(
+        arm,
+        rows,
+        source=(
+            f"fitted to the ROS-Industrial {arm.name} collision meshes (urkin.planning.spheres)"
+        ),
+    )
+
+
+def sphere_model(robot: Robot) -> SphereModel:
+    """The fitted sphere model of a UR3, UR5 or UR10, tested to cover its collision meshes.
+
+    Parameters
+    ----------
+    robot : Robot
+        ``urkin.robot("ur3")``, ``("ur5")`` or ``("ur10")``, with any base and tool (the
+        spheres follow the DH frames, so they move with the base).
+
+    Returns
+    -------
+    SphereModel
+        With the self-collision pairs of the stated rule (module notes).
+
+    Raises
+    ------
+    ValueError
+        For an arm without published collision meshes here (the e-series), or whose DH
+        lengths differ from the model's: build one with :meth:`SphereModel.from_rows`.
+
+    Examples
+    --------
+    >>> import urkin
+    >>> from urkin import planning
+    >>> model = planning.sphere_model(urkin.robot("ur5"))
+    >>> model.place([0, -1.57, 0, -1.57, 0, 0]).shape == (len(model), 3)
+    True
+    """
+    robot = check_robot(robot)
+    key = robot.name.lower()
+    if key not in FITTED:
+        raise ValueError(
+            f"no fitted sphere model for the {robot.name}: the collision meshes it would be "
+            f"fitted to exist for {', '.join(k.upper() for k in FITTED)}; build one with "
+            "planning.SphereModel.from_rows(robot, rows)"
+        )
+    model = _fitted(key)
+    if robot.lengths != model.robot.lengths:
+        raise ValueError(
+            f"robot has DH lengths {robot.lengths}, not the {model.robot.name}'s "
+            f"{model.robot.lengths} that its sphere model was fitted to"
+        )
+    if robot is model.robot:
+        return model
+    return SphereModel(
+        robot, model.frames, model.centres, model.radii, model.pairs, model.names, model.source
+    )
