@@ -21,6 +21,7 @@ at once, so a collision anywhere on any edge is usually found in the first batch
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -230,14 +231,20 @@ def edge_samples(
 ) -> np.ndarray | int:
     """The number of intervals each edge is cut into so that no sphere centre moves more than
     ``resolution`` metres between samples (see the module notes)."""
+    A, B, lead = _edge_ends(qa, qb)
+    counts = _intervals(model, A, B, resolution)
+    return int(counts[0]) if lead == () else counts.reshape(lead)
+
+
+def _edge_ends(qa: ArrayLike, qb: ArrayLike) -> tuple[np.ndarray, np.ndarray, tuple[int, ...]]:
+    """Checked edge ends as (K, 6) arrays, and their leading shape."""
     A, lead, _ = _joints(qa, "qa")
     B, lead_b, _ = _joints(qb, "qb")
     if lead != lead_b:
         raise ValueError(
             f"qa and qb must have the same shape; got {np.shape(qa)} and {np.shape(qb)}"
         )
-    counts = _intervals(model, A.reshape(-1, 6), B.reshape(-1, 6), resolution)
-    return int(counts[0]) if lead == () else counts.reshape(lead)
+    return A.reshape(-1, 6), B.reshape(-1, 6), lead
 
 
 def _intervals(model, A, B, resolution) -> np.ndarray:
@@ -287,13 +294,7 @@ def edges_free(
     False
     """
     _check(model, scene)
-    A, lead, _ = _joints(qa, "qa")
-    B, lead_b, _ = _joints(qb, "qb")
-    if lead != lead_b:
-        raise ValueError(
-            f"qa and qb must have the same shape; got {np.shape(qa)} and {np.shape(qb)}"
-        )
-    A, B = A.reshape(-1, 6), B.reshape(-1, 6)
+    A, B, lead = _edge_ends(qa, qb)
     free = _edges_free(model, scene, A, B, _intervals(model, A, B, resolution))
     return bool(free[0]) if lead == () else free.reshape(lead)
 
@@ -305,9 +306,11 @@ _BATCH = 256
 def _edges_free(model, scene, A, B, counts) -> np.ndarray:
     """Edges (K, 6) → (K,) free, each cut into ``counts`` intervals; coarse samples first,
     across all the edges, in batches, skipping the edges already found in collision."""
-    edge = np.repeat(np.arange(len(A)), counts + 1)
+    samples = counts + 1
+    edge = np.repeat(np.arange(len(A)), samples)
+    index = np.arange(len(edge)) - np.repeat(np.cumsum(samples) - samples, samples)
+    t = index / np.repeat(counts, samples)
     rank = np.concatenate([_rank(int(n)) for n in counts])  # coarse-to-fine rank per sample
-    t = np.concatenate([np.arange(int(n) + 1) / n for n in counts])
     order = np.lexsort((edge, rank))
     edge, t = edge[order], t[order]
     free = np.ones(len(A), dtype=bool)
@@ -328,10 +331,13 @@ def _edges_free(model, scene, A, B, counts) -> np.ndarray:
     return free
 
 
+@functools.lru_cache(maxsize=512)
 def _rank(n: int) -> np.ndarray:
-    """Position of each sample index 0 … n in the coarse-to-fine order."""
+    """Position of each sample index 0 … n in the coarse-to-fine order (cached: edges of one
+    call mostly share a few sample counts)."""
     rank = np.empty(n + 1, dtype=np.intp)
     rank[_order(n)] = np.arange(n + 1)
+    rank.setflags(write=False)
     return rank
 
 

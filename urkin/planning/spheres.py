@@ -201,6 +201,9 @@ class SphereModel:
     ) -> SphereModel:
         """This model with extra spheres fixed in the tool frame (a gripper, a held object).
 
+        The new spheres' self-collision pairs follow :func:`self_pairs`'s rule (the old pairs
+        are kept).
+
         Parameters
         ----------
         centres : array_like, shape (K, 3)
@@ -210,8 +213,9 @@ class SphereModel:
         name : str
             Label of the group: the spheres are named ``"<name> sphere <k>"``.
 
-        The new spheres' self-collision pairs follow :func:`self_pairs`'s rule (the old pairs
-        are kept).
+        Returns
+        -------
+        SphereModel
         """
         c = real(centres, "centres").reshape(-1, 3) if np.size(centres) % 3 == 0 else None
         if c is None or len(c) == 0:
