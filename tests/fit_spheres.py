@@ -115,7 +115,7 @@ def fit(name: str, max_spheres: int = 12) -> list[tuple[int, np.ndarray, float]]
 def main() -> None:
     for name in ("ur3", "ur5", "ur10"):
         rows = fit(name)
-        print(f"    {name!r}: (  # {len(rows)} spheres")
+        print(f'    "{name}": (  # {len(rows)} spheres')
         for frame, centre, radius in rows:
             x, y, z = (round(float(v), 4) + 0.0 for v in centre)
             print(f"        ({frame}, {x:.4f}, {y:.4f}, {z:.4f}, {radius + 5e-5:.4f}),")

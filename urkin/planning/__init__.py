@@ -24,6 +24,7 @@ from urkin.planning.checks import (
     explain,
     is_free,
 )
+from urkin.planning.rrt import Plan, rrt_connect, shortcut
 from urkin.planning.scene import Box, Capsule, Cylinder, Scene, Sphere
 from urkin.planning.spheres import FRAME_NAMES, TOOL_FRAME, SphereModel, self_pairs, sphere_model
 
@@ -34,6 +35,7 @@ __all__ = [
     "Capsule",
     "Clearance",
     "Cylinder",
+    "Plan",
     "Scene",
     "Sphere",
     "SphereModel",
@@ -42,6 +44,8 @@ __all__ = [
     "edges_free",
     "explain",
     "is_free",
+    "rrt_connect",
     "self_pairs",
+    "shortcut",
     "sphere_model",
 ]

@@ -1,0 +1,77 @@
+"""RRT-Connect and shortcutting: every returned edge re-checked finer, seeded, honest failures."""
+
+import numpy as np
+import pytest
+
+import urkin
+from urkin import planning
+
+UR5 = urkin.robot("ur5")
+MODEL = planning.sphere_model(UR5)
+WALL = planning.Scene(
+    boxes=[
+        planning.Box([-0.45, 0.0, 0.3], [0.05, 0.6, 0.6], name="wall"),
+        planning.Box([0, 0, -0.06], [2, 2, 0.1], name="table"),
+    ]
+)
+START = np.array([-1.2, -1.2, 1.2, -1.6, -1.57, 0])
+GOAL = np.array([1.2, -1.2, 1.2, -1.6, -1.57, 0])
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_plans_around_a_wall_with_every_edge_free(seed):
+    assert not planning.edges_free(MODEL, WALL, START, GOAL)
+    plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=seed)
+    assert plan.success and plan.reason == ""
+    np.testing.assert_array_equal(plan.path[0], START)
+    np.testing.assert_array_equal(plan.path[-1], GOAL)
+    assert planning.edges_free(MODEL, WALL, plan.path[:-1], plan.path[1:], resolution=0.002).all()
+    again = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=seed)
+    np.testing.assert_array_equal(again.path, plan.path)
+
+
+def test_open_scene_takes_the_straight_edge_and_several_goals():
+    plan = planning.rrt_connect(MODEL, planning.Scene(), START, np.array([GOAL, START + 0.1]))
+    assert plan.success and len(plan.path) == 2 and plan.iterations == 0
+
+
+def test_a_pose_goal_plans_to_one_of_its_ik_solutions():
+    T = urkin.fk(UR5, GOAL)
+    plan = planning.rrt_connect(MODEL, WALL, START, T, seed=0)
+    assert plan.success
+    np.testing.assert_allclose(urkin.fk(UR5, plan.path[-1]), T, atol=1e-9)
+
+
+def test_failures_are_sentences_and_bad_input_is_refused():
+    boxed = planning.Scene(
+        boxes=[
+            planning.Box([-0.45, 0.0, 0.3], [0.05, 2.0, 2.0], name="wall"),
+            planning.Box([0.45, 0.0, 0.3], [0.05, 2.0, 2.0], name="wall 2"),
+        ]
+    )
+    plan = planning.rrt_connect(MODEL, boxed, START, GOAL, seed=0, max_iterations=20)
+    assert not plan.success  # twenty iterations are not enough between the two walls
+    assert plan.reason.startswith("no collision-free path found in 20 iterations (seed 0)")
+    assert len(plan.path) == 0 and plan.goal == -1
+    with pytest.raises(ValueError, match=r"start is in collision: in collision: .*'table'"):
+        planning.rrt_connect(MODEL, WALL, [0, 0.5, 0, 0, 0, 0], GOAL)
+    with pytest.raises(ValueError, match="every goal is in collision"):
+        planning.rrt_connect(MODEL, WALL, START, [0, 0.5, 0, 0, 0, 0])
+    with pytest.raises(ValueError, match="start is outside the joint limits: joint 1 is 7"):
+        planning.rrt_connect(MODEL, WALL, [7, 0, 0, 0, 0, 0], GOAL)
+    with pytest.raises(ValueError, match="start must be one configuration"):
+        planning.rrt_connect(MODEL, WALL, np.zeros((2, 6)), GOAL)
+
+
+def test_shortcut_keeps_the_ends_and_only_free_edges(rng):
+    wiggle = np.linspace(START, GOAL, 9)
+    wiggle[1:-1, 1] -= 0.6  # lift the upper arm over the wall on the way
+    wiggle[1:-1, 2] -= 0.6
+    if not planning.edges_free(MODEL, WALL, wiggle[:-1], wiggle[1:]).all():
+        pytest.skip("the hand-made detour is not free")
+    short = planning.shortcut(MODEL, WALL, wiggle, seed=3)
+    assert len(short) <= len(wiggle)
+    np.testing.assert_array_equal(short[[0, -1]], wiggle[[0, -1]])
+    assert planning.edges_free(MODEL, WALL, short[:-1], short[1:]).all()
+    with pytest.raises(ValueError, match="path must have shape"):
+        planning.shortcut(MODEL, WALL, START)

@@ -1,0 +1,374 @@
+"""RRT-Connect (Kuffner & LaValle, 2000) in joint space, and shortcutting of its paths.
+
+Two trees grow towards each other: one from the start, one from every goal configuration
+(planning to a pose is planning to all of its closed-form IK solutions).  Each iteration
+draws a configuration within the joint limits, *extends* one tree by at most ``step`` radians
+towards it, then *connects* the other tree to the new node: the whole straight run to it, cut
+into pieces no longer than ``step``, is checked in one batched edge check and the free prefix
+is added.  The trees then swap roles.  The trees live in preallocated arrays; the nearest node
+is found over the whole tree with one array operation.  Every edge is checked with
+:func:`urkin.planning.edges_free` at ``resolution`` (no sphere centre moves further between
+samples), and the final path once more at a quarter of it.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from urkin.analytic_ik import ik_analytic
+from urkin.kinematics import _joints
+from urkin.planning.checks import RESOLUTION, _check, _collides, _edges_free, _intervals, explain
+from urkin.planning.scene import Scene
+from urkin.planning.spheres import SphereModel
+
+__all__ = ["Plan", "rrt_connect", "shortcut"]
+
+
+@dataclass(frozen=True)
+class Plan:
+    """The result of :func:`rrt_connect`.
+
+    Attributes
+    ----------
+    path : ndarray, shape (M, 6)
+        Waypoints from the start to the goal reached (joint space; straight edges between
+        them are free); empty when no path was found.
+    success : bool
+    reason : str
+        Empty on success; otherwise a sentence saying why not.
+    iterations : int
+        Iterations of the planner (draws of a random configuration).
+    nodes : int
+        Nodes in both trees.
+    goal : int
+        Index of the goal configuration reached (−1 if none).
+    goals : ndarray, shape (G, 6)
+        The goal configurations planned to (for a pose target: its IK solutions).
+    seconds : float
+        Wall-clock time of the call.
+    """
+
+    path: np.ndarray
+    success: bool
+    reason: str
+    iterations: int
+    nodes: int
+    goal: int
+    goals: np.ndarray
+    seconds: float
+
+
+def _limits(model: SphereModel) -> tuple[np.ndarray, np.ndarray]:
+    limits = np.array(model.robot.joint_limits)
+    return limits[:, 0], limits[:, 1]
+
+
+def _goal_configurations(model: SphereModel, goals: ArrayLike) -> np.ndarray:
+    array = np.asarray(goals, dtype=float) if not isinstance(goals, np.ndarray) else goals
+    if array.shape[-2:] == (4, 4):
+        if array.ndim != 2:
+            raise ValueError(f"goals: give one pose (4, 4); got shape {array.shape}")
+        solutions = ik_analytic(model.robot, array)
+        if len(solutions) == 0:
+            raise ValueError(
+                "goals: the pose has no inverse kinematics solution (urkin.ik_closest says why)"
+            )
+        return np.asarray(solutions, dtype=float).reshape(-1, 6)
+    Q, _, _ = _joints(goals, "goals")
+    return Q.reshape(-1, 6).copy()
+
+
+def rrt_connect(
+    model: SphereModel,
+    scene: Scene,
+    start: ArrayLike,
+    goals: ArrayLike,
+    *,
+    seed: int = 0,
+    max_iterations: int = 10_000,
+    time_limit: float | None = None,
+    step: float = 0.5,
+    resolution: float = RESOLUTION,
+    simplify: bool = True,
+) -> Plan:
+    """A collision-free joint-space path from ``start`` to any of ``goals``.
+
+    Parameters
+    ----------
+    model : SphereModel
+    scene : Scene
+    start : array_like, shape (6,)
+    goals : array_like, shape (6,), (G, 6) or (4, 4)
+        Goal configurations, or a tool pose (all its closed-form IK solutions become goals).
+    seed : int
+        Seed of the random draws: a seed reproduces a plan exactly.
+    max_iterations : int
+    time_limit : float, optional
+        Seconds before giving up (checked once per iteration).
+    step : float
+        Longest edge of the trees, radians (the largest joint change).
+    resolution : float
+        Edge-check resolution, metres (see :func:`urkin.planning.edges_free`).
+    simplify : bool
+        Shortcut the path (:func:`shortcut`) before returning it.
+
+    Returns
+    -------
+    Plan
+
+    Raises
+    ------
+    ValueError
+        When the start is outside the joint limits or in collision, or every goal is (the
+        message says which and why), or a pose has no IK solution.
+
+    Examples
+    --------
+    >>> import urkin
+    >>> from urkin import planning
+    >>> model = planning.sphere_model(urkin.robot("ur5"))
+    >>> wall = planning.Scene(boxes=[planning.Box([-0.45, 0, 0.3], [0.05, 0.6, 0.6])])
+    >>> start, goal = [-1.2, -1.2, 1.2, -1.6, -1.57, 0], [1.2, -1.2, 1.2, -1.6, -1.57, 0]
+    >>> planning.edges_free(model, wall, start, goal)  # the straight edge hits the wall
+    False
+    >>> plan = planning.rrt_connect(model, wall, start, goal, seed=0)
+    >>> plan.success, bool(planning.edges_free(model, wall, plan.path[:-1], plan.path[1:]).all())
+    (True, True)
+    """
+    t0 = time.perf_counter()
+    _check(model, scene)
+    lower, upper = _limits(model)
+    q_start, lead, _ = _joints(start, "start")
+    if lead != ():
+        raise ValueError(f"start must be one configuration, shape (6,); got {np.shape(start)}")
+    q_start = q_start[0].copy()
+    _within(q_start, lower, upper, "start")
+    if _collides(model, scene, q_start[None])[0]:
+        raise ValueError(f"start is in collision: {explain(model, scene, q_start)}")
+    G = _goal_configurations(model, goals)
+    inside = np.all((G >= lower) & (G <= upper), axis=1)
+    if not inside.any():
+        _within(G[0], lower, upper, "goals[0]")
+    free = inside & ~_collides(model, scene, G)
+    if not free.any():
+        first = int(np.flatnonzero(inside)[0])
+        raise ValueError(
+            f"every goal is in collision ({len(G)} given); goal {first}: "
+            f"{explain(model, scene, G[first])}"
+        )
+    for name, value in (("max_iterations", max_iterations), ("step", step)):
+        if not value > 0:
+            raise ValueError(f"{name} must be positive; got {value}")
+    rng = np.random.default_rng(seed)
+    capacity = 2 * max_iterations + len(G) + 2
+    trees = [
+        _Tree(capacity, q_start[None], np.array([-1])),
+        _Tree(capacity, G[free], np.flatnonzero(free)),
+    ]
+    goal_indices = np.flatnonzero(free)
+    # the straight edge first: often enough in an open scene
+    direct = _edges_free(
+        model,
+        scene,
+        np.repeat(q_start[None], len(goal_indices), 0),
+        G[goal_indices],
+        _intervals(
+            model, np.repeat(q_start[None], len(goal_indices), 0), G[goal_indices], resolution
+        ),
+    )
+    iterations = 0
+    path = None
+    if direct.any():
+        k = int(goal_indices[np.flatnonzero(direct)[0]])
+        path, reached = np.array([q_start, G[k]]), k
+    while path is None and iterations < max_iterations:
+        if time_limit is not None and time.perf_counter() - t0 > time_limit:
+            break
+        iterations += 1
+        a, b = trees[0], trees[1]
+        target = rng.uniform(lower, upper)
+        near = a.nearest(target)
+        q_new = _towards(a.nodes[near], target, step)
+        if not _edge(model, scene, a.nodes[near], q_new, resolution):
+            trees.reverse()
+            continue
+        new = a.add(q_new, near)
+        link = _connect(model, scene, b, q_new, step, resolution)
+        if link is not None:
+            path, reached = _join(a, b, new, link)
+        trees.reverse()
+    nodes = trees[0].count + trees[1].count
+    if path is None:
+        limit = (
+            f"within {time_limit:g} s"
+            if time_limit is not None and iterations < max_iterations
+            else f"in {iterations} iterations"
+        )
+        return Plan(
+            np.empty((0, 6)),
+            False,
+            f"no collision-free path found {limit} (seed {seed}): the trees grew to {nodes} "
+            "nodes without meeting; the goals may be enclosed, or need more iterations",
+            iterations,
+            nodes,
+            -1,
+            G,
+            time.perf_counter() - t0,
+        )
+    if simplify and len(path) > 2:
+        path = shortcut(model, scene, path, seed=seed, resolution=resolution)
+    fine = _edges_free(
+        model, scene, path[:-1], path[1:], _intervals(model, path[:-1], path[1:], resolution / 4)
+    )
+    if not fine.all():
+        k = int(np.flatnonzero(~fine)[0])
+        return Plan(
+            path,
+            False,
+            f"edge {k} of the path collides when re-checked at {resolution / 4 * 1000:g} mm: "
+            "plan again with a finer resolution",
+            iterations,
+            nodes,
+            reached,
+            G,
+            time.perf_counter() - t0,
+        )
+    return Plan(path, True, "", iterations, nodes, reached, G, time.perf_counter() - t0)
+
+
+def _within(q: np.ndarray, lower: np.ndarray, upper: np.ndarray, name: str) -> None:
+    bad = np.flatnonzero((q < lower) | (q > upper))
+    if len(bad):
+        j = int(bad[0])
+        raise ValueError(
+            f"{name} is outside the joint limits: joint {j + 1} is {q[j]:.4g} rad, allowed "
+            f"[{lower[j]:.4g}, {upper[j]:.4g}]"
+        )
+
+
+def _towards(q_from: np.ndarray, q_to: np.ndarray, step: float) -> np.ndarray:
+    delta = q_to - q_from
+    largest = float(np.max(np.abs(delta)))
+    return q_to.copy() if largest <= step else q_from + delta * (step / largest)
+
+
+def _edge(model, scene, qa, qb, resolution) -> bool:
+    A, B = qa[None], qb[None]
+    return bool(_edges_free(model, scene, A, B, _intervals(model, A, B, resolution))[0])
+
+
+class _Tree:
+    """Nodes, parents and the goal each root stands for, in preallocated arrays."""
+
+    def __init__(self, capacity: int, roots: np.ndarray, goal_of_root: np.ndarray) -> None:
+        self.nodes = np.empty((capacity + len(roots), 6))
+        self.parent = np.empty(capacity + len(roots), dtype=np.intp)
+        self.count = len(roots)
+        self.nodes[: self.count] = roots
+        self.parent[: self.count] = -1
+        self.goal_of_root = goal_of_root
+        self.root_goal = None if goal_of_root[0] < 0 else goal_of_root
+
+    def nearest(self, q: np.ndarray) -> int:
+        d = self.nodes[: self.count] - q
+        return int(np.argmin(np.einsum("ij,ij->i", d, d)))
+
+    def add(self, q: np.ndarray, parent: int) -> int:
+        self.nodes[self.count] = q
+        self.parent[self.count] = parent
+        self.count += 1
+        return self.count - 1
+
+    def branch(self, index: int) -> tuple[np.ndarray, int]:
+        """Nodes from ``index`` back to its root, and the root's index."""
+        chain = []
+        while index >= 0:
+            chain.append(index)
+            root, index = index, int(self.parent[index])
+        return self.nodes[chain], root
+
+
+def _connect(model, scene, tree: _Tree, q_target: np.ndarray, step: float, resolution: float):
+    """Grow ``tree`` straight towards ``q_target`` as far as it is free (one batched check
+    of every piece); the index of the node at ``q_target`` if it was reached."""
+    near = tree.nearest(q_target)
+    q_near = tree.nodes[near]
+    pieces = max(1, math.ceil(float(np.max(np.abs(q_target - q_near))) / step))
+    t = np.arange(pieces + 1)[:, None] / pieces
+    points = q_near + t * (q_target - q_near)
+    A, B = points[:-1], points[1:]
+    free = _edges_free(model, scene, A, B, _intervals(model, A, B, resolution))
+    blocked = np.flatnonzero(~free)
+    usable = pieces if len(blocked) == 0 else int(blocked[0])
+    parent = near
+    for k in range(1, usable + 1):
+        parent = tree.add(points[k], parent)
+    return parent if usable == pieces else None
+
+
+def _join(a: _Tree, b: _Tree, new: int, link: int):
+    """The path start → goal through the node ``new`` of the tree that extended and the node
+    ``link`` of the tree that connected to it (both at the same configuration)."""
+    branch_a, root_a = a.branch(new)
+    branch_b, root_b = b.branch(link)
+    if a.root_goal is None:  # a grew from the start
+        path = np.concatenate([branch_a[::-1], branch_b[1:]])
+        goal = int(b.goal_of_root[root_b])
+    else:
+        path = np.concatenate([branch_b[::-1], branch_a[1:]])
+        goal = int(a.goal_of_root[root_a])
+    return path, goal
+
+
+def shortcut(
+    model: SphereModel,
+    scene: Scene,
+    path: ArrayLike,
+    *,
+    seed: int = 0,
+    rounds: int = 30,
+    batch: int = 16,
+    resolution: float = RESOLUTION,
+) -> np.ndarray:
+    """A shorter path through fewer waypoints: straight edges that skip waypoints replace the
+    waypoints they skip when they are free.
+
+    Each round draws ``batch`` candidate pairs of waypoints (``i < j − 1``), checks all their
+    edges in one batched call and applies the free one that skips the most; it stops after
+    ``rounds`` rounds or three rounds without a change.
+
+    Returns
+    -------
+    ndarray, shape (M', 6)
+        Starts and ends where ``path`` does.
+    """
+    _check(model, scene)
+    P, lead, _ = _joints(path, "path")
+    if len(lead) != 1 or len(P) < 2:
+        raise ValueError(f"path must have shape (M, 6) with M ≥ 2; got {np.shape(path)}")
+    P = P.copy()
+    rng = np.random.default_rng(seed)
+    idle = 0
+    for _ in range(rounds):
+        if len(P) <= 2 or idle >= 3:
+            break
+        i = rng.integers(0, len(P) - 2, batch)
+        j = np.minimum(i + 2 + rng.integers(0, len(P), batch) % (len(P) - i - 1), len(P) - 1)
+        ok = j - i >= 2
+        i, j = i[ok], j[ok]
+        if len(i) == 0:
+            idle += 1
+            continue
+        free = _edges_free(model, scene, P[i], P[j], _intervals(model, P[i], P[j], resolution))
+        if not free.any():
+            idle += 1
+            continue
+        best = int(np.argmax(np.where(free, j - i, -1)))
+        P = np.concatenate([P[: i[best] + 1], P[j[best] :]])
+        idle = 0
+    return P
