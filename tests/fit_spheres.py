@@ -1,6 +1,6 @@
 """Fit the sphere models of ``urkin.planning`` to the ROS-Industrial collision meshes.
 
-    python -m tests.fit_spheres          # prints the table pasted into urkin/planning/_spheres.py
+    python -m tests.fit_spheres          # prints urkin/planning/_sphere_tables.py (needs scipy)
 
 Each link's mesh is put in the DH frame it moves with (URDF chain against ``Rz(π)·fk_frames``).
 Its triangles are split until no edge is longer than 12 mm; the pieces are grouped by k-means
@@ -10,9 +10,17 @@ then the largest distance to those vertices plus 0.5 mm.  A sphere that holds th
 of a triangle holds the whole triangle (a ball is convex), so the spheres cover every point of
 the mesh surface by construction; ``tests/test_planning_spheres.py`` checks it on points
 sampled afresh, with the spheres placed by urkin and the meshes by the URDF.  A link gets the
-fewest spheres (at most 12) whose radii are all within 1.35 times its thickness (the second
-largest extent of its vertices along their principal axes) halved: long links get a row of
-spheres along their length, compact joint housings one or a few.
+fewest spheres (at most 12) such that each sphere's radius is within 1.35 times half its own
+group's thickness (the second largest extent of the group's vertices along their principal
+axes): a tube gets a row of spheres hardly wider than the tube, a compact housing one or two.
+
+Self-collision pairs are witnessed by the meshes (MoveIt's setup assistant samples the same
+way, per link): in 2,000 seeded random configurations, wherever two non-adjacent links' meshes
+come within 5 mm of each other (surface samples, 3,000 per link), the pair of spheres that hold
+the two nearby points is a pair to check.  Pairs that overlap in every one of 20,000 random
+configurations are then dropped (a fixed overlap of two housings would make every
+configuration a collision).  The test checks on fresh configurations that no mesh contact is
+missed.
 """
 
 from __future__ import annotations
@@ -20,12 +28,15 @@ from __future__ import annotations
 import numpy as np
 
 import urkin
+from urkin.planning.spheres import SphereModel
+from urkin.robots import random_configurations
 
-from .robot_models import posed_meshes
+from .robot_models import posed_meshes, sample_surface
 
 MAX_EDGE = 0.012
 MARGIN = 0.0005
 CAP = 1.35
+WITNESS_CONFIGURATIONS, WITNESS_DISTANCE, WITNESS_POINTS = 2000, 0.005, 3000
 
 
 def mesh_in_dh_frames(name: str) -> list[np.ndarray]:
@@ -64,7 +75,9 @@ def enclosing(points: np.ndarray, iterations: int = 300) -> tuple[np.ndarray, fl
     return c, float(np.sqrt(np.max(np.sum((points - c) ** 2, axis=1))))
 
 
-def fit_link(triangles: np.ndarray, k: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
+def fit_link(
+    triangles: np.ndarray, k: int, seed: int = 0
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     pieces = subdivide(triangles, MAX_EDGE)
     centroid = pieces.mean(axis=1)
     area = 0.5 * np.linalg.norm(
@@ -92,34 +105,118 @@ def fit_link(triangles: np.ndarray, k: int, seed: int = 0) -> tuple[np.ndarray, 
             break
         centres = new
     label = np.argmin(np.linalg.norm(centroid[:, None] - centres[None], axis=2), axis=1)
-    spheres = [enclosing(pieces[label == j].reshape(-1, 3)) for j in range(k) if np.any(label == j)]
-    return np.array([c for c, _ in spheres]), np.array([r for _, r in spheres]) + MARGIN
+    groups = [pieces[label == j].reshape(-1, 3) for j in range(k) if np.any(label == j)]
+    spheres = [enclosing(vertices) for vertices in groups]
+    return (
+        np.array([c for c, _ in spheres]),
+        np.array([r for _, r in spheres]) + MARGIN,
+        np.array([thickness(vertices) for vertices in groups]),
+    )
+
+
+def thickness(vertices: np.ndarray) -> float:
+    """The second largest extent of ``vertices`` along their principal axes."""
+    centred = vertices - vertices.mean(axis=0)
+    axes = np.linalg.svd(centred, full_matrices=False)[2]
+    return float(np.sort(np.ptp(centred @ axes.T, axis=0))[-2])
 
 
 def fit(name: str, max_spheres: int = 12) -> list[tuple[int, np.ndarray, float]]:
     rows = []
     for frame, triangles in enumerate(mesh_in_dh_frames(name)):
-        vertices = triangles.reshape(-1, 3)
-        centred = vertices - vertices.mean(axis=0)
-        axes = np.linalg.svd(centred, full_matrices=False)[2]
-        extents = np.sort(np.ptp(centred @ axes.T, axis=0))[::-1]
-        cap = CAP * extents[1] / 2  # the link's thickness, as a radius, with room
         for k in range(1, max_spheres + 1):
-            c, r = fit_link(triangles, k)
-            if r.max() <= cap:
+            c, r, t = fit_link(triangles, k)
+            if np.all(r <= CAP * t / 2):
                 break
         rows.extend((frame, centre, radius) for centre, radius in zip(c, r))
     return rows
 
 
+def witnesses(name: str, seed: int = 1) -> list[tuple[int, int, np.ndarray, np.ndarray]]:
+    """Where non-adjacent links' meshes come within WITNESS_DISTANCE, in random configurations:
+    ``(link a, link b, points of a, points of b)``, each in its link's DH frame."""
+    from scipy.spatial import cKDTree  # a developer tool: the tests never run the fit
+
+    arm = urkin.robot(name)
+    rng = np.random.default_rng(seed)
+    found = []
+    for n, q in enumerate(random_configurations(arm, WITNESS_CONFIGURATIONS, rng)):
+        inverse = np.linalg.inv(urkin.T_BASE_LINK_BASE @ urkin.fk_frames(arm, q))
+        points = [
+            sample_surface(mesh, WITNESS_POINTS, np.random.default_rng([seed, n, k]))
+            for k, mesh in enumerate(posed_meshes(name, q))
+        ]
+        trees = [cKDTree(p) for p in points]
+        for a in range(7):
+            for b in range(a + 2, 7):
+                d, index = trees[a].query(points[b], distance_upper_bound=WITNESS_DISTANCE)
+                near = np.isfinite(d)
+                if near.any():
+                    pa, pb = points[a][index[near]], points[b][near]
+                    found.append(
+                        (
+                            a,
+                            b,
+                            pa @ inverse[a][:3, :3].T + inverse[a][:3, 3],
+                            pb @ inverse[b][:3, :3].T + inverse[b][:3, 3],
+                        )
+                    )
+    return found
+
+
+def witnessed_pairs(name: str, rows) -> list[tuple[int, int]]:
+    """The sphere pairs that hold a witness, minus those overlapping in every configuration."""
+    frames = np.array([frame for frame, _, _ in rows])
+    centres = np.array([centre for _, centre, _ in rows])
+    radii = np.array([radius for _, _, radius in rows])
+    held = np.zeros((len(rows), len(rows)), dtype=bool)
+    for a, b, pa, pb in witnesses(name):
+        inside_a = np.linalg.norm(pa[:, None] - centres[None], axis=2) <= radii
+        inside_b = np.linalg.norm(pb[:, None] - centres[None], axis=2) <= radii
+        inside_a &= frames == a
+        inside_b &= frames == b
+        held |= (inside_a[:, :, None] & inside_b[:, None, :]).any(axis=0)
+    i, j = np.nonzero(np.triu(held | held.T, k=1))
+    arm = urkin.robot(name)
+    model = SphereModel.from_rows(arm, np.column_stack([frames, centres, radii]), pairs=[])
+    rng = np.random.default_rng(0)
+    W = model.place(random_configurations(arm, 20_000, rng))
+    gap = np.linalg.norm(W[:, i] - W[:, j], axis=-1) - radii[i] - radii[j]
+    apart = np.any(gap > 0, axis=0)
+    return [(int(x), int(y)) for x, y in zip(i[apart], j[apart])]
+
+
 def main() -> None:
+    print(HEADER, end="")
+    print("FITTED = {")
+    pairs = {}
     for name in ("ur3", "ur5", "ur10"):
-        rows = fit(name)
+        rows = [(f, c, round(r + 5e-5, 4)) for f, c, r in fit(name)]
+        rows = [(f, np.round(c, 4) + 0.0, r) for f, c, r in rows]
+        pairs[name] = witnessed_pairs(name, rows)
         print(f'    "{name}": (  # {len(rows)} spheres')
-        for frame, centre, radius in rows:
-            x, y, z = (round(float(v), 4) + 0.0 for v in centre)
-            print(f"        ({frame}, {x:.4f}, {y:.4f}, {z:.4f}, {radius + 5e-5:.4f}),")
+        for frame, (x, y, z), radius in rows:
+            print(f"        ({frame}, {x:.4f}, {y:.4f}, {z:.4f}, {radius:.4f}),")
         print("    ),")
+    print("}")
+    print("PAIRS = {")
+    for name, found in pairs.items():
+        print(f'    "{name}": (  # {len(found)} pairs')
+        for k in range(0, len(found), 8):
+            print("        " + " ".join(f"({i}, {j})," for i, j in found[k : k + 8]))
+        print("    ),")
+    print("}")
+
+
+HEADER = '''"""The fitted sphere models, one row per sphere: ``(frame, x, y, z, radius)`` in
+metres, the centre in DH frame ``frame`` (0 the base … 6 the flange); and the self-collision
+pairs the meshes witnessed (sphere indices into the rows).
+
+Written by ``python -m tests.fit_spheres`` from the ROS-Industrial collision meshes (see
+:mod:`urkin.planning.spheres` for the method and its test); do not edit by hand.
+"""
+
+'''
 
 
 if __name__ == "__main__":

@@ -12,19 +12,27 @@ Provenance of the fitted models
     ``example-robot-data`` 6.0.0 wheel into ``tests/data/meshes``) by ``python -m
     tests.fit_spheres``: each link's mesh in its DH frame, split into pieces no longer than
     12 mm, grouped by k-means, each group enclosed by a sphere through the group's vertices
-    (plus 0.5 mm).  A ball holding a triangle's corners holds the whole triangle, so the
-    spheres cover every point of the mesh surface; ``tests/test_planning_spheres.py`` checks
-    it on fresh surface samples, the meshes placed by the URDF and the spheres by
-    :func:`urkin.fk_frames`, at random configurations.  The spheres reach 1–3 cm beyond the
-    surface (they are conservative: a sphere cannot follow a flat face).
+    (plus 0.5 mm), with as many groups (at most 12 a link) as it takes for every sphere to be
+    within 1.35 times half its group's thickness.  A ball holding a triangle's corners holds
+    the whole triangle, so the spheres cover every point of the mesh surface;
+    ``tests/test_planning_spheres.py`` checks it on fresh surface samples, the meshes placed
+    by the URDF and the spheres by :func:`urkin.fk_frames`, at random configurations.  The
+    spheres reach up to 2–3 cm beyond the surface (they are conservative: a sphere cannot
+    follow a flat face).
 
-Self-collision pairs (the stated rule)
-    Two spheres are tested against each other unless their links are the same or adjacent
-    (frames ``i`` and ``i ± 1``; the tool frame is part of link 6), or, over 20,000 random
-    configurations within the joint limits (seed 0), they never came within 2 cm of each
-    other (they cannot meet in practice) or always overlapped (a fixed overlap of the
-    housings, which would make every configuration a collision).  :func:`self_pairs` applies
-    the rule; it runs once per model (about a second) and is cached.
+Self-collision pairs
+    Of the fitted models, witnessed by the meshes: in 2,000 seeded random configurations,
+    wherever two links that are not the same or adjacent came within 5 mm of each other, the
+    two spheres holding the nearby points form a pair to test; pairs that overlapped in every
+    one of 20,000 random configurations are dropped (a fixed overlap of two housings would make
+    every configuration a collision).  The test checks on fresh configurations that no contact
+    of the meshes goes unseen.  Of a hand-built model (:func:`self_pairs`, no meshes to
+    consult): two spheres are tested against each other unless their links are the same or
+    adjacent (frames ``i`` and ``i ± 1``; the tool frame is part of link 6), or, over 20,000
+    random configurations within the joint limits (seed 0), they never came within 2 cm of
+    each other (they cannot meet in practice) or always overlapped; it runs once per model
+    (about a second) and is cached.  Tool spheres added to a fitted model get their pairs by
+    this rule.
 """
 
 from __future__ import annotations
@@ -38,7 +46,7 @@ from numpy.typing import ArrayLike
 
 from urkin._inputs import real
 from urkin.kinematics import fk_frames
-from urkin.planning._sphere_tables import FITTED
+from urkin.planning._sphere_tables import FITTED, PAIRS
 from urkin.robots import Robot, check_robot, random_configurations
 from urkin.robots import robot as _robot_by_name
 
@@ -321,10 +329,10 @@ def _contacts(model: SphereModel, i: np.ndarray, j: np.ndarray) -> tuple[np.ndar
 @functools.lru_cache(maxsize=16)
 def _fitted(name: str) -> SphereModel:
     arm = _robot_by_name(name)
-    rows = FITTED[name.lower()]
     return SphereModel.from_rows(
         arm,
-        rows,
+        FITTED[name.lower()],
+        pairs=PAIRS[name.lower()],
         source=(
             f"fitted to the ROS-Industrial {arm.name} collision meshes (urkin.planning.spheres)"
         ),
