@@ -97,6 +97,30 @@ def test_is_free_matches_the_sign_of_the_clearance(rng):
     assert planning.is_free(MODEL, TABLE, UP) is True
 
 
+def test_touch_tests_agree_with_signed_distances_for_every_kind(rng):
+    """The boolean check (bounding balls, then squared distances) gives the verdict of the
+    exact signed distances, ball by ball, for boxes, cylinders, spheres and capsules."""
+    scene = planning.Scene(
+        boxes=[
+            planning.Box(rng.normal(size=3) * 0.3, [0.1, 0.3, 0.05], random_rotations(seed=rng))
+        ],
+        cylinders=[planning.Cylinder([0.2, -0.1, 0.3], [1, 2, 2], 0.07, 0.4)],
+        spheres=[planning.Sphere([-0.3, 0.2, 0.1], 0.12)],
+        capsules=[
+            planning.Capsule([0, 0.4, 0], [0.3, 0.4, 0.2], 0.05),
+            planning.Capsule([0.5, 0.5, 0.5], [0.5, 0.5, 0.5], 0.05),  # a ball
+        ],
+    )
+    P = rng.uniform(-0.7, 0.7, (40_000, 3))
+    r = rng.uniform(0.0, 0.1, len(P))
+    gap = scene.signed_distances(P) - r[:, None]
+    clear = np.abs(gap).min(axis=1) > 1e-9  # away from touching by more than round-off
+    np.testing.assert_array_equal(scene._touches(P, r)[clear], (gap <= 0).any(axis=1)[clear])
+    assert 0.01 < np.mean((gap <= 0).any(axis=1)) < 0.99
+    for k in range(len(scene)):
+        assert (gap[:, k] <= 0).any()  # every obstacle is touched by some ball
+
+
 def test_clearance_is_the_smallest_gap_of_every_pair(rng):
     Q = rng.uniform(-np.pi, np.pi, (50, 6))
     c = planning.clearance(MODEL, TABLE, Q)

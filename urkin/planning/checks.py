@@ -60,8 +60,8 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
     if len(scene) and len(model._moving):
         moving = model._moving
         P = W[:, moving].reshape(-1, 3)
-        gaps = scene._distances(P).reshape(len(Q), len(moving), len(scene))
-        hit |= np.any(gaps <= model.radii[moving, None], axis=(1, 2))
+        touches = scene._touches(P, np.tile(model.radii[moving], len(Q)))
+        hit |= np.any(touches.reshape(len(Q), len(moving)), axis=1)
     return hit
 
 

@@ -192,6 +192,30 @@ class Scene:
         self._set("_cap_a", np.array([c.a for c in cap]).reshape(-1, 3))
         self._set("_cap_d", np.array([c.b - c.a for c in cap]).reshape(-1, 3))
         self._set("_cap_r", np.array([c.radius for c in cap]))
+        # a bounding ball per obstacle (in the order of names), for _touches' broad phase
+        self._set("_box_R", np.array([b.rotation for b in boxes]).reshape(-1, 3, 3))
+        self._set("_box_o", np.array([b.centre for b in boxes]).reshape(-1, 3))
+        self._set("_box_hh", self._box_h.reshape(-1, 3))
+        centres = [self._box_o, self._cyl_c, self._sph_c, self._cap_a + self._cap_d / 2]
+        radii = [
+            np.linalg.norm(self._box_hh, axis=1),
+            np.hypot(self._cyl_r, self._cyl_h),
+            self._sph_r,
+            np.linalg.norm(self._cap_d, axis=1) / 2 + self._cap_r,
+        ]
+        self._set("_ball_c", np.concatenate(centres))
+        self._set("_ball_r", np.concatenate(radii))
+        self._set(
+            "_ball_rows",
+            np.vstack(
+                [
+                    -2.0 * self._ball_c.T,
+                    -2.0 * self._ball_r,
+                    np.ones(len(self._ball_r)),
+                    np.sum(self._ball_c**2, axis=1) - self._ball_r**2,
+                ]
+            ).reshape(6, -1),
+        )
 
     def _set(self, name: str, value: np.ndarray) -> None:
         value = np.ascontiguousarray(value, dtype=float)
@@ -224,6 +248,68 @@ class Scene:
         lead = P.shape[:-1]
         flat = P.reshape(-1, 3)
         return self._distances(flat).reshape(*lead, len(self))
+
+    def _touches(self, P: np.ndarray, r: np.ndarray) -> np.ndarray:
+        """Whether each ball (centres ``P`` (M, 3), radii ``r`` (M,)) touches an obstacle: (M,)
+        bool, the same verdict as ``signed_distances <= r`` for a ball that is not within
+        round-off of touching.
+
+        Squared distances only, and only for the ball–obstacle pairs whose bounding balls
+        meet (one matrix product finds them); boxes by the clamped local coordinates.
+        """
+        hit = np.zeros(len(P), dtype=bool)
+        if not len(self) or not len(P):
+            return hit
+        # |p − c|² − (r + R)² as one product: [p, r, |p|² − r², 1] · [−2c, −2R, 1, |c|² − R²]
+        A = np.empty((len(P), 6))
+        A[:, :3] = P
+        A[:, 3] = r
+        A[:, 4] = np.einsum("ni,ni->n", P, P) - r * r
+        A[:, 5] = 1.0
+        m, o = np.nonzero(A @ self._ball_rows <= 1e-9)  # round-off of the expansion: keep more
+        if not len(m):
+            return hit
+        start = 0
+        for count, test in (
+            (len(self.boxes), self._touch_boxes),
+            (len(self.cylinders), self._touch_cylinders),
+            (len(self.spheres), self._touch_spheres),
+            (len(self.capsules), self._touch_capsules),
+        ):
+            if count:
+                sel = (o >= start) & (o < start + count)
+                if sel.any():
+                    mk = m[sel]
+                    hit[mk[test(P[mk], r[mk], o[sel] - start)]] = True
+            start += count
+        return hit
+
+    def _touch_boxes(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
+        local = np.einsum("ni,nij->nj", P - self._box_o[k], self._box_R[k])  # Rᵀ(p − c)
+        q = np.maximum(np.abs(local) - self._box_hh[k], 0.0)
+        return np.sum(q * q, axis=1) <= r * r
+
+    def _touch_cylinders(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
+        d = P - self._cyl_c[k]
+        t = np.sum(d * self._cyl_a[k], axis=1)
+        radial = np.sqrt(np.maximum(np.sum(d * d, axis=1) - t * t, 0.0))
+        u = np.maximum(radial - self._cyl_r[k], 0.0)
+        v = np.maximum(np.abs(t) - self._cyl_h[k], 0.0)
+        return u * u + v * v <= r * r
+
+    def _touch_spheres(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
+        d = P - self._sph_c[k]
+        reach = r + self._sph_r[k]
+        return np.sum(d * d, axis=1) <= reach * reach
+
+    def _touch_capsules(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
+        d = P - self._cap_a[k]
+        seg = self._cap_d[k]
+        length2 = np.sum(seg * seg, axis=1)
+        s = np.clip(np.sum(d * seg, axis=1) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
+        e = d - s[:, None] * seg
+        reach = r + self._cap_r[k]
+        return np.sum(e * e, axis=1) <= reach * reach
 
     def _distances(self, P: np.ndarray) -> np.ndarray:
         """:meth:`signed_distances` of checked points (M, 3): (M, len(scene))."""
