@@ -10,10 +10,12 @@
     planning.explain(model, scene, q)                       # a sentence
     planning.edges_free(model, scene, QA, QB)               # (K,) bool, straight edges
     plan = planning.rrt_connect(model, scene, q_start, goals, seed=0)
+    traj = planning.time_parametrize(plan)                  # urkin.trajectory.Trajectory
 
 Modules: :mod:`~urkin.planning.spheres` (sphere models), :mod:`~urkin.planning.scene`
 (obstacles, signed distances), :mod:`~urkin.planning.checks` (configurations, clearances,
-edges), :mod:`~urkin.planning.rrt` (RRT-Connect, shortcutting).
+edges), :mod:`~urkin.planning.rrt` (RRT-Connect, shortcutting), :mod:`~urkin.planning.timing`
+(timing a path within joint limits).
 """
 
 from urkin.planning.checks import (
@@ -27,6 +29,7 @@ from urkin.planning.checks import (
 from urkin.planning.rrt import Plan, rrt_connect, shortcut
 from urkin.planning.scene import Box, Capsule, Cylinder, Scene, Sphere
 from urkin.planning.spheres import FRAME_NAMES, TOOL_FRAME, SphereModel, self_pairs, sphere_model
+from urkin.planning.timing import time_parametrize
 
 __all__ = [
     "FRAME_NAMES",
@@ -48,4 +51,5 @@ __all__ = [
     "self_pairs",
     "shortcut",
     "sphere_model",
+    "time_parametrize",
 ]
