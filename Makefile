@@ -63,6 +63,7 @@ bench: $(STAMP)
 	$(PY) bench/ik_success.py
 	$(PY) bench/ik_analytic.py
 	$(PY) bench/grading.py
+	$(PY) bench/planning.py
 
 clean:
 	rm -rf docs/_build docs/lessons build *.egg-info

@@ -75,3 +75,17 @@ def test_shortcut_keeps_the_ends_and_only_free_edges(rng):
     assert planning.edges_free(MODEL, WALL, short[:-1], short[1:]).all()
     with pytest.raises(ValueError, match="path must have shape"):
         planning.shortcut(MODEL, WALL, START)
+
+
+def test_trees_grow_past_their_first_capacity():
+    """A connect adds a node per step of its run: two iterations can add dozens of nodes."""
+    scene = planning.Scene(
+        boxes=[
+            planning.Box([1.12, 0, 1.0], [2.0, 0.04, 2.2]),
+            planning.Box([0, 0, -0.06], [3, 3, 0.1]),
+        ]
+    )
+    start = [-2.6, -1.3, 1.3, -1.57, -1.57, 0]
+    goal = [6.0, -1.3, 1.3, -1.57, -1.57, 0]
+    plan = planning.rrt_connect(MODEL, scene, start, goal, seed=22, max_iterations=2)
+    assert plan.nodes > 2 * 2 + 3

@@ -263,7 +263,8 @@ def _edge(model, scene, qa, qb, resolution) -> bool:
 
 
 class _Tree:
-    """Nodes, parents and the goal each root stands for, in preallocated arrays."""
+    """Nodes, parents and the goal each root stands for, in preallocated arrays (doubled when
+    full: a connect adds up to one node per ``step`` of its run)."""
 
     def __init__(self, capacity: int, roots: np.ndarray, goal_of_root: np.ndarray) -> None:
         self.nodes = np.empty((capacity + len(roots), 6))
@@ -279,6 +280,9 @@ class _Tree:
         return int(np.argmin(np.einsum("ij,ij->i", d, d)))
 
     def add(self, q: np.ndarray, parent: int) -> int:
+        if self.count == len(self.nodes):
+            self.nodes = np.concatenate([self.nodes, np.empty_like(self.nodes)])
+            self.parent = np.concatenate([self.parent, np.empty_like(self.parent)])
         self.nodes[self.count] = q
         self.parent[self.count] = parent
         self.count += 1
