@@ -21,6 +21,9 @@ from numpy.typing import ArrayLike
 from urkin._inputs import real
 from urkin.transforms import check_rotation
 
+#: Boxes with a bounding ball at most this wide (m) are broad-phased in Scene._touches.
+_SMALL = 0.3
+
 __all__ = ["Box", "Capsule", "Cylinder", "Scene", "Sphere"]
 
 
@@ -192,30 +195,38 @@ class Scene:
         self._set("_cap_a", np.array([c.a for c in cap]).reshape(-1, 3))
         self._set("_cap_d", np.array([c.b - c.a for c in cap]).reshape(-1, 3))
         self._set("_cap_r", np.array([c.radius for c in cap]))
-        # a bounding ball per obstacle (in the order of names), for _touches' broad phase
+        # for _touches: boxes whose bounding ball is larger than _SMALL are tested with every
+        # ball, the others only where their bounding balls meet (see _touches)
+        bound = np.linalg.norm(self._box_h.reshape(-1, 3), axis=1)
+        big = bound > _SMALL
         self._set("_box_R", np.array([b.rotation for b in boxes]).reshape(-1, 3, 3))
         self._set("_box_o", np.array([b.centre for b in boxes]).reshape(-1, 3))
         self._set("_box_hh", self._box_h.reshape(-1, 3))
-        centres = [self._box_o, self._cyl_c, self._sph_c, self._cap_a + self._cap_d / 2]
-        radii = [
-            np.linalg.norm(self._box_hh, axis=1),
-            np.hypot(self._cyl_r, self._cyl_h),
-            self._sph_r,
-            np.linalg.norm(self._cap_d, axis=1) / 2 + self._cap_r,
-        ]
-        self._set("_ball_c", np.concatenate(centres))
-        self._set("_ball_r", np.concatenate(radii))
+        columns = np.flatnonzero(np.repeat(big, 3))
+        self._set("_big_Rt", self._box_Rt[:, columns])
+        self._set("_big_c", self._box_c[columns])
+        self._set("_big_h", self._box_h[columns])
+        small = np.flatnonzero(~big)
+        object.__setattr__(self, "_small", small)
+        centres, radii = self._box_o[small], bound[small]
         self._set(
-            "_ball_rows",
+            "_small_rows",
             np.vstack(
                 [
-                    -2.0 * self._ball_c.T,
-                    -2.0 * self._ball_r,
-                    np.ones(len(self._ball_r)),
-                    np.sum(self._ball_c**2, axis=1) - self._ball_r**2,
+                    -2.0 * centres.T,
+                    -2.0 * radii,
+                    np.ones(len(small)),
+                    np.sum(centres**2, axis=1) - radii**2,
                 ]
             ).reshape(6, -1),
         )
+        self._set("_small_r", radii)
+        # the terms of squared distances that do not depend on the point
+        self._set("_cyl_ca", np.einsum("ci,ci->c", self._cyl_c, self._cyl_a))
+        self._set("_cyl_c2", np.einsum("ci,ci->c", self._cyl_c, self._cyl_c))
+        self._set("_sph_c2", np.einsum("ci,ci->c", self._sph_c, self._sph_c))
+        self._set("_cap_m", self._cap_a + self._cap_d / 2)  # a bounding ball per capsule
+        self._set("_cap_bound", np.linalg.norm(self._cap_d, axis=1) / 2 + self._cap_r)
 
     def _set(self, name: str, value: np.ndarray) -> None:
         value = np.ascontiguousarray(value, dtype=float)
@@ -254,53 +265,59 @@ class Scene:
         bool, the same verdict as ``signed_distances <= r`` for a ball that is not within
         round-off of touching.
 
-        Squared distances only, and only for the ball–obstacle pairs whose bounding balls
-        meet (one matrix product finds them); boxes by the clamped local coordinates.
+        Squared distances, no square roots but a cylinder's radial one.  Large boxes (a
+        bounding ball wider than 0.3 m: floors, walls, shelves), cylinders and spheres are
+        tested with every ball, their coordinates for all balls from one matrix product; small
+        boxes and capsules only where their bounding balls meet the ball (one more product
+        finds where), which most balls do not.
         """
-        hit = np.zeros(len(P), dtype=bool)
-        if not len(self) or not len(P):
+        M = len(P)
+        hit = np.zeros(M, dtype=bool)
+        if not len(self) or not M:
             return hit
-        # |p − c|² − (r + R)² as one product: [p, r, |p|² − r², 1] · [−2c, −2R, 1, |c|² − R²]
-        A = np.empty((len(P), 6))
-        A[:, :3] = P
-        A[:, 3] = r
-        A[:, 4] = np.einsum("ni,ni->n", P, P) - r * r
-        A[:, 5] = 1.0
-        m, o = np.nonzero(A @ self._ball_rows <= 1e-9)  # round-off of the expansion: keep more
-        if not len(m):
-            return hit
-        start = 0
-        for count, test in (
-            (len(self.boxes), self._touch_boxes),
-            (len(self.cylinders), self._touch_cylinders),
-            (len(self.spheres), self._touch_spheres),
-            (len(self.capsules), self._touch_capsules),
-        ):
-            if count:
-                sel = (o >= start) & (o < start + count)
-                if sel.any():
-                    mk = m[sel]
-                    hit[mk[test(P[mk], r[mk], o[sel] - start)]] = True
-            start += count
+        r2 = (r * r)[:, None]
+        if len(self._big_h):
+            L = P @ self._big_Rt
+            L -= self._big_c
+            np.abs(L, out=L)
+            L -= self._big_h
+            np.maximum(L, 0.0, out=L)
+            L *= L
+            hit |= np.any(L.reshape(M, -1, 3).sum(axis=2) <= r2, axis=1)
+        if len(self._small_r):
+            # |p − c|² − (r + R)² as one product: [p, r, |p|² − r², 1]·[−2c, −2R, 1, |c|² − R²]
+            A = np.empty((M, 6))
+            A[:, :3] = P
+            A[:, 3] = r
+            A[:, 4] = np.einsum("ni,ni->n", P, P) - r * r
+            A[:, 5] = 1.0
+            m, k = np.nonzero(A @ self._small_rows <= 1e-9)  # round-off of the expansion
+            if len(m):
+                box = self._small[k]
+                local = np.einsum("ni,nij->nj", P[m] - self._box_o[box], self._box_R[box])
+                q = np.maximum(np.abs(local) - self._box_hh[box], 0.0)
+                hit[m[np.einsum("ni,ni->n", q, q) <= r[m] * r[m]]] = True
+        if self.cylinders or self.spheres:
+            p2 = np.einsum("ni,ni->n", P, P)[:, None]
+        if self.cylinders:
+            t = P @ self._cyl_a.T - self._cyl_ca
+            d2 = p2 - 2.0 * (P @ self._cyl_c.T) + self._cyl_c2
+            u = np.sqrt(np.maximum(d2 - t * t, 0.0)) - self._cyl_r
+            np.maximum(u, 0.0, out=u)
+            v = np.abs(t) - self._cyl_h
+            np.maximum(v, 0.0, out=v)
+            hit |= np.any(u * u + v * v <= r2, axis=1)
+        if self.spheres:
+            d2 = p2 - 2.0 * (P @ self._sph_c.T) + self._sph_c2
+            reach = r[:, None] + self._sph_r
+            hit |= np.any(d2 <= reach * reach, axis=1)
+        if self.capsules:
+            d2 = np.sum((P[:, None, :] - self._cap_m) ** 2, axis=2)
+            reach = r[:, None] + self._cap_bound
+            m, k = np.nonzero(d2 <= reach * reach)
+            if len(m):
+                hit[m[self._touch_capsules(P[m], r[m], k)]] = True
         return hit
-
-    def _touch_boxes(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
-        local = np.einsum("ni,nij->nj", P - self._box_o[k], self._box_R[k])  # Rᵀ(p − c)
-        q = np.maximum(np.abs(local) - self._box_hh[k], 0.0)
-        return np.sum(q * q, axis=1) <= r * r
-
-    def _touch_cylinders(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
-        d = P - self._cyl_c[k]
-        t = np.sum(d * self._cyl_a[k], axis=1)
-        radial = np.sqrt(np.maximum(np.sum(d * d, axis=1) - t * t, 0.0))
-        u = np.maximum(radial - self._cyl_r[k], 0.0)
-        v = np.maximum(np.abs(t) - self._cyl_h[k], 0.0)
-        return u * u + v * v <= r * r
-
-    def _touch_spheres(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
-        d = P - self._sph_c[k]
-        reach = r + self._sph_r[k]
-        return np.sum(d * d, axis=1) <= reach * reach
 
     def _touch_capsules(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
         d = P - self._cap_a[k]
