@@ -896,9 +896,9 @@ else:
 #
 # ## What comes next
 #
-# This is the last lesson so far. The course goes on with collisions: spheres around the
-# links, checking a motion against obstacles, planning around them, and a pick-and-place
-# capstone.
+# Lesson 09 puts the arm in a cell, next to a table and a shelf: spheres around the links, a
+# motion checked against the obstacles all along its edges, and a planner that finds its way
+# around them.
 #
 # Before you move on: restart the kernel and run the whole notebook. All five check cells
 # should report full marks.

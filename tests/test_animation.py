@@ -388,3 +388,18 @@ def test_chromium_plays_it_inserted_like_notebook_front_ends(player, tmp_path):
     reached = _frames_reached(dom)
     assert len(reached) == 2 and min(reached) >= 10
     assert by_page == []
+
+
+def test_scenery_is_drawn_once_into_the_frames_and_leaves_the_player_alone():
+    calls = []
+
+    def scenery(ax):
+        calls.append(ax)
+        ax.plot([-0.3, 0.3], [0.0, 0.0], [0.2, 0.2], color="tab:brown", linewidth=8)
+
+    qs = _sweep(6)
+    with_scenery = animate(UR3, qs, max_frames=3, figsize=(3.0, 3.0), scenery=scenery)
+    plain = animate(UR3, qs, max_frames=3, figsize=(3.0, 3.0))
+    assert len(calls) == 1 and calls[0].name == "3d"
+    assert with_scenery.images[0] != plain.images[0]
+    assert _sanitized(with_scenery.html) == _sanitized(plain.html)

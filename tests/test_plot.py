@@ -639,3 +639,131 @@ def test_joint_paths_figure_highlights_one_joint():
     assert widths[5] > max(widths[:5])
     assert left.get_ylabel() == "joint angle (rad)"
     assert not _overlapping_text(fig)
+
+
+# ---------------------------------------------------------------------------------------------
+# lesson 09: spheres, scenes, edges, configuration spaces
+# ---------------------------------------------------------------------------------------------
+
+
+def _cell():
+    from urkin import planning
+
+    return planning.Scene(
+        boxes=[
+            planning.Box([0.0, 0.0, -0.03], [3.0, 3.0, 0.05], name="table"),
+            planning.Box([0.3, 0.0, 0.1], [0.1, 0.3, 0.2], rot_z(0.4), name="crate"),
+        ],
+        cylinders=[planning.Cylinder([0.0, 0.3, 0.2], [0, 0, 1], 0.02, 0.3, name="post")],
+        spheres=[planning.Sphere([0.0, -0.3, 0.3], 0.04)],
+        capsules=[planning.Capsule([-0.2, 0.2, 0.4], [-0.2, -0.2, 0.4], 0.02)],
+    )
+
+
+def test_draw_scene_cuts_unrotated_boxes_to_the_view_and_highlights_by_name():
+    ax = P.axes3d(center=(0.0, 0.0, 0.2), half_width=0.5)
+    artists = P.draw_scene(ax, _cell(), highlight={"crate": "tab:red"})
+    assert len(artists) == 1 + 1 + 1 + 1 + 3 + 1  # 2 boxes, a cylinder, a ball, a capsule, legend
+    crate = artists[1]
+    assert np.allclose(crate.get_facecolor()[0][:3], matplotlib.colors.to_rgb("tab:red"))
+    assert artists[-1].get_label() == "obstacles"
+    far = P.axes3d(center=(5.0, 5.0, 5.0), half_width=0.1)
+    assert len(P.draw_scene(far, _cell(), label=None)) == 6  # the table is wholly outside
+    assert len(P.draw_scene(far, _cell(), label=None, clip=False)) == 7
+
+
+def test_draw_spheres_colours_each_ball():
+    ax = P.axes3d()
+    surfaces = P.draw_spheres(ax, np.zeros((3, 3)), [0.1, 0.2, 0.3], color=["r", "g", "b"])
+    assert len(surfaces) == 3
+    with pytest.raises(ValueError, match="one colour or one per ball"):
+        P.draw_spheres(ax, np.zeros((3, 3)), 0.1, color=["r", "g"])
+
+
+def test_sphere_models_figure_panels_share_a_cube_and_mark_touching_spheres():
+    from urkin import planning
+
+    model = planning.sphere_model(UR3)
+    q = np.array([0.4, -1.0, 1.3, -1.9, -1.57, 0.0])
+    hit = np.zeros(len(model), dtype=bool)
+    hit[3] = True
+    fig = P.sphere_models_figure(
+        UR3,
+        [
+            (q, model.place(q), model.radii, "one", None),
+            (HOME, model.place(HOME), model.radii, "two", hit),
+        ],
+        scene=_cell(),
+        title="models",
+    )
+    axes = _axes3d(fig)
+    assert [ax.get_title() for ax in axes] == ["one", "two"]
+    assert axes[0].get_xlim() == axes[1].get_xlim()
+    for ax in axes:
+        _check_3d(ax)
+    labels = [t.get_text() for t in axes[0].get_legend().get_texts()]
+    assert labels == ["obstacles", "spheres", "spheres touching an obstacle"]
+    with pytest.raises(ValueError, match="at least one"):
+        P.sphere_models_figure(UR3, [])
+
+
+def test_signed_distance_figure_marks_the_surface_and_the_balls():
+    x = np.linspace(-1, 1, 41)
+    y = np.linspace(-0.5, 0.5, 21)
+    d = np.hypot(*np.meshgrid(x, y)) - 0.3
+    fig = P.signed_distance_figure(
+        x, y, d, outline=[[-0.3, 0], [0, 0.3], [0.3, 0]], circles=[((0.6, 0.0), 0.1, "d = +200 mm")]
+    )
+    ax, bar = fig.axes
+    assert bar.get_ylabel() == "signed distance (mm)"
+    assert "d = +200 mm" in [t.get_text() for t in ax.texts]
+    assert set(bar.get_yticks()) >= {-300.0, 0.0, 300.0}  # whole hundreds of millimetres
+    with pytest.raises(ValueError, match="distance must have shape"):
+        P.signed_distance_figure(x, y, d.T)
+
+
+def test_edge_clearance_figure_shades_the_collision_and_counts_the_samples():
+    t = np.linspace(0, 1, 101)
+    fig = P.edge_clearance_figure(t, 0.05 - 0.1 * np.sin(np.pi * t), samples=np.linspace(0, 1, 7))
+    (ax,) = fig.axes
+    labels = [text.get_text() for text in ax.get_legend().get_texts()]
+    assert "in collision" in labels and "samples of the edge check (7)" in labels
+    assert ax.get_ylim()[0] < -50.0  # the dip is in view, in millimetres
+    assert not _overlapping_text(fig)
+
+
+def test_cspace_figure_draws_trees_paths_and_counts():
+    x = np.linspace(-3, 3, 31)
+    y = np.linspace(-2, 2, 21)
+    free = np.hypot(*np.meshgrid(x, y)) > 1
+    tree = (
+        np.array([[-2.0, 0.0], [-1.5, 1.5], [-1.0, 1.8]]),
+        np.array([-1, 0, 1]),
+        "tab:blue",
+        "start tree",
+    )
+    path = np.array([[-2.0, 0.0], [0.0, 1.9], [2.0, 0.0]])
+    fig = P.cspace_figure(
+        x,
+        y,
+        free,
+        [([tree], None, "a"), ([tree], path, "b")],
+        start=(-2, 0),
+        goal=(2, 0),
+        title="searches",
+    )
+    left, right = fig.axes
+    assert (left.get_title(), right.get_title()) == ("a", "b")
+    assert "start tree (3)" in [t.get_text() for t in left.get_legend().get_texts()]
+    assert "path found" in [t.get_text() for t in right.get_legend().get_texts()]
+    assert len(left.collections[1].get_segments()) == 2  # a root and two children
+    with pytest.raises(ValueError, match="free must have shape"):
+        P.cspace_figure(x, y, free.T, [([tree], None, "a")])
+
+
+def test_animate_plan_draws_the_scene_in_every_frame_around_the_arm():
+    qs = np.linspace([0.5, -1.2, 1.2, -1.5, -1.57, 0], [-0.5, -1.2, 1.2, -1.5, -1.57, 0], 4)
+    anim = P.animate_plan(UR3, qs, _cell(), max_frames=2, figsize=(3.0, 3.0))
+    bare = P.animate(UR3, qs, max_frames=2, figsize=(3.0, 3.0))
+    assert anim.frames.tolist() == [0, 3]
+    assert anim.images[0] != bare.images[0]  # the obstacles are in the picture

@@ -191,3 +191,17 @@ def test_listed_solutions_returns_the_rows_of_the_nearest_listed_pose():
     rows[:] = 0.0
     np.testing.assert_array_equal(solve_all(None, poses[2]), solutions[2, :5])
     assert solve_all(robot=None, T=poses[1]).shape == (0, 6)
+
+
+def test_joint_boxes_is_free_outside_its_boxes_and_keeps_a_budget():
+    lower = np.array([[0.0] * 6, [2.0] * 6])
+    upper = np.array([[1.0] * 6, [3.0] * 6])
+    is_free = _across(wire.Function("joint_boxes", lower=lower, upper=upper, budget=4))
+    assert is_free(np.full(6, 0.5)) is False and is_free(np.full(6, 1.5)) is True
+    np.testing.assert_array_equal(is_free(np.array([[2.5] * 6, [-1.0] * 6])), [False, True])
+    with pytest.raises(RuntimeError, match="asked about more than 4 configurations"):
+        is_free(np.zeros((1, 6)))  # the fifth
+    fresh = _across(wire.Function("joint_boxes", lower=lower, upper=upper, budget=4))
+    assert fresh(np.zeros((4, 6))).shape == (4,)  # each copy counts from zero
+    with pytest.raises(ValueError, match="joint angles of shape"):
+        fresh(np.zeros(5))

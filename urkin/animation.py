@@ -26,9 +26,10 @@ import itertools
 import json
 import math
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -373,6 +374,7 @@ def animate(
     figsize: tuple[float, float] = (7.0, 7.0),
     center: ArrayLike | None = None,
     half_width: float | None = None,
+    scenery: Callable[[Any], object] | None = None,
 ) -> Animation:
     """Animate the arm through the configurations ``qs``: an HTML player, inline anywhere.
 
@@ -414,6 +416,10 @@ def animate(
         arm in every frame drawn, its base, the trace, the triads and ``targets``), with a
         margin, so the arm is drawn as large as the motion allows; with ``center`` alone, the
         half-width is chosen to hold the motion about it.
+    scenery : callable, optional
+        Draws what stays still in every frame (obstacles, a table): called once with the
+        frames' 3D axes, after the view is set and before the arm is drawn, e.g.
+        ``lambda ax: urkin.plot.draw_scene(ax, scene)``.  It does not enlarge the view cube.
 
     Returns
     -------
@@ -505,6 +511,8 @@ def animate(
     ax.tick_params(labelsize=9 * scale)
     for label in (ax.xaxis.label, ax.yaxis.label, ax.zaxis.label):
         label.set_fontsize(10 * scale)
+    if scenery is not None:
+        scenery(ax)
     if path is not None:
         ax.plot(*path.T, "--", color="0.55", linewidth=1.0, label="target path")
     (trace_line,) = ax.plot(

@@ -23,6 +23,7 @@ x increasing to the right.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 
 import matplotlib.pyplot as plt
@@ -41,11 +42,14 @@ from urkin.transforms import check_transform, make_transform, rotation_to_rpy
 
 __all__ = [
     "AXIS_COLOURS",
+    "OBSTACLE_COLOUR",
     "Animation",
     "animate",
+    "animate_plan",
     "arms_figure",
     "axes3d",
     "convergence_figure",
+    "cspace_figure",
     "draw_angle_arc",
     "draw_arms",
     "draw_ellipsoid",
@@ -53,6 +57,9 @@ __all__ = [
     "draw_frame",
     "draw_reference_axes",
     "draw_robot",
+    "draw_scene",
+    "draw_spheres",
+    "edge_clearance_figure",
     "ellipsoid_panels",
     "entry_error_maps",
     "error_maps_figure",
@@ -68,8 +75,10 @@ __all__ = [
     "robot_panels",
     "rotation_steps_figure",
     "show_robot",
+    "signed_distance_figure",
     "singular_families_figure",
     "solver_runs_figure",
+    "sphere_models_figure",
     "square_traces_figure",
     "step_size_figure",
     "time_scaling_figure",
@@ -2778,3 +2787,680 @@ def time_scaling_figure(
 
 
 from urkin.animation import Animation, animate  # noqa: E402
+
+# ---------------------------------------------------------------------------------------------
+# lesson 09: spheres, scenes, edges and the planners' trees
+# ---------------------------------------------------------------------------------------------
+
+#: Colour of obstacles in the figures of :mod:`urkin.planning` scenes.
+OBSTACLE_COLOUR = "tab:brown"
+
+
+def draw_spheres(
+    ax,
+    centres: ArrayLike,
+    radii: ArrayLike,
+    *,
+    color: str | Sequence[str] = "tab:blue",
+    alpha: float = 0.25,
+    resolution: int = 12,
+) -> list:
+    """Draw balls as translucent surfaces.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.Axes3D
+    centres : array_like, shape (S, 3)
+        Centres, metres (already placed: :meth:`urkin.planning.SphereModel.place`).
+    radii : array_like, shape (S,) or float
+        Radii, metres.
+    color : str or sequence of str
+        One colour, or one per ball.
+    alpha : float
+        Opacity.
+    resolution : int
+        Grid lines around each ball (half as many from pole to pole).
+
+    Returns
+    -------
+    list
+        The surfaces, one per ball.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> ax = axes3d()
+    >>> len(draw_spheres(ax, [[0, 0, 0.2], [0, 0, 0.4]], 0.05, color=["tab:blue", "tab:red"]))
+    2
+    >>> plt.close(ax.figure)
+    """
+    c = np.asarray(centres, dtype=float).reshape(-1, 3)
+    r = np.broadcast_to(np.asarray(radii, dtype=float), (len(c),))
+    colours = [color] * len(c) if isinstance(color, str) else list(color)
+    if len(colours) != len(c):
+        raise ValueError(f"color must be one colour or one per ball ({len(c)}); got {len(colours)}")
+    u, v = np.meshgrid(
+        np.linspace(0.0, 2.0 * np.pi, resolution + 1),
+        np.linspace(0.0, np.pi, resolution // 2 + 1),
+    )
+    unit = np.stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)])
+    return [
+        ax.plot_surface(
+            *(centre[:, None, None] + radius * unit),
+            color=colour,
+            alpha=alpha,
+            linewidth=0,
+            shade=True,
+        )
+        for centre, radius, colour in zip(c, r, colours)
+    ]
+
+
+def _box_faces(centre: np.ndarray, size: np.ndarray, rotation: np.ndarray) -> list[np.ndarray]:
+    """The six faces (4 corners each) of a box."""
+    signs = np.array(
+        [
+            [-1, -1, -1],
+            [1, -1, -1],
+            [1, 1, -1],
+            [-1, 1, -1],
+            [-1, -1, 1],
+            [1, -1, 1],
+            [1, 1, 1],
+            [-1, 1, 1],
+        ],
+        dtype=float,
+    )
+    corners = centre + (signs * (size / 2)) @ rotation.T
+    faces = ((0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (2, 3, 7, 6), (1, 2, 6, 5), (0, 3, 7, 4))
+    return [corners[list(face)] for face in faces]
+
+
+def _cylinder_points(centre: np.ndarray, axis: np.ndarray, radius: float, length: float):
+    """Grid (3, 2, 17) of a cylinder's side."""
+    e1 = np.cross(axis, [1.0, 0.0, 0.0] if abs(axis[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(axis, e1)
+    theta, t = np.meshgrid(np.linspace(0, 2 * np.pi, 17), np.array([-0.5, 0.5]))
+    ring = radius * (
+        np.cos(theta)[None] * e1[:, None, None] + np.sin(theta)[None] * e2[:, None, None]
+    )
+    return centre[:, None, None] + ring + length * t[None] * axis[:, None, None]
+
+
+def _round_surface(ax, points: np.ndarray, color: str, alpha: float):
+    return ax.plot_surface(*points, color=color, alpha=alpha, linewidth=0, shade=True)
+
+
+def draw_scene(
+    ax,
+    scene,
+    *,
+    color: str = OBSTACLE_COLOUR,
+    alpha: float = 0.25,
+    highlight: Mapping[str, str] | None = None,
+    label: str | None = "obstacles",
+    clip: bool = True,
+) -> list:
+    """Draw the obstacles of a :class:`urkin.planning.Scene`: boxes, cylinders, spheres and
+    capsules, as translucent solids.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.Axes3D
+    scene : urkin.planning.Scene
+    color : str
+        Colour of the obstacles.
+    alpha : float
+        Opacity of their faces.
+    highlight : mapping, optional
+        Obstacle name → colour, for obstacles drawn in another colour.
+    label : str, optional
+        Legend entry of the obstacles (a patch; 3D solids have none of their own).
+    clip : bool
+        Cut boxes that are not rotated (a table, a wall) to the axes' current limits: 3D
+        artists are not clipped, and a large table would cover the figure.  Set the limits
+        first (:func:`axes3d`).
+
+    Returns
+    -------
+    list
+        The matplotlib artists.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from urkin import planning
+    >>> scene = planning.Scene(
+    ...     boxes=[planning.Box([0.4, 0, 0.1], [0.2, 0.4, 0.2], name="shelf")],
+    ...     cylinders=[planning.Cylinder([0, 0.4, 0.2], [0, 0, 1], 0.03, 0.4)],
+    ...     spheres=[planning.Sphere([0, -0.4, 0.3], 0.05)],
+    ...     capsules=[planning.Capsule([0.2, 0.2, 0.5], [0.3, 0.3, 0.5], 0.02)],
+    ... )
+    >>> ax = axes3d()
+    >>> len(draw_scene(ax, scene, highlight={"shelf": "tab:red"}))  # a capsule is 3 surfaces
+    7
+    >>> plt.close(ax.figure)
+    """
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    colours = dict(highlight or {})
+    names = iter(scene.names)
+    artists: list = []
+    view = np.array([ax.get_xlim(), ax.get_ylim(), ax.get_zlim()])  # (3, 2)
+    for box in scene.boxes:
+        face = colours.get(next(names), color)
+        centre, size = box.centre, box.size
+        if clip and np.allclose(box.rotation, np.eye(3)):  # 3D artists are not clipped
+            low = np.maximum(centre - size / 2, view[:, 0])
+            high = np.minimum(centre + size / 2, view[:, 1])
+            if np.any(high <= low):
+                continue  # wholly outside the view
+            centre, size = (low + high) / 2, high - low
+        solid = Poly3DCollection(
+            _box_faces(centre, size, box.rotation),
+            facecolor=face,
+            edgecolor=face,
+            linewidths=0.6,
+            alpha=alpha,
+        )
+        artists.append(ax.add_collection3d(solid))
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 17), np.linspace(0, np.pi, 9))
+    ball = np.stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)])
+    for cylinder in scene.cylinders:
+        face = colours.get(next(names), color)
+        points = _cylinder_points(cylinder.centre, cylinder.axis, cylinder.radius, cylinder.length)
+        artists.append(_round_surface(ax, points, face, alpha))
+    for sphere in scene.spheres:
+        face = colours.get(next(names), color)
+        points = sphere.centre[:, None, None] + sphere.radius * ball
+        artists.append(_round_surface(ax, points, face, alpha))
+    for capsule in scene.capsules:  # a cylinder between two balls
+        face = colours.get(next(names), color)
+        along = capsule.b - capsule.a
+        length = float(np.linalg.norm(along))
+        if length > 0:
+            middle = 0.5 * (capsule.a + capsule.b)
+            points = _cylinder_points(middle, along / length, capsule.radius, length)
+            artists.append(_round_surface(ax, points, face, alpha))
+        for end in (capsule.a, capsule.b):
+            points = end[:, None, None] + capsule.radius * ball
+            artists.append(_round_surface(ax, points, face, alpha))
+    if label:
+        artists += _legend_patch(ax, color, label, alpha=max(alpha, 0.4))
+    return artists
+
+
+def _cube_with_obstacles(
+    points: np.ndarray, scene, margin: float = 0.15
+) -> tuple[np.ndarray, float]:
+    """Centre and half-width of a cube holding ``points`` (N, 3) and the parts of the scene's
+    boxes within ``margin`` of their bounding box (a huge table adds only its nearby part)."""
+    low, high = points.min(axis=0), points.max(axis=0)
+    shown = [points]
+    for box in getattr(scene, "boxes", ()):
+        corners = np.concatenate(_box_faces(box.centre, box.size, box.rotation))
+        a = np.maximum(corners.min(axis=0), low - margin)
+        b = np.minimum(corners.max(axis=0), high + margin)
+        if np.all(b > a):
+            shown.append(np.array([a, b]))
+    everything = np.concatenate(shown)
+    lo, hi = everything.min(axis=0), everything.max(axis=0)
+    return 0.5 * (lo + hi), 0.52 * float((hi - lo).max())
+
+
+def sphere_models_figure(
+    robot: Robot,
+    panels: Sequence[tuple[ArrayLike, ArrayLike, ArrayLike, str, ArrayLike | None]],
+    *,
+    scene=None,
+    title: str | None = None,
+    size: float = 5.5,
+    center: ArrayLike | None = None,
+    half_width: float | None = None,
+    view: tuple[float, float] = (20.0, -60.0),
+) -> Figure:
+    """Sphere models of an arm, one panel per configuration, in a scene.
+
+    Each panel draws the stick figure (as :func:`draw_robot`), the spheres (blue; red where
+    the panel's ``hit`` flag is set) and the scene's obstacles, all panels in one cube.
+
+    Parameters
+    ----------
+    robot : Robot
+    panels : sequence of tuple
+        Each ``(q, centres, radii, caption, hit)``: joint angles (rad, shape (6,)), the
+        spheres' placed centres (S, 3) and radii (S,) in metres, the panel's title, and
+        ``hit`` — None, or one bool per sphere (drawn red where True).
+    scene : urkin.planning.Scene, optional
+        Obstacles, drawn in every panel.
+    title : str, optional
+        Title of the whole figure.
+    size : float
+        Width and height of each panel, inches.
+    center, half_width : optional
+        The cube shown (metres); by default one that holds every sphere and the obstacles
+        near them (boxes that are not rotated are cut to the cube).
+    view : tuple of float
+        ``(elevation, azimuth)`` in degrees.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import urkin
+    >>> from urkin import planning
+    >>> ur3 = urkin.robot("UR3")
+    >>> model = planning.sphere_model(ur3)
+    >>> q = np.array([0.0, -1.2, 1.0, -1.4, -1.57, 0.0])
+    >>> fig = sphere_models_figure(ur3, [(q, model.place(q), model.radii, "fitted", None)])
+    >>> fig.axes[0].get_title()
+    'fitted'
+    >>> plt.close(fig)
+    """
+    count = len(panels)
+    if count == 0:
+        raise ValueError("panels must hold at least one (q, centres, radii, caption, hit)")
+    placed = [np.asarray(c, dtype=float).reshape(-1, 3) for _, c, _, _, _ in panels]
+    if center is None or half_width is None:
+        reach = np.concatenate(placed)
+        radii = np.concatenate(
+            [
+                np.broadcast_to(np.asarray(r, dtype=float), (len(c),))
+                for (_, _, r, _, _), c in zip(panels, placed)
+            ]
+        )
+        base = fk_frames(robot, np.zeros(6))[0, :3, 3]
+        points = np.concatenate(
+            [reach - radii[:, None], reach + radii[:, None], base[None]], axis=0
+        )
+        cube_c, cube_half = _cube_with_obstacles(points, scene)
+        c = cube_c if center is None else np.asarray(center, dtype=float)
+        half = cube_half if half_width is None else half_width
+    else:
+        c, half = np.asarray(center, dtype=float), half_width
+    fig = _figure(figsize=(size * count, size + 0.5))
+    for index, ((q, _, radii, caption, hit), centres) in enumerate(zip(panels, placed)):
+        ax = fig.add_subplot(1, count, index + 1, projection="3d")
+        axes3d(ax, center=c, half_width=half, title=caption, view=view)
+        if scene is not None:
+            draw_scene(ax, scene, label="obstacles" if index == 0 else None)
+        flags = np.zeros(len(centres), dtype=bool) if hit is None else np.asarray(hit, dtype=bool)
+        colours = np.where(flags, "tab:red", "tab:blue").tolist()
+        draw_spheres(ax, centres, radii, color=colours, alpha=0.22)
+        draw_robot(ax, robot, q, frames=False, color="0.15", linewidth=3.0)
+        if index == 0:
+            _legend_patch(ax, "tab:blue", "spheres", alpha=0.4)
+            if flags.any() or any(p[4] is not None and np.any(p[4]) for p in panels):
+                _legend_patch(ax, "tab:red", "spheres touching an obstacle", alpha=0.4)
+            ax.legend(loc="upper left", fontsize=8, framealpha=0.85)
+    if title:
+        fig.suptitle(title, fontsize=13)
+    return fig
+
+
+def signed_distance_figure(
+    x: ArrayLike,
+    y: ArrayLike,
+    distance: ArrayLike,
+    *,
+    outline: ArrayLike | None = None,
+    circles: Sequence[tuple[ArrayLike, float, str]] = (),
+    xlabel: str = "x (m)",
+    ylabel: str = "y (m)",
+    title: str | None = None,
+    figsize: tuple[float, float] = (7.5, 6.0),
+) -> Figure:
+    """A signed distance field on a plane: colours by distance (blue inside, red outside), the
+    zero level (the obstacle's surface) in black, and circles for balls in the plane.
+
+    Parameters
+    ----------
+    x, y : array_like, shape (nx,) and (ny,)
+        The grid's coordinates in the plane, metres.
+    distance : array_like, shape (ny, nx)
+        Signed distance at each grid point, metres (negative inside).
+    outline : array_like, shape (K, 2), optional
+        A polygon drawn over the field (the obstacle's section), closed automatically.
+    circles : sequence of tuple
+        Each ``(centre (2,), radius, label)``: a ball's section, with its label beside it.
+    xlabel, ylabel, title : str
+    figsize : tuple of float
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> x = y = np.linspace(-1, 1, 41)
+    >>> d = np.hypot(*np.meshgrid(x, y)) - 0.5
+    >>> fig = signed_distance_figure(x, y, d, circles=[((0.7, 0.0), 0.1, "ball")])
+    >>> fig.axes[0].get_xlabel(), fig.axes[1].get_ylabel()
+    ('x (m)', 'signed distance (mm)')
+    >>> plt.close(fig)
+    """
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    d_mm = 1000.0 * np.asarray(distance, dtype=float)
+    if d_mm.shape != (len(y), len(x)):
+        raise ValueError(f"distance must have shape (len(y), len(x)) = {(len(y), len(x))}")
+    fig, ax = plt.subplots(figsize=figsize, layout="constrained")
+    bound = 50.0 * math.ceil(float(np.abs(d_mm).max()) / 50.0)  # a multiple of 5 cm
+    levels = np.linspace(-bound, bound, 2 * int(bound // 25) + 1)  # every 25 mm
+    filled = ax.contourf(x, y, d_mm, levels=levels, cmap="RdBu_r")
+    ax.contour(x, y, d_mm, levels=levels[::2], colors="0.3", linewidths=0.4)
+    ax.contour(x, y, d_mm, levels=[0.0], colors="black", linewidths=2.0)
+    handles = [Line2D([], [], color="black", linewidth=2.0, label="distance 0: the surface")]
+    if outline is not None:
+        polygon = np.asarray(outline, dtype=float)
+        closed = np.vstack([polygon, polygon[:1]])
+        ax.plot(*closed.T, ":", color="0.1", linewidth=1.2)
+    for centre, radius, text in circles:
+        cx, cy = (float(v) for v in centre)
+        ax.add_patch(Circle((cx, cy), radius, fill=False, color="tab:green", linewidth=2.0))
+        ax.plot(cx, cy, "+", color="tab:green", markersize=8)
+        ax.annotate(
+            text,
+            (cx, cy + radius),
+            xytext=(0, 6),
+            textcoords="offset points",
+            ha="center",
+            va="bottom",
+            fontsize=9,
+            bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": "none", "pad": 1.5},
+        )
+    if circles:
+        handles.append(
+            Line2D([], [], color="tab:green", linewidth=2.0, label="a ball and its distance")
+        )
+    ax.set_aspect("equal")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.legend(handles=handles, loc="lower left", fontsize=8, framealpha=0.9)
+    bar = fig.colorbar(filled, ax=ax, label="signed distance (mm)", shrink=0.9)
+    tick = 100.0 if bound > 200 else 50.0
+    bar.set_ticks(tick * np.arange(-math.floor(bound / tick), math.floor(bound / tick) + 1))
+    if title:
+        ax.set_title(title)
+    return fig
+
+
+def edge_clearance_figure(
+    t: ArrayLike,
+    clearance: ArrayLike,
+    *,
+    samples: ArrayLike | None = None,
+    waypoints: ArrayLike = (0.0, 1.0),
+    title: str | None = None,
+    figsize: tuple[float, float] = (9.0, 4.0),
+) -> Figure:
+    """The clearance along a straight joint-space edge: where it dips below zero the arm is in
+    collision, however free the waypoints are.
+
+    Parameters
+    ----------
+    t : array_like, shape (N,)
+        Position along the edge, 0 (start) to 1 (end).
+    clearance : array_like, shape (N,)
+        Signed clearance at each ``t``, metres (:func:`urkin.planning.clearance`).
+    samples : array_like, optional
+        The ``t`` an edge check samples, marked along the bottom.
+    waypoints : array_like
+        The ``t`` of the waypoints (drawn as large dots on the curve).
+    title : str, optional
+    figsize : tuple of float
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> t = np.linspace(0, 1, 101)
+    >>> fig = edge_clearance_figure(t, 0.05 - 0.2 * np.sin(np.pi * t), samples=[0, 0.5, 1])
+    >>> fig.axes[0].get_ylabel()
+    'clearance (mm)'
+    >>> plt.close(fig)
+    """
+    s = np.asarray(t, dtype=float)
+    c = 1000.0 * np.asarray(clearance, dtype=float)
+    fig, ax = plt.subplots(figsize=figsize, layout="constrained")
+    ax.plot(s, c, color="tab:blue", linewidth=2, label="clearance along the edge")
+    ax.fill_between(s, c, 0.0, where=c < 0, color="tab:red", alpha=0.3, label="in collision")
+    ax.axhline(0.0, color="0.2", linewidth=1)
+    ends = np.asarray(waypoints, dtype=float)
+    ax.plot(
+        ends,
+        np.interp(ends, s, c),
+        "o",
+        color="tab:green",
+        markersize=10,
+        label="the waypoints (checked, free)",
+        zorder=3,
+    )
+    low = min(float(c.min()), 0.0)
+    high = max(float(c.max()), 0.0)
+    span = max(high - low, 1.0)
+    if samples is not None:
+        marks = np.asarray(samples, dtype=float)
+        ax.plot(
+            marks,
+            np.full(len(marks), low - 0.08 * span),
+            "|",
+            color="0.3",
+            markersize=9,
+            label=f"samples of the edge check ({len(marks)})",
+            clip_on=False,
+        )
+    ax.set_ylim(low - 0.15 * span, high + 0.1 * span)
+    ax.set_xlim(-0.02, 1.02)
+    ax.set_xlabel("position along the edge (0 = start, 1 = end)")
+    ax.set_ylabel("clearance (mm)")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=8, framealpha=0.9)
+    if title:
+        ax.set_title(title)
+    return fig
+
+
+def cspace_figure(
+    x: ArrayLike,
+    y: ArrayLike,
+    free: ArrayLike,
+    panels: Sequence[tuple[Sequence[tuple[ArrayLike, ArrayLike, str, str]], ArrayLike | None, str]],
+    *,
+    start: ArrayLike | None = None,
+    goal: ArrayLike | None = None,
+    xlabel: str = "joint 1 (rad)",
+    ylabel: str = "joint 2 (rad)",
+    title: str | None = None,
+    size: float = 5.0,
+) -> Figure:
+    """Searches drawn in a two-joint configuration space: the configurations in collision
+    shaded, each search's trees (or lists) as their edges, and the path found.
+
+    Parameters
+    ----------
+    x, y : array_like, shape (nx,) and (ny,)
+        The grid of the two joints (rad).
+    free : array_like of bool, shape (ny, nx)
+        Whether each grid configuration is free.
+    panels : sequence of tuple
+        Each ``(trees, path, caption)``: ``trees`` a sequence of ``(nodes (N, 2), parent (N,),
+        colour, label)`` (parent −1 for a root), ``path`` an (M, 2) array or None.
+    start, goal : array_like, shape (2,), optional
+        Marked in every panel.
+    xlabel, ylabel, title : str
+    size : float
+        Width of each panel, inches.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> x = y = np.linspace(-3, 3, 31)
+    >>> free = np.hypot(*np.meshgrid(x, y)) > 1
+    >>> tree = (np.array([[-2.0, 0.0], [-1.5, 1.5]]), np.array([-1, 0]), "tab:blue", "start tree")
+    >>> fig = cspace_figure(x, y, free, [([tree], None, "a tree")], start=(-2, 0), goal=(2, 0))
+    >>> fig.axes[0].get_title()
+    'a tree'
+    >>> plt.close(fig)
+    """
+    from matplotlib.collections import LineCollection
+
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    mask = np.asarray(free, dtype=bool)
+    if mask.shape != (len(y), len(x)):
+        raise ValueError(f"free must have shape (len(y), len(x)) = {(len(y), len(x))}")
+    count = len(panels)
+    fig, axes = plt.subplots(
+        1,
+        count,
+        figsize=(size * count, size * 1.15),
+        layout="constrained",
+        squeeze=False,
+        sharey=True,
+    )
+    shade = ListedColormap(["0.72", "white"])
+    for ax, (trees, path, caption) in zip(axes[0], panels):
+        ax.pcolormesh(
+            x, y, mask.astype(float), cmap=shade, vmin=0, vmax=1, shading="nearest", rasterized=True
+        )
+        handles = [Patch(facecolor="0.72", label="in collision")]
+        for nodes, parent, colour, label in trees:
+            nodes = np.asarray(nodes, dtype=float).reshape(-1, 2)
+            parent = np.asarray(parent, dtype=int)
+            child = np.flatnonzero(parent >= 0)
+            segments = np.stack([nodes[parent[child]], nodes[child]], axis=1)
+            ax.add_collection(LineCollection(segments, colors=colour, linewidths=1.2))
+            ax.plot(*nodes.T, ".", color=colour, markersize=4)
+            handles.append(
+                Line2D([], [], color=colour, marker=".", label=f"{label} ({len(nodes)})")
+            )
+        if path is not None and len(path):
+            p = np.asarray(path, dtype=float).reshape(-1, 2)
+            ax.plot(*p.T, "-", color="tab:red", linewidth=2.5, zorder=4)
+            handles.append(Line2D([], [], color="tab:red", linewidth=2.5, label="path found"))
+        for point, marker, label in ((start, "o", "start"), (goal, "*", "goal")):
+            if point is not None:
+                ax.plot(
+                    *np.asarray(point, dtype=float),
+                    marker,
+                    color="black",
+                    markersize=11,
+                    markerfacecolor="gold",
+                    zorder=5,
+                )
+                handles.append(
+                    Line2D(
+                        [],
+                        [],
+                        linestyle="",
+                        marker=marker,
+                        color="black",
+                        markerfacecolor="gold",
+                        markersize=9,
+                        label=label,
+                    )
+                )
+        ax.set_xlim(x[0], x[-1])
+        ax.set_ylim(y[0], y[-1])
+        ax.set_title(caption)
+        ax.set_xlabel(xlabel)
+        ax.legend(
+            handles=handles,
+            loc="upper center",
+            bbox_to_anchor=(0.5, -0.13),
+            ncol=2,
+            fontsize=8,
+            frameon=False,
+        )
+    axes[0, 0].set_ylabel(ylabel)
+    if title:
+        fig.suptitle(title, fontsize=13)
+    return fig
+
+
+def animate_plan(
+    robot: Robot,
+    qs: ArrayLike,
+    scene,
+    *,
+    title: str | None = None,
+    max_frames: int = 40,
+    view: tuple[float, float] = (25.0, -30.0),
+    center: ArrayLike | None = None,
+    half_width: float | None = None,
+    **options,
+) -> Animation:
+    """:func:`animate` with a scene's obstacles drawn in every frame (the arm in front of them).
+
+    Parameters
+    ----------
+    robot : Robot
+    qs : array_like, shape (M, 6)
+        The motion, radians (a planned path sampled finely enough to look continuous, e.g.
+        :func:`urkin.planning.time_parametrize`'s samples).
+    scene : urkin.planning.Scene
+    title : str, optional
+    max_frames : int
+    view : tuple of float
+        ``(elevation, azimuth)`` in degrees; azimuths in (−180°, 0°) keep x increasing to the
+        right.
+    center, half_width : optional
+        The view cube, metres; by default the cube that holds the arm in every sample and the
+        parts of the obstacles within 15 cm of it (boxes that are not rotated are cut to it).
+    **options
+        Passed to :func:`animate`.
+
+    Returns
+    -------
+    Animation
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import urkin
+    >>> from urkin import planning
+    >>> wall = planning.Scene(boxes=[planning.Box([-0.4, 0, 0.2], [0.05, 0.5, 0.4])])
+    >>> qs = np.linspace([0.5, -1.2, 1.2, -1.5, -1.57, 0], [-0.5, -1.2, 1.2, -1.5, -1.57, 0], 3)
+    >>> animate_plan(urkin.robot("UR3"), qs, wall, max_frames=3)
+    <Animation: UR3, 3 frames of 3 samples>
+    """
+    q = np.asarray(qs, dtype=float).reshape(-1, 6)
+    if center is None or half_width is None:
+        joints = fk_frames(robot, q)[..., :3, 3].reshape(-1, 3)
+        cube_c, cube_half = _cube_with_obstacles(joints, scene)
+        center = cube_c if center is None else center
+        half_width = cube_half if half_width is None else half_width
+
+    def scenery(ax) -> None:
+        ax.view_init(*view)
+        ax.computed_zorder = False  # obstacles first, the arm always in front of them
+        draw_scene(ax, scene, alpha=0.2, label=None)
+
+    return animate(
+        robot,
+        q,
+        title=title,
+        max_frames=max_frames,
+        center=center,
+        half_width=half_width,
+        scenery=scenery,
+        **options,
+    )

@@ -11,8 +11,8 @@ graded.
 Two kinds of argument are rebuilt from a description rather than copied: a UR arm
 (:class:`urkin.Robot`, by its DH lengths) and an input function (:class:`Function`, by a kind
 and its parameters, for exercises that take a function such as ``numeric_jacobian(f, q)`` or
-an IK solver ``track_positions(robot, points, q0, solve)``, or a candidate formula
-``formula_gap(formula, robot)``).
+an IK solver ``track_positions(robot, points, q0, solve)``, a candidate formula
+``formula_gap(formula, robot)`` or a collision test ``path_is_free(is_free, path, …)``).
 A SymPy expression or matrix with symbols in it arrives as a
 :class:`urkin.course.symbolic_answer.Symbolic` (read from its ``srepr`` text without running it);
 anything else a student's function returns that is not plain data arrives as :class:`Opaque`.
@@ -200,6 +200,35 @@ def _folded_ur_position(joint):
     return formula
 
 
+class _JointBoxes:
+    """``is_free(q)``: True where joint angles lie outside every box ``lower[b] ≤ q ≤ upper[b]``
+    of joint space; q of shape (6,) gives a bool, (..., 6) an array of bools.  With ``budget``,
+    a call that would bring the configurations asked about (over the object's life: one call
+    of a student's function) beyond it raises RuntimeError instead of answering."""
+
+    def __init__(self, lower, upper, budget=None):
+        self.lower = np.asarray(lower, dtype=float).reshape(-1, 6)
+        self.upper = np.asarray(upper, dtype=float).reshape(-1, 6)
+        self.budget = None if budget is None else int(budget)
+        self.asked = 0
+
+    def __call__(self, q):
+        Q = np.asarray(q, dtype=float)
+        if Q.shape[-1:] != (6,):
+            raise ValueError(f"is_free takes joint angles of shape (6,) or (N, 6); got {Q.shape}")
+        count = Q.size // 6
+        if self.budget is not None and self.asked + count > self.budget:
+            raise RuntimeError(
+                f"is_free was asked about more than {self.budget} configurations for this path: "
+                "far more than the edges need at this resolution"
+            )
+        self.asked += count
+        P = Q[..., None, :]
+        inside = np.all((P >= self.lower) & (P <= self.upper), axis=-1).any(axis=-1)
+        free = ~inside
+        return bool(free) if free.ndim == 0 else free
+
+
 _FUNCTION_KINDS = {
     "linear": _linear,  # f(x) = A x + b
     "smooth3": lambda: _smooth3,  # a fixed smooth map R³ → R³
@@ -219,6 +248,9 @@ _FUNCTION_KINDS = {
     # own lengths at its angles q + SEED002_SHIFT; otherwise its terms with the robot's lengths
     "seed002_position": _seed002_formula,
     "folded_ur_position": _folded_ur_position,  # right while |q[joint]| < π/2, turned by π beyond
+    # a collision test in joint space, is_free(q) ↦ bool (exercise 9.3): free outside every box
+    # lower[b] ≤ q ≤ upper[b]; with budget, refuses to answer about more configurations
+    "joint_boxes": _JointBoxes,
 }
 
 
