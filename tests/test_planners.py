@@ -6,20 +6,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import urkin
 from urkin import planning
 from urkin.course.planners import rrt_connect_grown, seed001_lists
 
-UR5 = urkin.robot("ur5")
-MODEL = planning.sphere_model(UR5)
-WALL = planning.Scene(
-    boxes=[
-        planning.Box([-0.45, 0.0, 0.3], [0.05, 0.6, 0.6], name="wall"),
-        planning.Box([0, 0, -0.06], [2, 2, 0.1], name="table"),
-    ]
-)
-START = np.array([-1.2, -1.2, 1.2, -1.6, -1.57, 0.0])
-GOAL = np.array([1.2, -1.2, 1.2, -1.6, -1.57, 0.0])
+from .test_planning_rrt import GOAL, MODEL, START, WALL
+
 LOW, HIGH = np.full(6, -np.pi), np.full(6, np.pi)
 
 

@@ -98,9 +98,9 @@ def test_is_free_matches_the_sign_of_the_clearance(rng):
 
 
 def test_touch_tests_agree_with_signed_distances_for_every_kind(rng):
-    """The boolean check (bounding balls, then squared distances) gives the verdict of the
-    exact signed distances, ball by ball, for boxes (small and large), cylinders, spheres
-    and capsules."""
+    """The boolean check (squared distances; bounding balls first for small boxes and
+    capsules) gives the verdict of the exact signed distances, ball by ball, for boxes (small
+    and large), cylinders, spheres and capsules."""
     scene = planning.Scene(
         boxes=[
             planning.Box([0.1, -0.2, -0.3], [1.0, 0.8, 0.05], random_rotations(seed=rng)),

@@ -34,6 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin import planning
+from urkin.planning.rrt import _towards  # the library's step, the same rule
 
 __all__ = ["Growth", "Tree", "rrt_connect_grown", "seed001_lists"]
 
@@ -166,12 +167,6 @@ def _full(base: np.ndarray, joints: tuple[int, ...], x: np.ndarray) -> np.ndarra
     q = base.copy()
     q[list(joints)] = x
     return q
-
-
-def _towards(q_from: np.ndarray, q_to: np.ndarray, step: float) -> np.ndarray:
-    delta = q_to - q_from
-    largest = float(np.max(np.abs(delta)))
-    return q_to.copy() if largest <= step else q_from + delta * (step / largest)
 
 
 def seed001_lists(

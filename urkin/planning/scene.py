@@ -220,7 +220,6 @@ class Scene:
                 ]
             ).reshape(6, -1),
         )
-        self._set("_small_r", radii)
         # the terms of squared distances that do not depend on the point
         self._set("_cyl_ca", np.einsum("ci,ci->c", self._cyl_c, self._cyl_a))
         self._set("_cyl_c2", np.einsum("ci,ci->c", self._cyl_c, self._cyl_c))
@@ -284,7 +283,7 @@ class Scene:
             np.maximum(L, 0.0, out=L)
             L *= L
             hit |= np.any(L.reshape(M, -1, 3).sum(axis=2) <= r2, axis=1)
-        if len(self._small_r):
+        if len(self._small):
             # |p − c|² − (r + R)² as one product: [p, r, |p|² − r², 1]·[−2c, −2R, 1, |c|² − R²]
             A = np.empty((M, 6))
             A[:, :3] = P
