@@ -18,6 +18,7 @@ edges), :mod:`~urkin.planning.rrt` (RRT-Connect, shortcutting), :mod:`~urkin.pla
 (timing a path within joint limits).
 """
 
+from urkin.planning.blocks import Block, block_spheres, box_separation, tool_yaw, top_down_grasp
 from urkin.planning.checks import (
     Clearance,
     clearance,
@@ -29,27 +30,42 @@ from urkin.planning.checks import (
 from urkin.planning.rrt import Plan, rrt_connect, shortcut
 from urkin.planning.scene import Box, Capsule, Cylinder, Scene, Sphere
 from urkin.planning.spheres import FRAME_NAMES, TOOL_FRAME, SphereModel, self_pairs, sphere_model
+from urkin.planning.tabletop import GoalCheck, Move, World, validate_goal
+from urkin.planning.tasks import Phase, Task, pick_and_place, replay
 from urkin.planning.timing import time_parametrize
 
 __all__ = [
     "FRAME_NAMES",
     "TOOL_FRAME",
+    "Block",
     "Box",
     "Capsule",
     "Clearance",
     "Cylinder",
+    "GoalCheck",
+    "Move",
+    "Phase",
     "Plan",
     "Scene",
     "Sphere",
     "SphereModel",
+    "Task",
+    "World",
+    "block_spheres",
+    "box_separation",
     "clearance",
     "edge_samples",
     "edges_free",
     "explain",
     "is_free",
+    "pick_and_place",
+    "replay",
     "rrt_connect",
     "self_pairs",
     "shortcut",
     "sphere_model",
     "time_parametrize",
+    "tool_yaw",
+    "top_down_grasp",
+    "validate_goal",
 ]
