@@ -375,6 +375,7 @@ def animate(
     center: ArrayLike | None = None,
     half_width: float | None = None,
     scenery: Callable[[Any], object] | None = None,
+    update: Callable[[int], object] | None = None,
 ) -> Animation:
     """Animate the arm through the configurations ``qs``: an HTML player, inline anywhere.
 
@@ -420,6 +421,10 @@ def animate(
         Draws what stays still in every frame (obstacles, a table): called once with the
         frames' 3D axes, after the view is set and before the arm is drawn, e.g.
         ``lambda ax: urkin.plot.draw_scene(ax, scene)``.  It does not enlarge the view cube.
+    update : callable, optional
+        Moves what moves besides the arm (a carried block): called before each frame is
+        drawn with the index of the sample it shows (0 … M − 1), to update artists that
+        ``scenery`` created.
 
     Returns
     -------
@@ -562,6 +567,8 @@ def animate(
             label.set_position_3d(tips[j, axis])
         panel.set_text(pose_text(tools[k]))
         counter.set_text(f"sample {k + 1} of {m}")
+        if update is not None:
+            update(int(k))
 
     ax._urkin_frame_note.set_fontsize(9 * scale)
 

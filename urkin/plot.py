@@ -42,10 +42,12 @@ from urkin.transforms import check_transform, make_transform, rotation_to_rpy
 
 __all__ = [
     "AXIS_COLOURS",
+    "BLOCK_COLOURS",
     "OBSTACLE_COLOUR",
     "Animation",
     "animate",
     "animate_plan",
+    "animate_task",
     "arms_figure",
     "axes3d",
     "convergence_figure",
@@ -59,11 +61,13 @@ __all__ = [
     "draw_robot",
     "draw_scene",
     "draw_spheres",
+    "draw_world",
     "edge_clearance_figure",
     "ellipsoid_panels",
     "entry_error_maps",
     "error_maps_figure",
     "frame_note",
+    "goal_map_figure",
     "jacobian_columns_figure",
     "joint_paths_figure",
     "lab_elbows_figure",
@@ -83,6 +87,7 @@ __all__ = [
     "step_size_figure",
     "time_scaling_figure",
     "tracking_report_figure",
+    "world_figure",
 ]
 
 #: Colours of the x, y and z axes of a frame triad (red, green, blue).
@@ -3462,5 +3467,292 @@ def animate_plan(
         center=center,
         half_width=half_width,
         scenery=scenery,
+        **options,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# lesson 10: blocks on the table, goals, and tasks
+# ---------------------------------------------------------------------------------------------
+
+#: Colours of the blocks of a tabletop world, in the order of ``world.blocks``.
+BLOCK_COLOURS = ("tab:blue", "tab:green", "tab:purple", "tab:orange", "tab:cyan")
+
+
+def _block_artist(ax, block, color: str, alpha: float = 0.85):
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    solid = Poly3DCollection(
+        _box_faces(block.centre, block.size, block.pose[:3, :3]),
+        facecolor=color,
+        edgecolor="0.2",
+        linewidths=0.6,
+        alpha=alpha,
+    )
+    return ax.add_collection3d(solid)
+
+
+def draw_world(ax, world, *, goals: Sequence = (), labels: bool = True) -> dict:
+    """Draw a :class:`urkin.planning.World`: the table, the obstacles, the blocks (each in its
+    colour of :data:`BLOCK_COLOURS`, named on its top) and goal footprints (dashed).
+
+    Returns
+    -------
+    dict
+        Block name → its artist (a ``Poly3DCollection`` whose vertices an animation moves).
+    """
+    names = {b.name for b in world.blocks}
+    draw_scene(ax, world.scene(without=tuple(names)), alpha=0.18, label=None)
+    artists = {}
+    for k, block in enumerate(world.blocks):
+        colour = BLOCK_COLOURS[k % len(BLOCK_COLOURS)]
+        artists[block.name] = _block_artist(ax, block, colour)
+        if labels:
+            ax.text(
+                *(block.centre + np.array([0, 0, block.size[2] / 2 + 0.01])),
+                block.name,
+                ha="center",
+                fontsize=10,
+                fontweight="bold",
+            )
+    for goal in goals:
+        corners = np.vstack([goal.footprint(), goal.footprint()[:1]])
+        ax.plot(
+            corners[:, 0],
+            corners[:, 1],
+            np.full(5, goal.bottom + 1e-3),
+            "--",
+            color="tab:red",
+            linewidth=1.5,
+        )
+    _legend_patch(ax, OBSTACLE_COLOUR, "table and obstacles", alpha=0.4)
+    return artists
+
+
+def world_figure(
+    world,
+    q: ArrayLike | None = None,
+    *,
+    goals: Sequence = (),
+    title: str | None = None,
+    figsize: tuple[float, float] = (12.0, 6.0),
+) -> Figure:
+    """A tabletop world in 3D (with the arm at ``q``) and from above (with the robot's base,
+    the blocks named, and goal footprints dashed in red).
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import urkin
+    >>> from urkin import planning
+    >>> from urkin.transforms import make_transform
+    >>> ur3 = urkin.robot("ur3").with_tool(make_transform(p=[0, 0, 0.1]))  # a suction rod
+    >>> model = planning.sphere_model(ur3).with_tool_spheres([[0, 0, -0.05]], 0.02)
+    >>> table = planning.Block.standing("table", [1.2, 1.2, 0.03], 0, 0, bottom=-0.03)
+    >>> cube = planning.Block.standing("A", [0.05] * 3, 0.3, 0.1)
+    >>> world = planning.World(ur3, model, table, [cube])
+    >>> len(world_figure(world, [0, -1.8, 1.6, -1.37, -1.5708, 0]).axes)
+    2
+    """
+    fig = _figure(figsize)
+    ax = fig.add_subplot(1, 2, 1, projection="3d")
+    robot = world.robot
+    points = [b.centre for b in world.boxes() if b is not world.table]
+    if q is not None:
+        points += list(fk_frames(robot, q)[..., :3, 3].reshape(-1, 3))
+    points.append(robot.base[:3, 3])
+    c, half = _cube_with_obstacles(np.array(points), world.scene(), margin=0.1)
+    axes3d(ax, center=c, half_width=half, title="3D view")
+    ax.computed_zorder = False
+    draw_world(ax, world, goals=goals)
+    if q is not None:
+        draw_robot(ax, robot, q, frames=False, linewidth=5.0)
+    top = fig.add_subplot(1, 2, 2)
+    t = world.table
+    outline = np.vstack([t.footprint(), t.footprint()[:1]])
+    top.fill(outline[:, 0], outline[:, 1], color=OBSTACLE_COLOUR, alpha=0.12, label="table")
+    for obstacle in world.obstacles:
+        corners = obstacle.footprint()
+        top.fill(corners[:, 0], corners[:, 1], color=OBSTACLE_COLOUR, alpha=0.6)
+        top.annotate(obstacle.name, obstacle.centre[:2], ha="center", va="center", fontsize=9)
+    for block in sorted(world.blocks, key=lambda b: b.bottom):
+        colour = BLOCK_COLOURS[world.names.index(block.name) % len(BLOCK_COLOURS)]
+        corners = block.footprint()
+        top.fill(corners[:, 0], corners[:, 1], color=colour, alpha=0.85, edgecolor="0.2")
+        top.annotate(
+            block.name,
+            block.centre[:2],
+            ha="center",
+            va="center",
+            color="white",
+            fontsize=9,
+            fontweight="bold",
+        )
+    for goal in goals:
+        corners = np.vstack([goal.footprint(), goal.footprint()[:1]])
+        top.plot(corners[:, 0], corners[:, 1], "--", color="tab:red", linewidth=1.5)
+    base = robot.base[:3, 3]
+    top.plot(*base[:2], "k^", markersize=10, label="robot base")
+    if q is not None:
+        tip = (fk_frames(robot, q)[-1] @ robot.tool)[:3, 3]
+        top.plot(*tip[:2], "o", color="tab:orange", label="gripper tip")
+    if goals:
+        top.plot([], [], "--", color="tab:red", label="goal")
+    top.set_aspect("equal")
+    top.set_xlabel("x (m)")
+    top.set_ylabel("y (m)")
+    top.set_title("from above (table frame)")
+    top.legend(loc="upper left", fontsize=8, framealpha=0.85)
+    top.grid(alpha=0.3)
+    if title:
+        fig.suptitle(title)
+    return fig
+
+
+def goal_map_figure(
+    world,
+    block: str,
+    *,
+    step: float = 0.02,
+    q: ArrayLike | None = None,
+    figsize: tuple[float, float] = (8.0, 7.0),
+) -> Figure:
+    """Which goals ``(x, y)`` for ``block`` :func:`urkin.planning.validate_goal` accepts, on a
+    grid over the table: each cell coloured by the first reason it gives.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import urkin
+    >>> from urkin import planning
+    >>> from urkin.transforms import make_transform
+    >>> ur3 = urkin.robot("ur3").with_tool(make_transform(p=[0, 0, 0.1]))  # a suction rod
+    >>> model = planning.sphere_model(ur3).with_tool_spheres([[0, 0, -0.05]], 0.02)
+    >>> table = planning.Block.standing("table", [1.2, 1.2, 0.03], 0, 0, bottom=-0.03)
+    >>> cube = planning.Block.standing("A", [0.05] * 3, 0.3, 0.1)
+    >>> world = planning.World(ur3, model, table, [cube])
+    >>> fig = goal_map_figure(world, "A", step=0.2)
+    >>> fig.axes[0].get_title()
+    'Goals for block A'
+    """
+    from urkin.planning import validate_goal
+
+    kinds = (
+        "ok",
+        "outside the table",
+        "unreachable",
+        "no support",
+        "overlaps",
+        "arm in collision",
+        "other",
+    )
+    colours = ("tab:green", "0.85", "tab:gray", "tab:olive", "tab:red", "tab:purple", "k")
+    t = world.table
+    low = t.footprint().min(axis=0)
+    high = t.footprint().max(axis=0)
+    xs = np.arange(low[0] + step / 2, high[0], step)
+    ys = np.arange(low[1] + step / 2, high[1], step)
+    grid = np.zeros((len(ys), len(xs)), dtype=int)
+    for i, y in enumerate(ys):
+        for j, x in enumerate(xs):
+            check = validate_goal(world, (block, float(x), float(y)), q_start=q)
+            first = "ok" if check.ok else check.reasons[0]
+            grid[i, j] = next(
+                (k for k, name in enumerate(kinds) if first.startswith(name)), len(kinds) - 1
+            )
+    fig = _figure(figsize)
+    ax = fig.add_subplot(1, 1, 1)
+    ax.imshow(
+        grid,
+        origin="lower",
+        extent=(xs[0] - step / 2, xs[-1] + step / 2, ys[0] - step / 2, ys[-1] + step / 2),
+        cmap=ListedColormap(colours),
+        vmin=-0.5,
+        vmax=len(kinds) - 0.5,
+        interpolation="nearest",
+        alpha=0.8,
+    )
+    for k, b in enumerate(world.blocks):
+        corners = np.vstack([b.footprint(), b.footprint()[:1]])
+        ax.plot(
+            corners[:, 0], corners[:, 1], color=BLOCK_COLOURS[k % len(BLOCK_COLOURS)], linewidth=2
+        )
+        ax.annotate(b.name, b.centre[:2], ha="center", va="center", fontweight="bold")
+    for obstacle in world.obstacles:
+        corners = np.vstack([obstacle.footprint(), obstacle.footprint()[:1]])
+        ax.plot(corners[:, 0], corners[:, 1], color=OBSTACLE_COLOUR, linewidth=2)
+    ax.plot(*world.robot.base[:2, 3], "k^", markersize=10)
+    shown = sorted(set(grid.ravel().tolist()))
+    ax.legend(
+        handles=[Patch(color=colours[k], label=kinds[k]) for k in shown],
+        loc="upper left",
+        fontsize=8,
+        framealpha=0.9,
+        title="first reason",
+    )
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_aspect("equal")
+    ax.set_title(f"Goals for block {block}")
+    return fig
+
+
+def animate_task(
+    task,
+    *,
+    title: str | None = None,
+    max_frames: int = 60,
+    view: tuple[float, float] = (28.0, -50.0),
+    **options,
+) -> Animation:
+    """Animate a :class:`urkin.planning.Task`: the arm, the table and obstacles, and the
+    blocks moving with the gripper while carried.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from urkin import planning
+    >>> import urkin
+    >>> from urkin.transforms import make_transform
+    >>> ur3 = urkin.robot("ur3").with_tool(make_transform(p=[0, 0, 0.1]))  # a suction rod
+    >>> model = planning.sphere_model(ur3).with_tool_spheres([[0, 0, -0.05]], 0.02)
+    >>> table = planning.Block.standing("table", [1.2, 1.2, 0.03], 0, 0, bottom=-0.03)
+    >>> cube = planning.Block.standing("A", [0.05] * 3, 0.3, 0.1)
+    >>> world = planning.World(ur3, model, table, [cube])
+    >>> q_start = [0, -1.8, 1.6, -1.37, -1.5708, 0]
+    >>> task = planning.pick_and_place(world, [("A", 0.25, -0.15)], q_start)
+    >>> animate_task(task, max_frames=4)  # doctest: +ELLIPSIS
+    <Animation: UR3, 4 frames of ... samples>
+    """
+    world = task.start
+    robot = world.robot
+    joints = fk_frames(robot, task.q)[..., :3, 3].reshape(-1, 3)
+    centres = task.block_poses[..., :3, 3].reshape(-1, 3)
+    c, half = _cube_with_obstacles(np.vstack([joints, centres]), world.scene(), margin=0.05)
+    artists: dict = {}
+
+    def scenery(ax) -> None:
+        ax.view_init(*view)
+        ax.computed_zorder = False
+        artists.update(draw_world(ax, world, goals=task.goals, labels=False))
+
+    def update(k: int) -> None:
+        for i, block in enumerate(world.blocks):
+            pose = task.block_poses[k, i]
+            artists[block.name].set_verts(_box_faces(pose[:3, 3], block.size, pose[:3, :3]))
+
+    return animate(
+        robot,
+        task.q,
+        title=title,
+        max_frames=max_frames,
+        center=c,
+        half_width=half,
+        scenery=scenery,
+        update=update,
+        info=False,
         **options,
     )

@@ -25,12 +25,14 @@ __all__ = [
     "HANOI_PEGS",
     "LAB_HOME",
     "TABLE",
+    "StackPrompt",
     "hanoi_moves",
     "hanoi_tasks",
     "hanoi_world",
     "lab_arm",
     "lab_world",
     "parse_goal",
+    "stack_panel",
 ]
 
 #: The table: x from −0.45 to 0.50 m, y from −0.30 to 0.60 m, top at z = 0, 3 cm thick.
@@ -173,3 +175,91 @@ def parse_goal(text: str, block: str) -> Move | str:
     if len(numbers) != 2:
         return f"could not read {str(text)[:40]!r}: type x and y in metres, e.g. 0.25 -0.05"
     return Move(block, numbers[0], numbers[1])
+
+
+class StackPrompt:
+    """Seed 001's goal, as a conversation: stack block B on block A at a place the user types,
+    asking again, with the reasons, until the goal is valid and the task is planned.
+
+    Widget-free (tests and ``urkin demo --task stack`` drive it with text; :func:`stack_panel`
+    puts it behind ipywidgets).
+
+    Examples
+    --------
+    >>> prompt = StackPrompt()
+    >>> print(prompt.submit("0.22 0.15"))
+    Not there: overlaps obstacle post by 45 mm. Type another x y.
+    >>> print(prompt.submit("0.25 -0.05").splitlines()[0])
+    Done: A at (0.250, -0.050) on the table, B on A; 16 phases, 21.5 s of motion.
+    """
+
+    def __init__(
+        self,
+        world: World | None = None,
+        q_start=LAB_HOME,
+        *,
+        seed: int = 0,
+        first: str = "A",
+        second: str = "B",
+    ) -> None:
+        self.world = lab_world() if world is None else world
+        self.q_start = np.asarray(q_start, dtype=float)
+        self.seed = seed
+        self.first, self.second = first, second
+        self.task = None
+
+    @property
+    def done(self) -> bool:
+        """Whether a task has been planned."""
+        return self.task is not None
+
+    def submit(self, text: str) -> str:
+        """Read a typed goal ``"x y"``, validate it, plan: the answer to show."""
+        from urkin.planning import pick_and_place, validate_goal
+
+        goal = parse_goal(text, self.first)
+        if isinstance(goal, str):
+            return f"Not understood: {goal}. Type another x y."
+        check = validate_goal(self.world, goal, q_start=self.q_start)
+        if not check.ok:
+            return f"Not there: {'; '.join(check.reasons)}. Type another x y."
+        on_top = Move(self.second, goal.x, goal.y, check.placed.top)
+        second = validate_goal(self.world.with_block(check.placed), on_top)
+        if not second.ok:
+            return (
+                f"Not there: {self.first} fits, but {self.second} on it does not: "
+                f"{'; '.join(second.reasons)}. Type another x y."
+            )
+        task = pick_and_place(self.world, [goal, on_top], self.q_start, seed=self.seed)
+        if not task.success:
+            return f"Not there: {task.reason}. Type another x y."
+        self.task = task
+        return (
+            f"Done: {self.first} at ({goal.x:.3f}, {goal.y:.3f}) on the "
+            f"{check.support}, {self.second} on {self.first}; {len(task.phases)} phases, "
+            f"{task.t[-1]:.1f} s of motion.\n{task.report()}"
+        )
+
+
+def stack_panel(prompt: StackPrompt | None = None):
+    """An ipywidgets panel over a :class:`StackPrompt`: type ``x y``, press *Stack*; the
+    answer (reasons, or the report and the animation) appears below."""
+    import ipywidgets as widgets
+    from IPython.display import display
+
+    from urkin.plot import animate_task
+
+    prompt = StackPrompt() if prompt is None else prompt
+    text = widgets.Text(placeholder="x y in metres, e.g. 0.25 -0.05", description="goal:")
+    button = widgets.Button(description="Stack", button_style="primary")
+    out = widgets.Output()
+
+    def go(_=None) -> None:
+        out.clear_output()
+        with out:
+            print(prompt.submit(text.value))
+            if prompt.done:
+                display(animate_task(prompt.task, max_frames=40))
+
+    button.on_click(go)
+    return widgets.VBox([widgets.HBox([text, button]), out])

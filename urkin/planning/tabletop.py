@@ -281,11 +281,19 @@ def validate_goal(
 
     Examples
     --------
-    >>> from urkin.course.tabletop import lab_world
-    >>> world = lab_world()
-    >>> print(validate_goal(world, ("B", 0.61, 0.1)))
-    outside the table (x = 0.61 > 0.50 m)
-    >>> validate_goal(world, ("B", 0.25, -0.05)).ok
+    A UR3 with a 10 cm suction rod, a table, a block:
+
+    >>> import urkin
+    >>> from urkin import planning
+    >>> from urkin.transforms import make_transform
+    >>> ur3 = urkin.robot("ur3").with_tool(make_transform(p=[0, 0, 0.1]))
+    >>> model = planning.sphere_model(ur3).with_tool_spheres([[0, 0, -0.05]], 0.02)
+    >>> table = planning.Block.standing("table", [1.2, 1.2, 0.03], 0, 0, bottom=-0.03)
+    >>> cube = planning.Block.standing("A", [0.05] * 3, 0.3, 0.1)
+    >>> world = planning.World(ur3, model, table, [cube])
+    >>> print(validate_goal(world, ("A", 0.7, 0.0)))  # doctest: +ELLIPSIS
+    outside the table (x = 0.70 > 0.60 m); unreachable with the tool down: the target is ...
+    >>> validate_goal(world, ("A", 0.25, -0.15)).ok
     True
     """
     if not isinstance(world, World):

@@ -458,9 +458,16 @@ def pick_and_place(
 
     Examples
     --------
-    >>> from urkin.course.tabletop import lab_world, LAB_HOME
-    >>> world = lab_world()
-    >>> task = pick_and_place(world, [("A", 0.25, -0.05)], LAB_HOME, seed=0)
+    >>> import urkin
+    >>> from urkin import planning
+    >>> from urkin.transforms import make_transform
+    >>> ur3 = urkin.robot("ur3").with_tool(make_transform(p=[0, 0, 0.1]))  # a suction rod
+    >>> model = planning.sphere_model(ur3).with_tool_spheres([[0, 0, -0.05]], 0.02)
+    >>> table = planning.Block.standing("table", [1.2, 1.2, 0.03], 0, 0, bottom=-0.03)
+    >>> cube = planning.Block.standing("A", [0.05] * 3, 0.3, 0.1)
+    >>> world = planning.World(ur3, model, table, [cube])
+    >>> q_start = [0, -1.8, 1.6, -1.37, -1.5708, 0]
+    >>> task = pick_and_place(world, [("A", 0.25, -0.15)], q_start, seed=0)
     >>> task.success, [p.name for p in task.phases][:4]
     (True, ['to pre-grasp', 'approach', 'grasp', 'lift'])
     >>> bool(np.linalg.norm(task.world.block("A").centre - task.goals[0].centre) < 1e-3)
