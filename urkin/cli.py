@@ -8,6 +8,9 @@
     urkin info                             the arms urkin knows and their DH lengths
     urkin demo [--robot UR3] [--save FILE.gif] [--script "X+,Z-,home,circle"]
                                            jog an arm in a window, or record a session to a GIF
+    urkin demo --task stack|hanoi [--blocks N] [--seed S] [--save FILE.gif]
+                                           stack two blocks at a goal you type (asked again
+                                           until it is valid), or solve the Tower of Hanoi
 """
 
 from __future__ import annotations
@@ -82,7 +85,65 @@ def _display() -> str:
     return ""
 
 
+def _demo_task(args: argparse.Namespace) -> int:
+    """``urkin demo --task stack|hanoi``: lesson 10's tasks in the terminal."""
+    if args.save is not None and args.save.suffix.lower() != ".gif":
+        print(f"urkin demo: --save needs a .gif file name; got {args.save}", file=sys.stderr)
+        return 2
+    from urkin.course import tabletop
+    from urkin.planning import pick_and_place
+
+    if args.task == "stack":
+        prompt = tabletop.StackPrompt(seed=args.seed)
+        world = prompt.world
+        lo, hi = world.table.footprint().min(axis=0), world.table.footprint().max(axis=0)
+        where = ", ".join(
+            f"{b.name} at ({b.centre[0]:.2f}, {b.centre[1]:.2f})" for b in world.blocks
+        )
+        print(
+            f"Blocks {where}; the table spans x {lo[0]:.2f} … {hi[0]:.2f}, "
+            f"y {lo[1]:.2f} … {hi[1]:.2f} m."
+        )
+        print("Where should A go, with B stacked on it? Type x y in metres (q quits).")
+        while not prompt.done:
+            try:
+                text = input("goal> ")
+            except EOFError:
+                print()
+                return 1
+            if text.strip().lower() in ("q", "quit", "exit"):
+                return 1
+            print(prompt.submit(text))
+        task = prompt.task
+    else:
+        try:
+            world = tabletop.hanoi_world(args.blocks)
+        except ValueError as exc:
+            print(f"urkin demo: {exc}", file=sys.stderr)
+            return 2
+        moves = tabletop.hanoi_moves(args.blocks)
+        task = pick_and_place(
+            world, tabletop.hanoi_tasks(world, moves), tabletop.LAB_HOME, seed=args.seed
+        )
+        print(f"Tower of Hanoi, {args.blocks} blocks: {len(moves)} moves")
+        print(task.report())
+        if not task.success:
+            print(task.reason)
+            return 1
+    if args.save is not None:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        from urkin.plot import animate_task
+
+        animate_task(task).save_gif(args.save)
+        print(f"saved {args.save} ({len(task.q)} samples, {task.t[-1]:.1f} s of motion)")
+    return 0
+
+
 def _demo(args: argparse.Namespace) -> int:
+    if args.task != "jog":
+        return _demo_task(args)
     import urkin
     from urkin.jog import JogController, parse_script
 
@@ -193,6 +254,14 @@ def main(argv: list[str] | None = None) -> int:
         help="comma-separated steps: X+, X-, Y+, Y-, Z+, Z-, home, circle, square (with --save "
         f"default {DEMO_SCRIPT!r}; with a window, run before it opens)",
     )
+    demo.add_argument(
+        "--task",
+        choices=["jog", "stack", "hanoi"],
+        default="jog",
+        help="jog (default); stack: two blocks at a goal you type; hanoi: the Tower of Hanoi",
+    )
+    demo.add_argument("--blocks", type=int, default=3, help="blocks of --task hanoi (1 … 4)")
+    demo.add_argument("--seed", type=int, default=0, help="seed of the planner (tasks)")
     demo.set_defaults(run=_demo)
 
     args = parser.parse_args(argv)

@@ -207,7 +207,7 @@ def rrt_connect(
         limit = (
             f"within {time_limit:g} s"
             if time_limit is not None and iterations < max_iterations
-            else f"in {iterations} iterations"
+            else f"in {iterations} iteration{'' if iterations == 1 else 's'}"
         )
         return Plan(
             np.empty((0, 6)),
