@@ -64,6 +64,7 @@ bench: $(STAMP)
 	$(PY) bench/ik_analytic.py
 	$(PY) bench/grading.py
 	$(PY) bench/planning.py
+	$(PY) bench/tasks.py
 
 clean:
 	rm -rf docs/_build docs/lessons build *.egg-info
