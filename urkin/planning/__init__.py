@@ -11,11 +11,17 @@
     planning.edges_free(model, scene, QA, QB)               # (K,) bool, straight edges
     plan = planning.rrt_connect(model, scene, q_start, goals, seed=0)
     traj = planning.time_parametrize(plan)                  # urkin.trajectory.Trajectory
+    world = planning.World(robot, model, table, blocks)    # a tabletop of upright boxes
+    planning.validate_goal(world, ("A", 0.25, -0.05))      # ok, or every reason, with numbers
+    task = planning.pick_and_place(world, moves, q_start)   # phases, report, timed trajectory
+    planning.replay(world, q_start, task.steps())           # check any task from scratch
 
 Modules: :mod:`~urkin.planning.spheres` (sphere models), :mod:`~urkin.planning.scene`
 (obstacles, signed distances), :mod:`~urkin.planning.checks` (configurations, clearances,
 edges), :mod:`~urkin.planning.rrt` (RRT-Connect, shortcutting), :mod:`~urkin.planning.timing`
-(timing a path within joint limits).
+(timing a path within joint limits), :mod:`~urkin.planning.blocks` (blocks, grasps, box
+tests), :mod:`~urkin.planning.tabletop` (a world of boxes, goal validation),
+:mod:`~urkin.planning.tasks` (pick and place, replay).
 """
 
 from urkin.planning.blocks import Block, block_spheres, box_separation, tool_yaw, top_down_grasp
