@@ -513,3 +513,39 @@ def test_the_stack_prompt_asks_again_until_the_goal_is_valid():
     assert "x = 0.61 > 0.50 m" in prompt.submit("0.61 0.1")
     answer = prompt.submit("0.25 -0.05")
     assert answer.startswith("Done: A at (0.250, -0.050) on the table, B on A") and prompt.done
+
+
+def test_replay_answers_anything_with_a_reason(world):
+    for steps in (
+        None,
+        "move",
+        3,
+        [None],
+        [("move",)],
+        [("move", "abc")],
+        [("move", [1, 2])],
+        [("move", np.zeros((2, 7)))],
+        [("grip", ["A"])],
+        [("release", None)],
+    ):
+        ok, why, after = planning.replay(world, LAB_HOME, steps)
+        assert not ok and why and after is world
+
+
+def test_the_demo_command_asks_again_until_the_goal_is_valid(monkeypatch, capsys):
+    from urkin.cli import main
+
+    typed = iter(["somewhere", "0.61 0.1", "0.25 -0.05"])
+    monkeypatch.setattr("builtins.input", lambda prompt="": next(typed))
+    assert main(["demo", "--task", "stack"]) == 0
+    out = capsys.readouterr().out
+    assert "Not understood" in out and "outside the table (x = 0.61 > 0.50 m)" in out
+    assert "Done: A at (0.250, -0.050) on the table, B on A" in out
+
+    def eof(prompt=""):
+        raise EOFError
+
+    monkeypatch.setattr("builtins.input", eof)
+    assert main(["demo", "--task", "stack"]) == 1
+    assert main(["demo", "--task", "hanoi", "--blocks", "7"]) == 2
+    assert "n must be 1 … 4 blocks" in capsys.readouterr().err

@@ -286,6 +286,8 @@ def replay(
     """
     q, _, _ = _joints(q_start, "q_start")
     q = q.reshape(6).copy()
+    if isinstance(steps, (str, bytes)) or not isinstance(steps, Sequence):
+        return False, f"steps must be a list of steps; got {type(steps).__name__}", world
     held: str | None = None
     grip = None
     for k, step in enumerate(steps):
