@@ -28,6 +28,7 @@ __all__ = [
     "Block",
     "block_spheres",
     "box_separation",
+    "grasp_yaws",
     "symmetry",
     "tool_yaw",
     "top_down_grasp",
@@ -192,7 +193,11 @@ def top_down_grasp(block: Block, yaw_near: float = 0.0) -> np.ndarray:
     """
     if not isinstance(block, Block):
         raise TypeError(f"block must be a planning.Block; got {type(block).__name__}")
-    yaw = float(grasp_yaws(block, float(real(yaw_near, "yaw_near")))[0])
+    return _grasp_at(block, float(grasp_yaws(block, float(real(yaw_near, "yaw_near")))[0]))
+
+
+def _grasp_at(block: Block, yaw: float) -> np.ndarray:
+    """The top-down grasp of ``block`` with the tool's x axis at ``yaw``."""
     return make_transform(_down(np.array(yaw)), [*block.centre[:2], block.top])
 
 

@@ -25,12 +25,19 @@ from numpy.typing import ArrayLike
 
 from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import fk
-from urkin.planning.blocks import Block, block_spheres, box_separation, grasp_yaws, tool_yaw
+from urkin.planning.blocks import (
+    Block,
+    _grasp_at,
+    block_spheres,
+    box_separation,
+    grasp_yaws,
+    tool_yaw,
+)
 from urkin.planning.checks import explain, is_free
 from urkin.planning.scene import Box, Scene
 from urkin.planning.spheres import SphereModel
 from urkin.robots import Robot, check_robot
-from urkin.transforms import inv_transform, make_transform, rot_z, wrap_angles
+from urkin.transforms import wrap_angles
 
 __all__ = ["GoalCheck", "Move", "World", "validate_goal"]
 
@@ -234,11 +241,6 @@ def _place_configurations(world: World, placed: Block, yaw_near: float) -> np.nd
     return solutions[~np.isnan(solutions[:, 0])]
 
 
-def _grasp_at(block: Block, yaw: float) -> np.ndarray:
-    R = rot_z(yaw) @ np.diag([1.0, -1.0, -1.0])
-    return make_transform(R, [*block.centre[:2], block.top])
-
-
 def validate_goal(
     world: World,
     goal: Move | Sequence,
@@ -420,8 +422,3 @@ def validate_goal(
         if not result.success:
             return GoalCheck(False, (result.reason,), placed, support)
     return GoalCheck(True, (), placed, support)
-
-
-def _tool_block(T_world_tool: np.ndarray, block: Block) -> np.ndarray:
-    """The block's pose in the tool frame."""
-    return inv_transform(T_world_tool) @ block.pose

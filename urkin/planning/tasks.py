@@ -31,12 +31,12 @@ from numpy.typing import ArrayLike
 
 from urkin.analytic_ik import ik_analytic
 from urkin.kinematics import _joints, fk
-from urkin.planning.blocks import Block, box_separation, grasp_yaws, tool_yaw
+from urkin.planning.blocks import Block, _grasp_at, box_separation, grasp_yaws, tool_yaw
 from urkin.planning.checks import RESOLUTION, _intervals, clearance, explain, is_free
 from urkin.planning.rrt import rrt_connect
 from urkin.planning.scene import Scene
 from urkin.planning.spheres import SphereModel
-from urkin.planning.tabletop import TOUCH, Move, World, _grasp_at, _support_of, validate_goal
+from urkin.planning.tabletop import TOUCH, Move, World, _support_of, validate_goal
 from urkin.planning.timing import time_parametrize
 from urkin.tracking import track
 from urkin.trajectory import line, minimum_time, pose_path
