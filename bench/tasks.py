@@ -11,8 +11,9 @@ per phase kind, the median computing time per task over the seeds (the sum over 
 phase's occurrences in a task; "approach" is the choice of the grasp — closed-form
 solutions over the block's symmetric yaws, the vertical moves tracked and checked —,
 "descend" the choice of the place, "to pre-grasp" and "transfer" the RRT-Connect calls; the
-first seed also builds the carried blocks' sphere models, about 0.4 s), and the task totals: computing time, motion time (the timed
-trajectory's length), replay verdict and the largest final block error.
+first seed also builds the carried blocks' sphere models, about 0.4 s), and the task totals:
+computing time, motion time (the timed trajectory's length), replay verdict and the largest
+final block error.
 
 The second table re-plans every RRT-Connect query the tasks made (to pre-grasp: the arm and
 gripper against the world; transfer: with the carried block's spheres, the block left out of
