@@ -549,3 +549,10 @@ def test_the_demo_command_asks_again_until_the_goal_is_valid(monkeypatch, capsys
     assert main(["demo", "--task", "stack"]) == 1
     assert main(["demo", "--task", "hanoi", "--blocks", "7"]) == 2
     assert "n must be 1 … 4 blocks" in capsys.readouterr().err
+
+
+def test_goals_all_in_collision_give_a_failed_plan_not_an_exception(world):
+    inside = np.array(LAB_HOME)
+    inside[1] = 0.5  # the upper arm down through the table
+    plan = planning.tasks._plan(world.model, world.scene(), LAB_HOME, inside, seed=0)
+    assert not plan.success and "collision" in plan.reason and "table" in plan.reason

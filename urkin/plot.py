@@ -68,6 +68,7 @@ __all__ = [
     "error_maps_figure",
     "frame_note",
     "goal_map_figure",
+    "grasp_yaws_figure",
     "jacobian_columns_figure",
     "joint_paths_figure",
     "lab_elbows_figure",
@@ -1672,8 +1673,9 @@ def convergence_figure(
     runs : sequence of mappings
         Left panel: one solve per colour; each maps ``"position"`` (m) and ``"angle"`` (rad)
         to the error after each iteration.
-    compared : sequence of (history, name, colour)
-        Right panel: solves compared on one target, each history as in ``runs``.
+    compared : sequence of tuple
+        Right panel: ``(history, label, colour)`` per solve compared on one target, each
+        history as in ``runs``.
     floor : float
         Where an error of exactly zero is drawn.
     titles : (str, str)
@@ -1884,8 +1886,8 @@ def lab_scene(
         table's frame.
     q : array_like, shape (6,)
         Joint angles in radians.
-    frames : sequence of (T, name, length)
-        Frames drawn as labelled triads, poses in the table frame.
+    frames : sequence of tuple
+        ``(T, label, length)`` per frame drawn as a labelled triad, poses in the table frame.
     gripper : array_like, shape (k, 3)
         The gripper's polyline from the flange to its tip, metres.
     target : array_like, shape (3,)
@@ -3756,3 +3758,108 @@ def animate_task(
         info=False,
         **options,
     )
+
+
+def grasp_yaws_figure(
+    blocks: Sequence,
+    yaw_now: float,
+    *,
+    title: str | None = None,
+    size: float = 4.2,
+) -> Figure:
+    """Blocks from above with the tool yaws that grasp them: one panel per block.
+
+    Each panel draws the block's footprint, an arrow for every tool x axis that grasps it
+    from above (the block's yaw plus each multiple of its symmetry,
+    :func:`urkin.planning.blocks.grasp_yaws`), the one nearest ``yaw_now`` in orange with the
+    turn from the wrist's current yaw (dashed) marked by an arc.
+
+    Parameters
+    ----------
+    blocks : sequence of urkin.planning.Block
+    yaw_now : float
+        The tool's current yaw about the vertical (rad).
+    title : str, optional
+    size : float
+        Width and height of each panel, inches.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from urkin import planning
+    >>> cube = planning.Block.standing("A", [0.05, 0.05, 0.05], 0.0, 0.0, yaw=0.3)
+    >>> fig = grasp_yaws_figure([cube], yaw_now=2.0)
+    >>> fig.axes[0].get_title()
+    'A: 4 grasp yaws, 90° apart'
+    >>> plt.close(fig)
+    """
+    from urkin.planning.blocks import grasp_yaws, symmetry
+
+    blocks = list(blocks)
+    if not blocks:
+        raise ValueError("blocks must hold at least one planning.Block")
+    fig, axes = plt.subplots(
+        1, len(blocks), figsize=(size * len(blocks), size + 0.8), layout="constrained"
+    )
+    axes = np.atleast_1d(axes)
+    for k, (ax, block) in enumerate(zip(axes, blocks)):
+        centre = block.centre[:2]
+        reach = 0.75 * float(np.hypot(*block.size[:2]))
+        corners = np.vstack([block.footprint(), block.footprint()[:1]])
+        ax.fill(
+            corners[:, 0],
+            corners[:, 1],
+            color=BLOCK_COLOURS[k % len(BLOCK_COLOURS)],
+            alpha=0.35,
+            edgecolor="0.2",
+        )
+        yaws = grasp_yaws(block, yaw_now)
+        for j, yaw in enumerate(yaws):
+            chosen = j == 0
+            tip = centre + reach * np.array([math.cos(yaw), math.sin(yaw)])
+            ax.annotate(
+                "",
+                xy=tip,
+                xytext=centre,
+                arrowprops={
+                    "arrowstyle": "-|>",
+                    "color": "tab:orange" if chosen else "0.45",
+                    "linewidth": 2.5 if chosen else 1.2,
+                },
+            )
+        now = centre + 1.1 * reach * np.array([math.cos(yaw_now), math.sin(yaw_now)])
+        ax.plot(*np.column_stack([centre, now]), "--", color="k", linewidth=1.2)
+        turn = math.remainder(float(yaws[0]) - yaw_now, 2 * math.pi)
+        start, end = sorted((math.degrees(yaw_now), math.degrees(yaw_now + turn)))
+        ax.add_patch(
+            Arc(centre, 1.3 * reach, 1.3 * reach, theta1=start, theta2=end, color="tab:orange")
+        )
+        step = math.degrees(symmetry(block.size))
+        ax.set_title(f"{block.name}: {len(yaws)} grasp yaws, {step:.0f}° apart")
+        ax.text(
+            0.02,
+            0.02,
+            f"wrist turns {abs(math.degrees(turn)):.0f}°",
+            transform=ax.transAxes,
+            fontsize=9,
+        )
+        ax.set_xlim(centre[0] - 1.25 * reach, centre[0] + 1.25 * reach)
+        ax.set_ylim(centre[1] - 1.25 * reach, centre[1] + 1.25 * reach)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.grid(alpha=0.3)
+    handles = [
+        Line2D([], [], color="tab:orange", linewidth=2.5, label="the grasp nearest the wrist"),
+        Line2D([], [], color="0.45", linewidth=1.2, label="other grasp yaws (tool x axis)"),
+        Line2D([], [], color="k", linestyle="--", linewidth=1.2, label="the wrist's yaw now"),
+    ]
+    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=9)
+    if title:
+        fig.suptitle(title)
+    return fig

@@ -25,6 +25,7 @@ __all__ = [
     "HANOI_PEGS",
     "LAB_HOME",
     "TABLE",
+    "StackPanel",
     "StackPrompt",
     "hanoi_moves",
     "hanoi_tasks",
@@ -241,25 +242,103 @@ class StackPrompt:
         )
 
 
-def stack_panel(prompt: StackPrompt | None = None):
+class StackPanel:
+    """The ipywidgets panel over a :class:`StackPrompt` (made by :func:`stack_panel`).
+
+    In a live Jupyter kernel the panel shows its widget: type ``x y``, press *Stack*; the
+    answer (the reasons, or the report and an animation of the task) appears below.
+    Elsewhere (the docs, a notebook viewer) its ``text/html`` is the conversation so far.
+    :meth:`submit` types a goal and presses the button from code.
+
+    Attributes
+    ----------
+    prompt : StackPrompt
+    widget : ipywidgets.VBox
+        The panel.
+    text : ipywidgets.Text
+    button : ipywidgets.Button
+    output : ipywidgets.Output
+        The last answer (and the animation, once a task is planned).
+    conversation : list of (str, str)
+        What was typed and the first line of each answer.
+    """
+
+    def __init__(self, prompt: StackPrompt, *, animation_frames: int = 40) -> None:
+        import ipywidgets as widgets
+
+        if not isinstance(prompt, StackPrompt):
+            raise TypeError(f"prompt must be a StackPrompt; got {type(prompt).__name__}")
+        self.prompt = prompt
+        self.animation_frames = int(animation_frames)
+        self.conversation: list[tuple[str, str]] = []
+        self.text = widgets.Text(placeholder="x y in metres, e.g. 0.25 -0.05", description="goal:")
+        self.button = widgets.Button(description="Stack", button_style="primary")
+        self.output = widgets.Output()
+        self.button.on_click(lambda _button: self._answer())
+        self.widget = widgets.VBox([widgets.HBox([self.text, self.button]), self.output])
+
+    def submit(self, text: str) -> str:
+        """Type ``text`` and press *Stack*, as a user would: the answer's first line.
+
+        Examples
+        --------
+        >>> import matplotlib
+        >>> matplotlib.use("Agg")
+        >>> panel = stack_panel()
+        >>> panel.submit("0.7 0").split(";")[0]
+        'Not there: outside the table (x = 0.70 > 0.50 m)'
+        """
+        self.text.value = str(text)
+        self.button.click()
+        return self.conversation[-1][1]
+
+    def _answer(self) -> None:
+        """The button's handler.  The answer is set as the output widget's state rather
+        than printed inside it, so nothing leaks into a notebook cell when no front end runs
+        the widget (a test runner, the docs)."""
+        typed = self.text.value
+        answer = self.prompt.submit(typed)
+        self.conversation.append((typed, answer.splitlines()[0]))
+        outputs = [{"output_type": "stream", "name": "stdout", "text": answer + "\n"}]
+        if answer.startswith("Done"):
+            from urkin.plot import animate_task
+
+            movie = animate_task(self.prompt.task, max_frames=self.animation_frames)
+            outputs.append(
+                {
+                    "output_type": "display_data",
+                    "data": {"text/html": movie.html, "text/plain": repr(movie)},
+                    "metadata": {},
+                }
+            )
+        self.output.outputs = tuple(outputs)
+
+    def transcript(self) -> str:
+        """The conversation so far, as text."""
+        lines = [f"> {typed}\n{answer}" for typed, answer in self.conversation]
+        return "\n".join(lines) if lines else "(nothing typed yet)"
+
+    def _repr_mimebundle_(self, **kwargs) -> dict:
+        import html
+
+        bundle = dict(self.widget._repr_mimebundle_(**kwargs))
+        bundle["text/plain"] = self.transcript()
+        bundle["text/html"] = (
+            "<p><em>Stack panel: type a goal x y and press Stack (run the notebook to use "
+            "it). The conversation so far:</em></p><pre>"
+            + html.escape(self.transcript())
+            + "</pre>"
+        )
+        return bundle
+
+    def __repr__(self) -> str:
+        return self.transcript()
+
+
+def stack_panel(prompt: StackPrompt | None = None, *, animation_frames: int = 40) -> StackPanel:
     """An ipywidgets panel over a :class:`StackPrompt`: type ``x y``, press *Stack*; the
-    answer (reasons, or the report and the animation) appears below."""
-    import ipywidgets as widgets
-    from IPython.display import display
-
-    from urkin.plot import animate_task
-
-    prompt = StackPrompt() if prompt is None else prompt
-    text = widgets.Text(placeholder="x y in metres, e.g. 0.25 -0.05", description="goal:")
-    button = widgets.Button(description="Stack", button_style="primary")
-    out = widgets.Output()
-
-    def go(_=None) -> None:
-        out.clear_output()
-        with out:
-            print(prompt.submit(text.value))
-            if prompt.done:
-                display(animate_task(prompt.task, max_frames=40))
-
-    button.on_click(go)
-    return widgets.VBox([widgets.HBox([text, button]), out])
+    answer (reasons, or the report and the animation) appears below (see
+    :class:`StackPanel`)."""
+    return StackPanel(
+        StackPrompt() if prompt is None else prompt, animation_frames=animation_frames
+    )

@@ -33,7 +33,7 @@ from urkin.analytic_ik import ik_analytic
 from urkin.kinematics import _joints, fk
 from urkin.planning.blocks import Block, _grasp_at, box_separation, grasp_yaws, tool_yaw
 from urkin.planning.checks import RESOLUTION, _intervals, clearance, explain, is_free
-from urkin.planning.rrt import rrt_connect
+from urkin.planning.rrt import Plan, rrt_connect
 from urkin.planning.scene import Scene
 from urkin.planning.spheres import SphereModel
 from urkin.planning.tabletop import TOUCH, Move, World, _support_of, validate_goal
@@ -373,10 +373,12 @@ def replay(
 
 def _near(q_ref: np.ndarray, solutions: np.ndarray, lower, upper) -> np.ndarray:
     """Each solution shifted by whole turns to the equivalent nearest ``q_ref`` within limits,
-    nearest first."""
+    nearest first; the shoulder and elbow (joints 2 and 3) keep their principal values, since
+    a whole turn of either would fold the arm through itself or the table."""
     shifted = q_ref + wrap_angles(solutions - q_ref, check=False)
     shifted = np.where(shifted > upper, shifted - 2 * np.pi, shifted)
     shifted = np.where(shifted < lower, shifted + 2 * np.pi, shifted)
+    shifted[:, 1:3] = wrap_angles(solutions[:, 1:3], check=False)
     return shifted[np.argsort(np.linalg.norm(shifted - q_ref, axis=1), kind="stable")]
 
 
@@ -513,7 +515,7 @@ def pick_and_place(
         seconds = time.perf_counter() - began
         # to pre-grasp
         began = time.perf_counter()
-        plan = rrt_connect(
+        plan = _plan(
             world.model,
             world.scene(),
             q,
@@ -558,7 +560,7 @@ def pick_and_place(
         seconds = time.perf_counter() - began
         began = time.perf_counter()
         carried = world.carrying(tuple(float(s) for s in block.size))
-        plan = rrt_connect(
+        plan = _plan(
             carried,
             world.scene(without=(name,)),
             q,
@@ -586,6 +588,15 @@ def pick_and_place(
         world = world.with_block(placed)
         q = up_place[-1].copy()
     return _finish(True, "", phases, start, world, goals, q_start, dt)
+
+
+def _plan(model, scene, start, goals, **options) -> Plan:
+    """RRT-Connect; goals that are all in collision for the planner's spheres give a failed
+    plan with rrt_connect's reason, not an exception."""
+    try:
+        return rrt_connect(model, scene, start, goals, **options)
+    except ValueError as error:
+        return Plan(np.empty((0, 6)), False, str(error), 0, 0, -1, np.atleast_2d(goals), 0.0)
 
 
 def _hold(world: World, q: np.ndarray, block: Block) -> np.ndarray:
