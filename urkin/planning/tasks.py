@@ -36,7 +36,7 @@ from urkin.planning.checks import RESOLUTION, _intervals, clearance, explain, is
 from urkin.planning.rrt import Plan, rrt_connect
 from urkin.planning.scene import Scene
 from urkin.planning.spheres import SphereModel
-from urkin.planning.tabletop import TOUCH, Move, World, _support_of, validate_goal
+from urkin.planning.tabletop import TOUCH, Move, World, _inside, _support_of, validate_goal
 from urkin.planning.timing import time_parametrize
 from urkin.tracking import track
 from urkin.trajectory import line, minimum_time, pose_path
@@ -192,10 +192,10 @@ def _check(
     if held is None:
         S = _edge_samples([world.model], Q, resolution)
         scene = world.scene()
-        free = is_free(world.model, scene, S)
-        gap = float(clearance(world.model, scene, S).distance.min())
-        if not free.all():
-            q = S[np.argmin(free)]
+        distance = clearance(world.model, scene, S).distance  # free: strictly positive
+        gap = float(distance.min())
+        if gap <= 0:
+            q = S[int(np.argmax(distance <= 0))]
             return _Verdict(False, gap, explain(world.model, scene, q))
         return _Verdict(True, gap, "")
     block = world.block(held)
@@ -203,8 +203,9 @@ def _check(
     carried = world.carrying(size)
     S = _edge_samples([carried, _corners(world.model, size)], Q, resolution)
     scene = world.scene(without=(held,))
-    arm = is_free(world.model, scene, S)
-    own = is_free(carried, Scene(), S)
+    arm_distance = clearance(world.model, scene, S).distance
+    own_distance = clearance(carried, Scene(), S).distance
+    arm, own = arm_distance > 0, own_distance > 0
     others = world.boxes((held,))
     poses = fk(robot, S) @ T_tool_block
     sep = box_separation(
@@ -216,10 +217,7 @@ def _check(
         np.array([b.size / 2 for b in others]),
     )
     boxed = np.all(sep >= -TOUCH, axis=1)
-    gap = min(
-        float(clearance(world.model, scene, S).distance.min()),
-        float(clearance(carried, Scene(), S).distance.min()),
-    )
+    gap = float(min(arm_distance.min(), own_distance.min()))
     bad = ~(arm & own & boxed)
     if not bad.any():
         return _Verdict(True, gap, "")
@@ -339,9 +337,7 @@ def replay(
             tops = [
                 (abs(block.bottom - b.top), b)
                 for b in world.boxes((held,))
-                if np.all(
-                    np.abs(b.pose[:2, :2].T @ (block.centre[:2] - b.pose[:2, 3])) <= b.size[:2] / 2
-                )
+                if np.all(_inside(block.centre, b) <= 0)
             ]
             gap, below = min(tops, key=lambda x: x[0], default=(math.inf, None))
             if gap > GRIP_TOLERANCE:
