@@ -130,6 +130,9 @@ def spawn():
     )
     try:
         child.call("spawn")
+        deadline = time.monotonic() + 10  # a busy machine may not have run exec() yet
+        while len(_alive(marker)) < 3 and time.monotonic() < deadline:
+            time.sleep(0.05)
         assert len(_alive(marker)) == 3
     finally:
         child.close()
