@@ -300,12 +300,16 @@ def edges_free(
 
 
 #: Samples per batch in edge checks: the first batch holds the coarsest samples of every edge.
-_BATCH = 256
+_BATCH = 32
 
 
-def _edges_free(model, scene, A, B, counts) -> np.ndarray:
+def _edges_free(model, scene, A, B, counts, prefix: bool = False) -> np.ndarray:
     """Edges (K, 6) → (K,) free, each cut into ``counts`` intervals; coarse samples first,
-    across all the edges, in batches, skipping the edges already found in collision."""
+    across all the edges, in batches, skipping the edges already found in collision.
+
+    With ``prefix``, only the free prefix of the edges matters (a chain of pieces: nothing
+    after the first blocked piece is used): every edge after a blocked one is reported
+    blocked without being checked further."""
     samples = counts + 1
     edge = np.repeat(np.arange(len(A)), samples)
     index = np.arange(len(edge)) - np.repeat(np.cumsum(samples) - samples, samples)
@@ -326,6 +330,8 @@ def _edges_free(model, scene, A, B, counts) -> np.ndarray:
         Q = A[e] + s[:, None] * (B[e] - A[e])
         hit = _collides(model, scene, Q)
         free[e[hit]] = False
+        if prefix and hit.any():
+            free[e[hit].min() :] = False
         if not free.any():
             break
     return free

@@ -306,7 +306,7 @@ def _connect(model, scene, tree: _Tree, q_target: np.ndarray, step: float, resol
     t = np.arange(pieces + 1)[:, None] / pieces
     points = q_near + t * (q_target - q_near)
     A, B = points[:-1], points[1:]
-    free = _edges_free(model, scene, A, B, _intervals(model, A, B, resolution))
+    free = _edges_free(model, scene, A, B, _intervals(model, A, B, resolution), prefix=True)
     blocked = np.flatnonzero(~free)
     usable = pieces if len(blocked) == 0 else int(blocked[0])
     parent = near
@@ -357,6 +357,7 @@ def shortcut(
         raise ValueError(f"path must have shape (M, 6) with M ≥ 2; got {np.shape(path)}")
     P = P.copy()
     rng = np.random.default_rng(seed)
+    blocked: set[bytes] = set()  # edges found in collision, by their end configurations
     idle = 0
     for _ in range(rounds):
         if len(P) <= 2 or idle >= 3:
@@ -364,11 +365,21 @@ def shortcut(
         i = rng.integers(0, len(P) - 2, batch)
         j = np.minimum(i + 2 + rng.integers(0, len(P), batch) % (len(P) - i - 1), len(P) - 1)
         ok = j - i >= 2
-        i, j = i[ok], j[ok]
+        # each candidate once, and none already found blocked (same choice, less checking)
+        keys = [P[a].tobytes() + P[b].tobytes() for a, b in zip(i[ok], j[ok])]
+        seen, kept = set(blocked), []
+        for n, key in enumerate(keys):
+            if key not in seen:
+                seen.add(key)
+                kept.append(n)
+        i, j, keys = i[ok][kept], j[ok][kept], [keys[n] for n in kept]
         if len(i) == 0:
             idle += 1
+            if len(blocked) >= (len(P) - 1) * (len(P) - 2) // 2 and _all_blocked(P, blocked):
+                break  # every shortcut of this path is known blocked: no round can change it
             continue
         free = _edges_free(model, scene, P[i], P[j], _intervals(model, P[i], P[j], resolution))
+        blocked.update(key for key, edge_free in zip(keys, free) if not edge_free)
         if not free.any():
             idle += 1
             continue
@@ -376,3 +387,12 @@ def shortcut(
         P = np.concatenate([P[: i[best] + 1], P[j[best] :]])
         idle = 0
     return P
+
+
+def _all_blocked(P: np.ndarray, blocked: set[bytes]) -> bool:
+    """Whether every edge between two non-neighbouring waypoints of ``P`` is in ``blocked``."""
+    return all(
+        P[a].tobytes() + P[b].tobytes() in blocked
+        for a in range(len(P) - 2)
+        for b in range(a + 2, len(P))
+    )
