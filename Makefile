@@ -64,6 +64,7 @@ bench: $(STAMP)
 	$(PY) bench/ik_analytic.py
 	$(PY) bench/grading.py
 	$(PY) bench/planning.py
+	$(PY) bench/planning.py --set mbm --problems 10 --runs 1
 	$(PY) bench/tasks.py
 
 clean:

@@ -1,14 +1,19 @@
-"""Benchmark: motion planning on seeded UR5 problems, urkin's RRT-Connect next to OMPL's.
+"""Benchmark: motion planning on UR5 problems, urkin's RRT-Connect next to OMPL's.
 
     python bench/planning.py                  # 6 problems per family, 2 seeds each
     python bench/planning.py --quick          # 3 problems per family, 1 seed, for a look
     python bench/planning.py --problems 10 --runs 3 --time-limit 10
+    python bench/planning.py --set mbm --problems 100 --runs 1   # MotionBenchMaker, all 700
 
-Problems come from ``bench/planning_problems.py``: five MotionBenchMaker-like families
-(``empty``, ``table``, ``shelf``, ``box``, ``cage``) of UR5 scenes standing on a floor, each
-problem a start and a goal configuration, both free, whose straight edge is not (except in
-``empty``, where no draw's is: that family times a call's fixed cost).  Both planners get
-the same problems, the same seeds (1, 2, …) and the same time limit:
+Two sets of problems.  ``--set mbm``: the MotionBenchMaker UR5 problems as VAMP ships them
+(``bench/mbm_problems.py``; seven families of 100, the UR5 on a 0.91 m pedestal with a
+force-torque sensor and a Robotiq gripper, joints limited to ±π); problems whose start or
+goal is in collision under urkin's sphere model are left out and listed with the pair that
+collides.  The default, ``--set seeded``, comes from ``bench/planning_problems.py``: five
+MotionBenchMaker-like families (``empty``, ``table``, ``shelf``, ``box``, ``cage``) of UR5
+scenes standing on a floor, each problem a start and a goal configuration, both free, whose
+straight edge is not (except in ``empty``, where no draw's is: that family times a call's
+fixed cost).  Both planners get the same problems, the same seeds (1, 2, …) and the same time limit:
 
 * urkin: ``planning.rrt_connect(model, scene, start, goal, seed=s, time_limit=…)``, which
   shortcuts its path and re-checks it at a quarter of its 1 cm resolution before returning;
@@ -42,11 +47,16 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
+import mbm_problems as mbm
 import numpy as np
 import planning_problems as pp
 
 from urkin import planning
 
+Problem = pp.Problem | mbm.Problem
+
+#: The sphere model planned with: the bare UR5 of planning_problems, or (``--set mbm``) the
+#: MotionBenchMaker UR5 on its pedestal with its sensor and gripper (``main`` sets it).
 MODEL = pp.MODEL
 #: urkin's edge resolution (its default) and the finer one every returned path is verified at.
 RESOLUTION, VERIFY = 0.01, 0.0025
@@ -54,7 +64,7 @@ RESOLUTION, VERIFY = 0.01, 0.0025
 
 @dataclass(frozen=True)
 class Run:
-    problem: pp.Problem
+    problem: Problem
     planner: str
     seed: int
     seconds: float
@@ -70,7 +80,7 @@ def limits() -> tuple[np.ndarray, np.ndarray]:
     return table[:, 0], table[:, 1]
 
 
-def verify(problem: pp.Problem, path: np.ndarray) -> str:
+def verify(problem: Problem, path: np.ndarray) -> str:
     """Empty if ``path`` solves ``problem`` (checked at 2.5 mm), else what is wrong with it."""
     if len(path) < 2:
         return "no path"
@@ -93,7 +103,7 @@ def length(path: np.ndarray) -> float:
 
 
 def finish(
-    problem: pp.Problem,
+    problem: Problem,
     planner: str,
     seed: int,
     seconds: float,
@@ -109,7 +119,7 @@ def finish(
     )
 
 
-def run_urkin(problem: pp.Problem, seed: int, time_limit: float) -> Run:
+def run_urkin(problem: Problem, seed: int, time_limit: float) -> Run:
     t0 = time.perf_counter()
     plan = planning.rrt_connect(
         MODEL, problem.scene, problem.start, problem.goal, seed=seed, time_limit=time_limit
@@ -157,7 +167,7 @@ def quiet(util: ModuleType) -> Iterator[None]:
         util.setLogLevel(level)
 
 
-def ompl_runner() -> tuple[Callable[[pp.Problem, int, float], Run] | None, str]:
+def ompl_runner() -> tuple[Callable[[Problem, int, float], Run] | None, str]:
     """A function running OMPL's RRTConnect on a problem, and a line on how it is set up (or
     why it is missing)."""
     try:
@@ -174,7 +184,7 @@ def ompl_runner() -> tuple[Callable[[pp.Problem, int, float], Run] | None, str]:
     fraction = segment / space.getMaximumExtent()
     space.setLongestValidSegmentFraction(fraction)
 
-    def run(problem: pp.Problem, seed: int, time_limit: float) -> Run:
+    def run(problem: Problem, seed: int, time_limit: float) -> Run:
         scene = problem.scene
 
         def valid(state: Any) -> bool:
@@ -238,13 +248,13 @@ def summary(runs: list[Run]) -> tuple[str, float, float, float]:
     )
 
 
-def print_table(runs: list[Run], planners: list[str]) -> None:
+def print_table(runs: list[Run], planners: list[str], families: list[str]) -> None:
     print(
         "| family | problems × seeds | planner | solved (verified) | median ms | p90 ms "
         "| median length (rad) | median time urkin / OMPL |"
     )
     print("|---|---|---|---|---|---|---|---|")
-    for family in [*pp.FAMILIES, "all"]:
+    for family in [*families, "all"]:
         mine = [r for r in runs if family in ("all", r.problem.family)]
         if not mine:
             continue
@@ -280,6 +290,17 @@ def print_failures(runs: list[Run]) -> None:
         print(f"- {r.planner} {r.problem.name} seed {r.seed} ({r.seconds:.2f} s): {what}{r.reason}")
 
 
+def print_left_out(problems: list[mbm.Problem]) -> None:
+    if not problems:
+        return
+    print(
+        f"\n{len(problems)} problems left out: their start or goal is in collision under "
+        "urkin's model (the first offending pair, planning.explain):\n"
+    )
+    for p in problems:
+        print(f"- {p.name}: {p.reason}")
+
+
 # --- collision-check costs --------------------------------------------------------------------
 
 
@@ -309,25 +330,26 @@ def best(call: Callable[[], object], repeat: int = 5) -> float:
 
 
 def micro(ompl_available: bool) -> None:
+    model = pp.MODEL  # the bare arm at the origin, whatever set was planned
     rng = np.random.default_rng(7)
     scene = ten_boxes(rng)
     lower, upper = limits()
     Q = rng.uniform(-np.pi, np.pi, (10_000, 6))
-    batch = best(lambda: planning.is_free(MODEL, scene, Q)) / len(Q)
-    free = planning.is_free(MODEL, scene, Q)
+    batch = best(lambda: planning.is_free(model, scene, Q)) / len(Q)
+    free = planning.is_free(model, scene, Q)
     single_q = Q[:1000]
-    single = best(lambda: [planning.is_free(MODEL, scene, q) for q in single_q], 3) / len(single_q)
+    single = best(lambda: [planning.is_free(model, scene, q) for q in single_q], 3) / len(single_q)
     # edges of 0.75 rad (Euclidean) from free configurations, in random directions
     starts = Q[free][:1000]
     direction = rng.normal(size=starts.shape)
     direction /= np.linalg.norm(direction, axis=1, keepdims=True)
     ends = np.clip(starts + 0.75 * direction, lower, upper)
-    edges = best(lambda: planning.edges_free(MODEL, scene, starts, ends)) / len(starts)
+    edges = best(lambda: planning.edges_free(model, scene, starts, ends)) / len(starts)
     pairs = list(zip(starts[:200], ends[:200]))
-    one = best(lambda: [planning.edges_free(MODEL, scene, a, b) for a, b in pairs], 3)
+    one = best(lambda: [planning.edges_free(model, scene, a, b) for a, b in pairs], 3)
     edges_one = one / len(pairs)
-    edge_free = planning.edges_free(MODEL, scene, starts, ends).mean()
-    samples = np.mean(planning.edge_samples(MODEL, starts, ends)) + 1
+    edge_free = planning.edges_free(model, scene, starts, ends).mean()
+    samples = np.mean(planning.edge_samples(model, starts, ends)) + 1
     print(f"\n## Collision checks ({len(scene)}-box scene: the floor and nine boxes)\n")
     print("| check | µs | notes |")
     print("|---|---|---|")
@@ -353,7 +375,7 @@ def ompl_valid(scene: planning.Scene, Q: np.ndarray) -> float:
     space = joint_space(ob)
     info = ob.SpaceInformation(space)
     info.setStateValidityChecker(
-        lambda s: planning.is_free(MODEL, scene, [s[0], s[1], s[2], s[3], s[4], s[5]])
+        lambda s: planning.is_free(pp.MODEL, scene, [s[0], s[1], s[2], s[3], s[4], s[5]])
     )
     info.setup()
     states = []
@@ -388,42 +410,72 @@ def source_state() -> str:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument(
+        "--set",
+        choices=("seeded", "mbm"),
+        default="seeded",
+        help="seeded: planning_problems' families; mbm: the MotionBenchMaker UR5 problems",
+    )
     parser.add_argument("--problems", type=int, default=6, help="problems per family")
     parser.add_argument("--runs", type=int, default=2, help="seeds per problem (1, 2, …)")
     parser.add_argument("--time-limit", type=float, default=5.0, help="seconds per run")
     parser.add_argument("--seed", type=int, default=0, help="base seed of the problems")
-    parser.add_argument("--families", nargs="+", choices=pp.FAMILIES, default=list(pp.FAMILIES))
+    parser.add_argument("--families", nargs="+", help="families to run (default: all of the set)")
     parser.add_argument("--quick", action="store_true", help="3 problems per family, 1 seed")
     parser.add_argument("--no-ompl", action="store_true", help="urkin alone")
     args = parser.parse_args()
     if args.quick:
         args.problems, args.runs = 3, 1
+    global MODEL
+    every = mbm.FAMILIES if args.set == "mbm" else pp.FAMILIES
+    families = args.families or list(every)
+    unknown = sorted(set(families) - set(every))
+    if unknown:
+        parser.error(f"--families: {', '.join(unknown)} not in the {args.set} set: {every}")
+    if args.set == "mbm":
+        MODEL = mbm.model()
+        loaded = mbm.problems(tuple(families), args.problems)
+        problems: list[Problem] = [p for p in loaded if not p.reason]
+        left_out = [p for p in loaded if p.reason]
+        title = (
+            f"MotionBenchMaker UR5 problems (VAMP's copy): the first {args.problems} of each "
+            f"family, {len(problems)} of {len(loaded)} with start and goal free under urkin's model"
+        )
+    else:
+        problems = [p for f in families for p in pp.problems(f, args.problems, args.seed)]
+        left_out = []
+        title = f"{args.problems} seeded problems per family (problem seed {args.seed})"
     ompl, note = (None, "OMPL left out (--no-ompl)") if args.no_ompl else ompl_runner()
     planners = ["urkin"] + (["OMPL"] if ompl else [])
     if ompl is None:
         print(f"{note}\n")
     print(
-        f"# motion planning: {args.problems} problems per family (problem seed {args.seed}) × "
-        f"{args.runs} planner seeds, time limit {args.time_limit:g} s; {MODEL}; "
-        f"{source_state()}; {platform.machine()}, Python {platform.python_version()}, "
-        f"numpy {np.__version__}\n"
+        f"# motion planning: {title} × {args.runs} planner seeds, time limit "
+        f"{args.time_limit:g} s; {MODEL}; {source_state()}; {platform.machine()}, "
+        f"Python {platform.python_version()}, numpy {np.__version__}\n"
     )
-    problems = [p for f in args.families for p in pp.problems(f, args.problems, args.seed)]
     runs: list[Run] = []
     for problem in problems:
         for seed in range(1, args.runs + 1):
             runs.append(run_urkin(problem, seed, args.time_limit))
             if ompl:
                 runs.append(ompl(problem, seed, args.time_limit))
-    print_table(runs, planners)
+    print_table(runs, planners, families)
     print(
         "\nSolved: the path verified at 2.5 mm.  Times: per run, planning call with "
         "simplification, unsolved runs included.  Budget (DESIGN §7): every problem solved, "
-        "median in tens of milliseconds.  The empty family (floor only) keeps problems whose "
-        "straight edge is free (no draw had one that is not): it times a call's fixed cost."
+        "median in tens of milliseconds."
+        + (
+            "  The empty family (floor only) keeps problems whose straight edge is free (no "
+            "draw had one that is not): it times a call's fixed cost."
+            if args.set == "seeded"
+            else "  The MotionBenchMaker robot: urkin's UR5 spheres and VAMP's 17 sensor and "
+            "gripper spheres (bench/mbm_problems.py)."
+        )
     )
     print(f"\n{note}")
     print_failures(runs)
+    print_left_out(left_out)
     micro(ompl is not None)
 
 
