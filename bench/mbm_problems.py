@@ -37,6 +37,7 @@ import yaml
 import urkin
 from urkin import planning
 from urkin.robots import T_BASE_LINK_BASE
+from urkin.transforms import rpy_to_rotation
 
 DATA = Path(__file__).resolve().parent / "data" / "motionbenchmaker_ur5"
 FAMILIES = (
@@ -76,20 +77,10 @@ class Problem:
         return f"{self.family}/{self.draw}"
 
 
-def _rpy(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """URDF's fixed-axis roll, pitch, yaw: Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    Rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    Ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
-    Rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-    return Rz @ Ry @ Rx
-
-
 def _origin(element: ET.Element | None) -> np.ndarray:
     T = np.eye(4)
     if element is not None:
-        T[:3, :3] = _rpy(*map(float, element.get("rpy", "0 0 0").split()))
+        T[:3, :3] = rpy_to_rotation([float(v) for v in element.get("rpy", "0 0 0").split()])
         T[:3, 3] = [float(v) for v in element.get("xyz", "0 0 0").split()]
     return T
 
