@@ -97,6 +97,38 @@ def test_is_free_matches_the_sign_of_the_clearance(rng):
     assert planning.is_free(MODEL, TABLE, UP) is True
 
 
+def test_broad_phase_gives_the_verdicts_of_every_sphere(rng):
+    """is_free tests groups' bounding balls first and only then their spheres; its verdicts
+    are those of every sphere against every obstacle and every self pair (clearance, which
+    tests them all), for a gripper's many small spheres on the tool frame and a cluttered
+    scene, at configurations drawn near contact as well as at random."""
+    model = MODEL.with_tool_spheres(
+        [[0, 0, 0.03], [0.03, 0, 0.09], [-0.03, 0, 0.09], [0, 0, 0.13]], [0.04, 0.02, 0.02, 0.015]
+    )
+    groups = planning.checks._groups(model)
+    for g, members in enumerate(groups.members):
+        members = members[members >= 0]
+        assert np.all(model.frames[members] == groups.frames[g])
+        reach = np.linalg.norm(model.centres[members] - groups.centres[g], axis=1)
+        assert np.all(reach + model.radii[members] <= groups.radii[g] + 1e-12)
+    scene = planning.Scene(
+        boxes=[
+            planning.Box([0.45, 0.0, 0.2], [0.3, 0.02, 0.6], name="shelf side"),
+            planning.Box([0.45, 0.2, 0.3], [0.3, 0.4, 0.02], random_rotations(seed=rng)),
+        ],
+        cylinders=[planning.Cylinder([0.3, -0.3, 0.1], [0, 0, 1], 0.03, 0.14)],
+        spheres=[planning.Sphere([-0.3, 0.3, 0.4], 0.1)],
+        capsules=[planning.Capsule([-0.4, -0.2, 0.1], [-0.2, -0.4, 0.5], 0.03)],
+    )
+    Q = np.concatenate([rng.uniform(-np.pi, np.pi, (3000, 6)), rng.normal(UP, 0.6, (3000, 6))])
+    c = planning.clearance(model, scene, Q)
+    clear = np.abs(c.distance) > 1e-9
+    free = planning.is_free(model, scene, Q)
+    np.testing.assert_array_equal(free[clear], c.distance[clear] > 0)
+    assert 0.1 < free.mean() < 0.9
+    assert np.any(c.obstacle >= 0) and np.any(c.other >= 0)  # both kinds of contact occur
+
+
 def test_touch_tests_agree_with_signed_distances_for_every_kind(rng):
     """The boolean check (squared distances; bounding balls first for small boxes and
     capsules) gives the verdict of the exact signed distances, ball by ball, for boxes (small

@@ -1,8 +1,11 @@
 """Collision checks of a sphere model in a scene: configurations, clearances, straight edges.
 
-Every function takes one configuration or a stack of them (DESIGN §2) and places all the
-spheres of all the configurations at once; the tests against the scene and between the arm's
-own spheres are array operations over every (configuration, sphere, obstacle) triple.  The
+Every function takes one configuration or a stack of them (DESIGN §2) and tests all the
+configurations at once, as array operations with no Python loop over configurations, spheres or
+obstacles.  :func:`is_free` and the edge checks test in two phases: each frame's spheres are
+grouped under bounding balls of at most 10 cm, the balls are tested first, and only the spheres
+of a ball that touches something are placed and tested (the verdicts are exactly those of
+testing every sphere).  The
 base's spheres are left out of the scene tests: they never move, so an obstacle that
 overlaps the base is a property of the scene, not of a configuration.
 
@@ -30,7 +33,7 @@ from numpy.typing import ArrayLike
 
 from urkin.kinematics import _joints
 from urkin.planning.scene import Scene
-from urkin.planning.spheres import SphereModel
+from urkin.planning.spheres import SphereModel, frames_with_tool
 
 __all__ = ["Clearance", "clearance", "edge_samples", "edges_free", "explain", "is_free"]
 
@@ -49,20 +52,133 @@ def _check(model: SphereModel, scene: Scene) -> None:
 
 
 def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
-    """Whether each configuration of ``Q`` (N, 6), checked, is in collision: (N,) bool."""
-    W = model.place(Q)  # (N, S, 3)
-    hit = np.zeros(len(Q), dtype=bool)
-    if len(model.pairs):
-        i, j = model.pairs[:, 0], model.pairs[:, 1]
-        d = W[:, i] - W[:, j]
-        reach = model.radii[i] + model.radii[j]
-        hit |= np.any(np.einsum("npi,npi->np", d, d) <= reach * reach, axis=1)
-    if len(scene) and len(model._moving):
-        moving = model._moving
-        P = W[:, moving].reshape(-1, 3)
-        touches = scene._touches(P, np.tile(model.radii[moving], len(Q)))
-        hit |= np.any(touches.reshape(len(Q), len(moving)), axis=1)
+    """Whether each configuration of ``Q`` (N, 6), checked, is in collision: (N,) bool.
+
+    Two phases.  The groups' bounding balls (:func:`_groups`) are tested first, against the
+    scene and against each other; only the spheres of a group whose ball touches an obstacle,
+    and only the sphere pairs of two groups whose balls meet, are then placed and tested.  A
+    group's ball holds every sphere of the group, so a sphere can touch nothing its group's
+    ball does not: the verdicts are those of testing every sphere."""
+    n = len(Q)
+    hit = np.zeros(n, dtype=bool)
+    if not len(model) or not n:
+        return hit
+    groups = _groups(model)
+    F = frames_with_tool(model.robot, Q)[..., :3, :]  # (N, 8, 3, 4)
+    G = _place(F, groups.frames, groups.centres)  # (N, g, 3)
+    if len(groups.pairs):
+        a, b = groups.pairs[:, 0], groups.pairs[:, 1]
+        d = G[:, a] - G[:, b]
+        reach = groups.radii[a] + groups.radii[b]
+        near = np.einsum("npi,npi->np", d, d) <= reach * reach
+        if near.any():
+            rows, k = np.nonzero(near[:, groups.pair_group])
+            i, j = model.pairs[k, 0], model.pairs[k, 1]
+            d = _points(model, F, rows, i) - _points(model, F, rows, j)
+            reach = model.radii[i] + model.radii[j]
+            hit[rows[np.einsum("ki,ki->k", d, d) <= reach * reach]] = True
+    moving = groups.moving
+    if len(scene) and len(moving):
+        touch = scene._touches(G[:, moving].reshape(-1, 3), np.tile(groups.radii[moving], n))
+        rows, k = np.nonzero(touch.reshape(n, len(moving)))
+        if len(rows):
+            members = groups.members[moving[k]]  # (H, m), −1 pads
+            valid = members >= 0
+            rows = np.repeat(rows, valid.sum(axis=1))
+            spheres = members[valid]
+            touch = scene._touches(_points(model, F, rows, spheres), model.radii[spheres])
+            hit[rows[touch]] = True
     return hit
+
+
+def _place(F: np.ndarray, frames: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    """Centres (k, 3) fixed in frames (k,), placed by the frames F (N, 8, 3, 4): (N, k, 3)."""
+    A = F[:, frames]  # (N, k, 3, 4)
+    return np.einsum("nkij,kj->nki", A[..., :3], centres) + A[..., 3]
+
+
+def _points(model: SphereModel, F: np.ndarray, rows: np.ndarray, spheres: np.ndarray):
+    """World centres of ``spheres`` (H,) in the configurations ``rows`` (H,): (H, 3)."""
+    A = F[rows, model.frames[spheres]]  # (H, 3, 4)
+    return np.einsum("hij,hj->hi", A[..., :3], model.centres[spheres]) + A[..., 3]
+
+
+#: The largest radius of a group's bounding ball (m): a link's spheres are split until each
+#: group's ball is no larger.
+_GROUP_RADIUS = 0.1
+
+
+@dataclass(frozen=True)
+class _Groups:
+    """Spheres of one frame grouped under bounding balls, for the broad phase of
+    :func:`_collides`.
+
+    ``frames``, ``centres``, ``radii``: each group's ball, fixed in its frame; ``members``
+    (g, m): the spheres of each group, padded with −1; ``moving``: the groups not on the base;
+    ``pairs`` (gp, 2): group pairs holding at least one self-collision pair of spheres;
+    ``pair_group`` (P,): the group pair of each sphere pair."""
+
+    frames: np.ndarray
+    centres: np.ndarray
+    radii: np.ndarray
+    members: np.ndarray
+    moving: np.ndarray
+    pairs: np.ndarray
+    pair_group: np.ndarray
+
+
+def _groups(model: SphereModel) -> _Groups:
+    """The model's groups (built once per model and kept on it)."""
+    found = model.__dict__.get("_groups")
+    if found is None:
+        found = _build_groups(model)
+        object.__setattr__(model, "_groups", found)
+    return found
+
+
+def _build_groups(model: SphereModel) -> _Groups:
+    parts: list[np.ndarray] = []
+    for frame in np.unique(model.frames):
+        pending = [np.flatnonzero(model.frames == frame)]
+        while pending:
+            members = pending.pop()
+            _, radius = _bound(model.centres[members], model.radii[members])
+            if radius <= _GROUP_RADIUS or len(members) == 1:
+                parts.append(members)
+                continue
+            # split across the widest spread of the centres, at its median
+            spread = model.centres[members] - model.centres[members].mean(axis=0)
+            axis = np.linalg.svd(spread, full_matrices=False)[2][0]
+            side = spread @ axis <= np.median(spread @ axis)
+            if side.all() or not side.any():
+                side = np.arange(len(members)) < len(members) // 2
+            pending += [members[side], members[~side]]
+    width = max(len(m) for m in parts)
+    members = np.full((len(parts), width), -1, dtype=np.intp)
+    bounds = [_bound(model.centres[m], model.radii[m]) for m in parts]
+    of_sphere = np.empty(len(model), dtype=np.intp)
+    for g, m in enumerate(parts):
+        members[g, : len(m)] = m
+        of_sphere[m] = g
+    frames = np.array([model.frames[m[0]] for m in parts], dtype=np.intp)
+    by_pair = np.sort(of_sphere[model.pairs], axis=1) if len(model.pairs) else np.zeros((0, 2))
+    pairs, pair_group = np.unique(by_pair.astype(np.intp), axis=0, return_inverse=True)
+    return _Groups(
+        frames,
+        np.array([c for c, _ in bounds]),
+        np.array([r for _, r in bounds]),
+        members,
+        np.flatnonzero(frames > 0),
+        pairs.reshape(-1, 2),
+        pair_group.reshape(-1),
+    )
+
+
+def _bound(centres: np.ndarray, radii: np.ndarray) -> tuple[np.ndarray, float]:
+    """A ball holding every ball (centres (k, 3), radii (k,)): centred between the extremes."""
+    centre = np.min(centres - radii[:, None], axis=0) + np.max(centres + radii[:, None], axis=0)
+    centre = centre / 2
+    return centre, float(np.max(np.linalg.norm(centres - centre, axis=1) + radii))
 
 
 def is_free(model: SphereModel, scene: Scene, q: ArrayLike) -> np.ndarray | bool:
