@@ -130,15 +130,18 @@ def test_broad_phase_gives_the_verdicts_of_every_sphere(rng):
 
 
 def test_touch_tests_agree_with_signed_distances_for_every_kind(rng):
-    """The boolean check (squared distances; bounding balls first for small boxes and
-    capsules) gives the verdict of the exact signed distances, ball by ball, for boxes (small
-    and large), cylinders, spheres and capsules."""
+    """The boolean check (squared distances; bounding balls first for small boxes, small
+    cylinders and capsules) gives the verdict of the exact signed distances, ball by ball, for
+    boxes and cylinders (small and large), spheres and capsules."""
     scene = planning.Scene(
         boxes=[
             planning.Box([0.1, -0.2, -0.3], [1.0, 0.8, 0.05], random_rotations(seed=rng)),
             planning.Box(rng.normal(size=3) * 0.3, [0.1, 0.3, 0.05], random_rotations(seed=rng)),
         ],
-        cylinders=[planning.Cylinder([0.2, -0.1, 0.3], [1, 2, 2], 0.07, 0.4)],
+        cylinders=[
+            planning.Cylinder([0.2, -0.1, 0.3], [1, 2, 2], 0.07, 0.4),  # small: culled first
+            planning.Cylinder([-0.4, -0.3, 0.0], [0, 1, 1], 0.1, 0.8),  # large: tested densely
+        ],
         spheres=[planning.Sphere([-0.3, 0.2, 0.1], 0.12)],
         capsules=[
             planning.Capsule([0, 0.4, 0], [0.3, 0.4, 0.2], 0.05),

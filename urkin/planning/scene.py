@@ -195,8 +195,9 @@ class Scene:
         self._set("_cap_a", np.array([c.a for c in cap]).reshape(-1, 3))
         self._set("_cap_d", np.array([c.b - c.a for c in cap]).reshape(-1, 3))
         self._set("_cap_r", np.array([c.radius for c in cap]))
-        # for _touches: boxes whose bounding ball is larger than _SMALL are tested with every
-        # ball, the others only where their bounding balls meet (see _touches)
+        # for _touches: boxes and cylinders whose bounding ball is larger than _SMALL are tested
+        # with every ball; the small ones and capsules only where their bounding balls meet the
+        # ball (see _touches)
         bound = np.linalg.norm(self._box_h.reshape(-1, 3), axis=1)
         big = bound > _SMALL
         self._set("_box_R", np.array([b.rotation for b in boxes]).reshape(-1, 3, 3))
@@ -206,16 +207,30 @@ class Scene:
         self._set("_big_Rt", self._box_Rt[:, columns])
         self._set("_big_c", self._box_c[columns])
         self._set("_big_h", self._box_h[columns])
-        small = np.flatnonzero(~big)
-        object.__setattr__(self, "_small", small)
-        centres, radii = self._box_o[small], bound[small]
+        cyl_bound = np.hypot(self._cyl_r, self._cyl_h)
+        big_cyl = cyl_bound > _SMALL
+        object.__setattr__(self, "_big_cyl", np.flatnonzero(big_cyl))
+        cap_m = self._cap_a + self._cap_d / 2  # a bounding ball per capsule
+        cap_bound = np.linalg.norm(self._cap_d, axis=1) / 2 + self._cap_r
+        small_box, small_cyl = np.flatnonzero(~big), np.flatnonzero(~big_cyl)
+        centres = np.concatenate([self._box_o[small_box], self._cyl_c[small_cyl], cap_m])
+        radii = np.concatenate([bound[small_box], cyl_bound[small_cyl], cap_bound])
+        # which obstacle each culled column stands for: its kind (0 box, 1 cylinder, 2 capsule)
+        # and its index among the obstacles of that kind
+        kinds = np.repeat([0, 1, 2], [len(small_box), len(small_cyl), len(cap_m)])
+        object.__setattr__(self, "_small_kind", kinds)
+        object.__setattr__(
+            self,
+            "_small",
+            np.concatenate([small_box, small_cyl, np.arange(len(cap_m))]).astype(np.intp),
+        )
         self._set(
             "_small_rows",
             np.vstack(
                 [
                     -2.0 * centres.T,
                     -2.0 * radii,
-                    np.ones(len(small)),
+                    np.ones(len(radii)),
                     np.sum(centres**2, axis=1) - radii**2,
                 ]
             ).reshape(6, -1),
@@ -224,8 +239,6 @@ class Scene:
         self._set("_cyl_ca", np.einsum("ci,ci->c", self._cyl_c, self._cyl_a))
         self._set("_cyl_c2", np.einsum("ci,ci->c", self._cyl_c, self._cyl_c))
         self._set("_sph_c2", np.einsum("ci,ci->c", self._sph_c, self._sph_c))
-        self._set("_cap_m", self._cap_a + self._cap_d / 2)  # a bounding ball per capsule
-        self._set("_cap_bound", np.linalg.norm(self._cap_d, axis=1) / 2 + self._cap_r)
 
     def _set(self, name: str, value: np.ndarray) -> None:
         value = np.ascontiguousarray(value, dtype=float)
@@ -264,11 +277,11 @@ class Scene:
         bool, the same verdict as ``signed_distances <= r`` for a ball that is not within
         round-off of touching.
 
-        Squared distances, no square roots but a cylinder's radial one.  Large boxes (a
-        bounding ball wider than 0.3 m: floors, walls, shelves), cylinders and spheres are
+        Squared distances, no square roots but a cylinder's radial one.  Large boxes and
+        cylinders (a bounding ball wider than 0.3 m: floors, walls, shelves) and spheres are
         tested with every ball, their coordinates for all balls from one matrix product; small
-        boxes and capsules only where their bounding balls meet the ball (one more product
-        finds where), which most balls do not.
+        boxes, small cylinders and capsules only where their bounding balls meet the ball (one
+        more product finds where), which most balls do not.
         """
         M = len(P)
         hit = np.zeros(M, dtype=bool)
@@ -292,31 +305,45 @@ class Scene:
             A[:, 5] = 1.0
             m, k = np.nonzero(A @ self._small_rows <= 1e-9)  # round-off of the expansion
             if len(m):
-                box = self._small[k]
-                local = np.einsum("ni,nij->nj", P[m] - self._box_o[box], self._box_R[box])
-                q = np.maximum(np.abs(local) - self._box_hh[box], 0.0)
-                hit[m[np.einsum("ni,ni->n", q, q) <= r[m] * r[m]]] = True
-        if self.cylinders or self.spheres:
+                kind, index = self._small_kind[k], self._small[k]
+                for code, test in enumerate((self._touch_boxes, self._touch_cylinders)):
+                    pick = kind == code
+                    if pick.any():
+                        mm = m[pick]
+                        hit[mm[test(P[mm], r[mm], index[pick])]] = True
+                pick = kind == 2
+                if pick.any():
+                    mm = m[pick]
+                    hit[mm[self._touch_capsules(P[mm], r[mm], index[pick])]] = True
+        if len(self._big_cyl) or self.spheres:
             p2 = np.einsum("ni,ni->n", P, P)[:, None]
-        if self.cylinders:
-            t = P @ self._cyl_a.T - self._cyl_ca
-            d2 = p2 - 2.0 * (P @ self._cyl_c.T) + self._cyl_c2
-            u = np.sqrt(np.maximum(d2 - t * t, 0.0)) - self._cyl_r
+        if len(self._big_cyl):
+            c, a = self._cyl_c[self._big_cyl], self._cyl_a[self._big_cyl]
+            t = P @ a.T - self._cyl_ca[self._big_cyl]
+            d2 = p2 - 2.0 * (P @ c.T) + self._cyl_c2[self._big_cyl]
+            u = np.sqrt(np.maximum(d2 - t * t, 0.0)) - self._cyl_r[self._big_cyl]
             np.maximum(u, 0.0, out=u)
-            v = np.abs(t) - self._cyl_h
+            v = np.abs(t) - self._cyl_h[self._big_cyl]
             np.maximum(v, 0.0, out=v)
             hit |= np.any(u * u + v * v <= r2, axis=1)
         if self.spheres:
             d2 = p2 - 2.0 * (P @ self._sph_c.T) + self._sph_c2
             reach = r[:, None] + self._sph_r
             hit |= np.any(d2 <= reach * reach, axis=1)
-        if self.capsules:
-            d2 = np.sum((P[:, None, :] - self._cap_m) ** 2, axis=2)
-            reach = r[:, None] + self._cap_bound
-            m, k = np.nonzero(d2 <= reach * reach)
-            if len(m):
-                hit[m[self._touch_capsules(P[m], r[m], k)]] = True
         return hit
+
+    def _touch_boxes(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
+        local = np.einsum("ni,nij->nj", P - self._box_o[k], self._box_R[k])
+        q = np.maximum(np.abs(local) - self._box_hh[k], 0.0)
+        return np.einsum("ni,ni->n", q, q) <= r * r
+
+    def _touch_cylinders(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
+        d = P - self._cyl_c[k]
+        t = np.einsum("ni,ni->n", d, self._cyl_a[k])
+        u = np.sqrt(np.maximum(np.einsum("ni,ni->n", d, d) - t * t, 0.0)) - self._cyl_r[k]
+        np.maximum(u, 0.0, out=u)
+        v = np.maximum(np.abs(t) - self._cyl_h[k], 0.0)
+        return u * u + v * v <= r * r
 
     def _touch_capsules(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
         d = P - self._cap_a[k]
