@@ -63,8 +63,19 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
     hit = np.zeros(n, dtype=bool)
     if not len(model) or not n:
         return hit
-    groups = _groups(model)
     F = frames_with_tool(model.robot, Q)[..., :3, :]  # (N, 8, 3, 4)
+    if n <= _DIRECT:  # a few configurations: the broad phase would cost more than it saves
+        W = _place(F, model.frames, model.centres)
+        if len(model.pairs):
+            d = W[:, model.pairs[:, 0]] - W[:, model.pairs[:, 1]]
+            reach = model.radii[model.pairs[:, 0]] + model.radii[model.pairs[:, 1]]
+            hit |= np.any(np.einsum("npi,npi->np", d, d) <= reach * reach, axis=1)
+        moving = model._moving
+        if len(scene) and len(moving):
+            touch = scene._touches(W[:, moving].reshape(-1, 3), np.tile(model.radii[moving], n))
+            hit |= touch.reshape(n, len(moving)).any(axis=1)
+        return hit
+    groups = _groups(model)
     G = _place(F, groups.frames, groups.centres)  # (N, g, 3)
     if len(groups.pairs):
         a, b = groups.pairs[:, 0], groups.pairs[:, 1]
@@ -78,9 +89,12 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
             reach = model.radii[i] + model.radii[j]
             hit[rows[np.einsum("ki,ki->k", d, d) <= reach * reach]] = True
     moving = groups.moving
-    if len(scene) and len(moving):
-        touch = scene._touches(G[:, moving].reshape(-1, 3), np.tile(groups.radii[moving], n))
-        rows, k = np.nonzero(touch.reshape(n, len(moving)))
+    todo = np.flatnonzero(~hit)  # configurations not yet known to collide
+    if len(scene) and len(moving) and len(todo):
+        balls = G[todo][:, moving].reshape(-1, 3)
+        touch = scene._touches(balls, np.tile(groups.radii[moving], len(todo)))
+        rows, k = np.nonzero(touch.reshape(len(todo), len(moving)))
+        rows = todo[rows]
         if len(rows):
             members = groups.members[moving[k]]  # (H, m), −1 pads
             valid = members >= 0
@@ -102,6 +116,9 @@ def _points(model: SphereModel, F: np.ndarray, rows: np.ndarray, spheres: np.nda
     A = F[rows, model.frames[spheres]]  # (H, 3, 4)
     return np.einsum("hij,hj->hi", A[..., :3], model.centres[spheres]) + A[..., 3]
 
+
+#: Up to this many configurations, _collides tests every sphere at once (no broad phase).
+_DIRECT = 4
 
 #: The largest radius of a group's bounding ball (m): a link's spheres are split until each
 #: group's ball is no larger.
