@@ -5,9 +5,8 @@ configurations at once, as array operations with no Python loop over configurati
 obstacles.  :func:`is_free` and the edge checks test in two phases: each frame's spheres are
 grouped under bounding balls of at most 10 cm, the balls are tested first, and only the spheres
 of a ball that touches something are placed and tested (the verdicts are exactly those of
-testing every sphere).  The
-base's spheres are left out of the scene tests: they never move, so an obstacle that
-overlaps the base is a property of the scene, not of a configuration.
+testing every sphere).  The base's spheres are left out of the scene tests: they never move,
+so an obstacle that overlaps the base is a property of the scene, not of a configuration.
 
 Contact counts as collision: a configuration is free when every sphere is strictly apart from
 every obstacle and from every sphere it is paired with.

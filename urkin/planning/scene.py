@@ -306,15 +306,12 @@ class Scene:
             m, k = np.nonzero(A @ self._small_rows <= 1e-9)  # round-off of the expansion
             if len(m):
                 kind, index = self._small_kind[k], self._small[k]
-                for code, test in enumerate((self._touch_boxes, self._touch_cylinders)):
+                tests = (self._touch_boxes, self._touch_cylinders, self._touch_capsules)
+                for code, test in enumerate(tests):  # the kinds of _small_kind, in order
                     pick = kind == code
                     if pick.any():
                         mm = m[pick]
                         hit[mm[test(P[mm], r[mm], index[pick])]] = True
-                pick = kind == 2
-                if pick.any():
-                    mm = m[pick]
-                    hit[mm[self._touch_capsules(P[mm], r[mm], index[pick])]] = True
         if len(self._big_cyl) or self.spheres:
             p2 = np.einsum("ni,ni->n", P, P)[:, None]
         if len(self._big_cyl):
