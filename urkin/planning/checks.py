@@ -431,30 +431,37 @@ def edges_free(
     return bool(free[0]) if lead == () else free.reshape(lead)
 
 
-#: Samples per batch in edge checks: the first batch holds the coarsest samples of every edge.
+#: Samples in the second batch of an edge check (the first holds one sample per edge).
 _BATCH = 32
 
 
-def _edges_free(model, scene, A, B, counts, prefix: bool = False) -> np.ndarray:
+def _edges_free(model, scene, A, B, counts, prefix: bool = False, known: int = 0) -> np.ndarray:
     """Edges (K, 6) → (K,) free, each cut into ``counts`` intervals; coarse samples first,
     across all the edges, in batches, skipping the edges already found in collision.
 
+    ``known`` ends are not checked again: 1, the starts are known free (a tree's node, a
+    waypoint); 2, both ends are.  The first batch holds one sample per edge (its far end, or
+    its middle), the one most likely to collide: a random extension mostly fails there.
     With ``prefix``, only the free prefix of the edges matters (a chain of pieces: nothing
     after the first blocked piece is used): every edge after a blocked one is reported
     blocked without being checked further."""
     samples = counts + 1
     edge = np.repeat(np.arange(len(A)), samples)
     index = np.arange(len(edge)) - np.repeat(np.cumsum(samples) - samples, samples)
-    t = index / np.repeat(counts, samples)
+    if known:
+        keep = (index > 0) & ((index < counts[edge]) if known == 2 else True)
+        edge, index = edge[keep], index[keep]
+    t = index / counts[edge]
     rank = np.concatenate([_rank(int(n)) for n in counts])  # coarse-to-fine rank per sample
+    rank = rank[keep] if known else rank
     order = np.lexsort((edge, rank))
     edge, t = edge[order], t[order]
     free = np.ones(len(A), dtype=bool)
-    start, size = 0, _BATCH
+    start, size = 0, len(A)  # one sample per edge, then batches doubling from _BATCH
     while start < len(edge):
         e, s = edge[start : start + size], t[start : start + size]
         start += size
-        size *= 2
+        size = max(_BATCH, 2 * size)
         live = free[e]
         if not live.any():
             continue

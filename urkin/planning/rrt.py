@@ -180,6 +180,7 @@ def rrt_connect(
         _intervals(
             model, np.repeat(q_start[None], len(goal_indices), 0), G[goal_indices], resolution
         ),
+        known=2,
     )
     iterations = 0
     path = None
@@ -223,7 +224,12 @@ def rrt_connect(
     if simplify and len(path) > 2:
         path = shortcut(model, scene, path, seed=seed, resolution=resolution)
     fine = _edges_free(
-        model, scene, path[:-1], path[1:], _intervals(model, path[:-1], path[1:], resolution / 4)
+        model,
+        scene,
+        path[:-1],
+        path[1:],
+        _intervals(model, path[:-1], path[1:], resolution / 4),
+        known=2,
     )
     if not fine.all():
         k = int(np.flatnonzero(~fine)[0])
@@ -259,7 +265,7 @@ def _towards(q_from: np.ndarray, q_to: np.ndarray, step: float) -> np.ndarray:
 
 def _edge(model, scene, qa, qb, resolution) -> bool:
     A, B = qa[None], qb[None]
-    return bool(_edges_free(model, scene, A, B, _intervals(model, A, B, resolution))[0])
+    return bool(_edges_free(model, scene, A, B, _intervals(model, A, B, resolution), known=1)[0])
 
 
 class _Tree:
@@ -306,7 +312,9 @@ def _connect(model, scene, tree: _Tree, q_target: np.ndarray, step: float, resol
     t = np.arange(pieces + 1)[:, None] / pieces
     points = q_near + t * (q_target - q_near)
     A, B = points[:-1], points[1:]
-    free = _edges_free(model, scene, A, B, _intervals(model, A, B, resolution), prefix=True)
+    free = _edges_free(
+        model, scene, A, B, _intervals(model, A, B, resolution), prefix=True, known=1
+    )
     blocked = np.flatnonzero(~free)
     usable = pieces if len(blocked) == 0 else int(blocked[0])
     parent = near
@@ -378,7 +386,9 @@ def shortcut(
             if len(blocked) >= (len(P) - 1) * (len(P) - 2) // 2 and _all_blocked(P, blocked):
                 break  # every shortcut of this path is known blocked: no round can change it
             continue
-        free = _edges_free(model, scene, P[i], P[j], _intervals(model, P[i], P[j], resolution))
+        free = _edges_free(
+            model, scene, P[i], P[j], _intervals(model, P[i], P[j], resolution), known=2
+        )
         blocked.update(key for key, edge_free in zip(keys, free) if not edge_free)
         if not free.any():
             idle += 1

@@ -203,10 +203,14 @@ class Scene:
         self._set("_box_R", np.array([b.rotation for b in boxes]).reshape(-1, 3, 3))
         self._set("_box_o", np.array([b.centre for b in boxes]).reshape(-1, 3))
         self._set("_box_hh", self._box_h.reshape(-1, 3))
-        columns = np.flatnonzero(np.repeat(big, 3))
-        self._set("_big_Rt", self._box_Rt[:, columns])
-        self._set("_big_c", self._box_c[columns])
-        self._set("_big_h", self._box_h[columns])
+        # big boxes for _touches, axis-major: row k·B + b is box b's axis k, so one product
+        # gives (3B, M) local coordinates whose three (B, M) blocks add up without a reduction
+        R = self._box_R[big]
+        self._set("_big_R", R.transpose(2, 0, 1).reshape(-1, 3))
+        self._set(
+            "_big_c", (R.transpose(0, 2, 1) @ self._box_o[big][..., None])[..., 0].T.reshape(-1, 1)
+        )
+        self._set("_big_h", self._box_hh[big].T.reshape(-1, 1))
         cyl_bound = np.hypot(self._cyl_r, self._cyl_h)
         big_cyl = cyl_bound > _SMALL
         object.__setattr__(self, "_big_cyl", np.flatnonzero(big_cyl))
@@ -233,7 +237,9 @@ class Scene:
                     np.ones(len(radii)),
                     np.sum(centres**2, axis=1) - radii**2,
                 ]
-            ).reshape(6, -1),
+            )
+            .reshape(6, -1)
+            .T,
         )
         # the terms of squared distances that do not depend on the point
         self._set("_cyl_ca", np.einsum("ci,ci->c", self._cyl_c, self._cyl_a))
@@ -287,23 +293,29 @@ class Scene:
         hit = np.zeros(M, dtype=bool)
         if not len(self) or not M:
             return hit
-        r2 = (r * r)[:, None]
+        # obstacle-major: arrays (obstacles, M), so reductions over obstacles run along M
+        Pt = P.T
+        r2 = r * r
         if len(self._big_h):
-            L = P @ self._big_Rt
+            L = self._big_R @ Pt  # (3B, M) coordinates in each box's frame
             L -= self._big_c
             np.abs(L, out=L)
             L -= self._big_h
             np.maximum(L, 0.0, out=L)
             L *= L
-            hit |= np.any(L.reshape(M, -1, 3).sum(axis=2) <= r2, axis=1)
+            B = len(L) // 3
+            S = L[:B] + L[B : 2 * B]
+            S += L[2 * B :]
+            hit |= np.any(S <= r2, axis=0)
         if len(self._small):
-            # |p − c|² − (r + R)² as one product: [p, r, |p|² − r², 1]·[−2c, −2R, 1, |c|² − R²]
-            A = np.empty((M, 6))
-            A[:, :3] = P
-            A[:, 3] = r
-            A[:, 4] = np.einsum("ni,ni->n", P, P) - r * r
-            A[:, 5] = 1.0
-            m, k = np.nonzero(A @ self._small_rows <= 1e-9)  # round-off of the expansion
+            # |p − c|² − (r + R)² as one product: [−2c, −2R, 1, |c|² − R²]·[p, r, |p|² − r², 1]
+            A = np.empty((6, M))
+            A[:3] = Pt
+            A[3] = r
+            np.einsum("ni,ni->n", P, P, out=A[4])
+            A[4] -= r2
+            A[5] = 1.0
+            k, m = np.nonzero(self._small_rows @ A <= 1e-9)  # round-off of the expansion
             if len(m):
                 kind, index = self._small_kind[k], self._small[k]
                 tests = (self._touch_boxes, self._touch_cylinders, self._touch_capsules)
@@ -313,20 +325,20 @@ class Scene:
                         mm = m[pick]
                         hit[mm[test(P[mm], r[mm], index[pick])]] = True
         if len(self._big_cyl) or self.spheres:
-            p2 = np.einsum("ni,ni->n", P, P)[:, None]
+            p2 = np.einsum("ni,ni->n", P, P)
         if len(self._big_cyl):
             c, a = self._cyl_c[self._big_cyl], self._cyl_a[self._big_cyl]
-            t = P @ a.T - self._cyl_ca[self._big_cyl]
-            d2 = p2 - 2.0 * (P @ c.T) + self._cyl_c2[self._big_cyl]
-            u = np.sqrt(np.maximum(d2 - t * t, 0.0)) - self._cyl_r[self._big_cyl]
+            t = a @ Pt - self._cyl_ca[self._big_cyl, None]
+            d2 = p2 - 2.0 * (c @ Pt) + self._cyl_c2[self._big_cyl, None]
+            u = np.sqrt(np.maximum(d2 - t * t, 0.0)) - self._cyl_r[self._big_cyl, None]
             np.maximum(u, 0.0, out=u)
-            v = np.abs(t) - self._cyl_h[self._big_cyl]
+            v = np.abs(t) - self._cyl_h[self._big_cyl, None]
             np.maximum(v, 0.0, out=v)
-            hit |= np.any(u * u + v * v <= r2, axis=1)
+            hit |= np.any(u * u + v * v <= r2, axis=0)
         if self.spheres:
-            d2 = p2 - 2.0 * (P @ self._sph_c.T) + self._sph_c2
-            reach = r[:, None] + self._sph_r
-            hit |= np.any(d2 <= reach * reach, axis=1)
+            d2 = p2 - 2.0 * (self._sph_c @ Pt) + self._sph_c2[:, None]
+            reach = r + self._sph_r[:, None]
+            hit |= np.any(d2 <= reach * reach, axis=0)
         return hit
 
     def _touch_boxes(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
