@@ -201,16 +201,34 @@ def test_edges_catch_a_collision_between_free_ends():
     np.testing.assert_array_equal(result, [True, False])
 
 
-def test_edge_samples_bound_how_far_every_sphere_moves(rng):
-    for resolution in (0.01, 0.003):
+def _mounted_gripper_model() -> planning.SphereModel:
+    """The UR5's spheres on an arm mounted on a tilted base, with two spheres on a tool."""
+    from urkin.transforms import make_transform
+
+    base = make_transform(random_rotations(1, seed=4)[0], [0.2, -0.1, 0.9])
+    arm = UR5.with_base(base).with_tool(make_transform(p=[0.0, 0.02, 0.15]))
+    rows = np.column_stack([MODEL.frames, MODEL.centres, MODEL.radii])
+    tool = [[7, 0.0, 0.0, 0.05, 0.04], [7, 0.03, 0.0, 0.12, 0.03]]
+    return planning.SphereModel.from_rows(arm, np.vstack([rows, tool]), pairs=MODEL.pairs)
+
+
+@pytest.mark.parametrize("model", [MODEL, _mounted_gripper_model()], ids=["ur5", "mounted"])
+def test_edge_samples_bound_how_far_every_sphere_moves(rng, model):
+    # the count bounds the largest move of any centre between neighbouring samples, measured
+    # on a sampling 16 times finer; the edges are long (up to 2 rad a joint) and short
+    for resolution, size in ((0.01, 2.0), (0.003, 1.0), (0.01, 0.05)):
         A = rng.uniform(-np.pi, np.pi, (20, 6))
-        B = A + rng.uniform(-1, 1, (20, 6))
-        counts = planning.edge_samples(MODEL, A, B, resolution)
+        B = A + rng.uniform(-size, size, (20, 6))
+        counts = planning.edge_samples(model, A, B, resolution)
         for a, b, n in zip(A, B, counts):
-            t = np.linspace(0, 1, 20 * n + 1)  # finer than the samples
-            W = MODEL.place(a + t[:, None] * (b - a))
-            moved = np.linalg.norm(np.diff(W, axis=0), axis=-1).sum(axis=0)  # path length
-            assert moved.max() <= n * resolution * (1 + 1e-9)
+            t = np.linspace(0, 1, 16 * n + 1)
+            W = model.place(a + t[:, None] * (b - a))  # (16n + 1, S, 3)
+            steps = np.linalg.norm(np.diff(W, axis=0), axis=-1)  # (16n, S)
+            moved = steps.reshape(n, 16, -1).sum(axis=1)  # path length between samples
+            assert moved.max() <= resolution * (1 + 1e-9)
+        # and it never asks for more samples than the bound by ρ_j alone
+        crude = np.ceil((np.abs(B - A) @ planning.checks._reach(model).T).max(1) / resolution)
+        assert np.all(counts <= np.maximum(crude, 1))
 
 
 def test_checks_refuse_bad_arguments():

@@ -13,10 +13,13 @@ every obstacle and from every sphere it is paired with.
 
 Edges (:func:`edges_free`) are straight lines in joint space, checked at samples close enough
 that **no sphere centre moves more than** ``resolution`` **metres between consecutive
-samples**.  A sphere centre's speed along an edge is at most ``Σ_j |Δq_j| ρ_j``, where ``ρ_j``
-bounds its distance to joint ``j``'s axis (its distance to its own frame's origin plus the
-lengths ``√(a_i² + d_i²)`` of the links in between); :func:`edge_samples` gives the count.  A
-collision missed between two free samples is therefore at most ``resolution / 2`` deep.  The
+samples**.  A sphere centre's speed along an edge is at most ``Σ_j |Δq_j| R_j``, where ``R_j``
+bounds its distance to joint ``j``'s axis on the whole edge: at most ``ρ_j`` (its distance to
+its own frame's origin plus the lengths ``√(a_i² + d_i²)`` of the links in between), and at
+most what the distances at the edge's two ends allow, given how fast the joints after ``j``
+can change it (:func:`_travel`; about half the samples of ``ρ_j`` alone on random edges);
+:func:`edge_samples` gives the count.  A collision missed between two free samples is
+therefore at most ``resolution / 2`` deep.  The
 samples are taken coarse to fine (both ends, the middle, the quarters, …) across all the edges
 at once, so a collision anywhere on any edge is usually found in the first batches.
 """
@@ -32,7 +35,7 @@ from numpy.typing import ArrayLike
 
 from urkin.kinematics import _joints
 from urkin.planning.scene import Scene
-from urkin.planning.spheres import SphereModel, frames_with_tool
+from urkin.planning.spheres import SphereModel, _frames
 
 __all__ = ["Clearance", "clearance", "edge_samples", "edges_free", "explain", "is_free"]
 
@@ -62,7 +65,7 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
     hit = np.zeros(n, dtype=bool)
     if not len(model) or not n:
         return hit
-    F = frames_with_tool(model.robot, Q)[..., :3, :]  # (N, 8, 3, 4)
+    F = _frames(model.robot, Q)[..., :3, :]  # (N, 8, 3, 4)
     if n <= _DIRECT:  # a few configurations: the broad phase would cost more than it saves
         W = _place(F, model.frames, model.centres)
         if len(model.pairs):
@@ -382,12 +385,35 @@ def _edge_ends(qa: ArrayLike, qb: ArrayLike) -> tuple[np.ndarray, np.ndarray, tu
 def _intervals(model, A, B, resolution) -> np.ndarray:
     if not resolution > 0:
         raise ValueError(f"resolution must be a positive distance (m); got {resolution}")
+    if not len(model):
+        return np.ones(len(A), dtype=np.intp)
     rho = model.__dict__.get("_rho")
     if rho is None:
         rho = _reach(model)
         object.__setattr__(model, "_rho", rho)
-    travel = (np.abs(B - A) @ rho.T).max(axis=1) if len(model) else np.zeros(len(A))
-    return np.maximum(1, np.ceil(travel / resolution)).astype(np.intp)
+    return np.maximum(1, np.ceil(_travel(model, rho, A, B) / resolution)).astype(np.intp)
+
+
+def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """A bound on the speed of every sphere centre along each edge, ``A`` → ``B`` (K, 6): (K,)
+    metres per edge, the most any centre can move along it (module notes).
+
+    The distance ``r_j`` of a centre from joint ``j``'s axis depends only on the joints after
+    ``j``, so along the edge it changes at most at the rate ``T_j = Σ_{m>j} |Δq_m| R_m`` where
+    ``R_m`` bounds ``r_m``; from its values at the two ends, ``r_j ≤ (r_j(0) + r_j(1) + T_j) / 2``
+    everywhere on the edge (and ``≤ ρ_j``).  Taken from the last joint back, each ``R_j``
+    bounds the next ``T``; the speed is at most ``Σ_j |Δq_j| R_j``."""
+    K = len(A)
+    F = _frames(model.robot, np.concatenate([A, B]))[..., :3, :]  # (2K, 8, 3, 4)
+    rel = _place(F, model.frames, model.centres)[:, :, None, :] - F[:, None, :6, :, 3]
+    along = np.einsum("nsji,nji->nsj", rel, F[:, :6, :, 2])  # (2K, S, 6) along each axis
+    r = np.sqrt(np.maximum(np.einsum("nsji,nsji->nsj", rel, rel) - along * along, 0.0))
+    mid = (r[:K] + r[K:]) / 2  # (K, S, 6)
+    dq = np.abs(B - A)
+    T = np.zeros(mid.shape[:2])
+    for j in range(5, -1, -1):  # T = Σ_{m>j} |Δq_m| R_m
+        T += dq[:, j, None] * np.minimum(rho[:, j], mid[..., j] + T / 2)
+    return T.max(axis=1)
 
 
 def edges_free(

@@ -187,15 +187,14 @@ def rrt_connect(
     if direct.any():
         k = int(goal_indices[np.flatnonzero(direct)[0]])
         path, reached = np.array([q_start, G[k]]), k
+    draws = _Draws(model, scene, rng, lower, upper, step)
     while path is None and iterations < max_iterations:
         if time_limit is not None and time.perf_counter() - t0 > time_limit:
             break
-        iterations += 1
         a, b = trees[0], trees[1]
-        target = rng.uniform(lower, upper)
-        near = a.nearest(target)
-        q_new = _towards(a.nodes[near], target, step)
-        if not _edge(model, scene, a.nodes[near], q_new, resolution):
+        near, q_new, free_end = draws.next(trees, max_iterations - iterations)
+        iterations += 1
+        if not free_end or not _edge(model, scene, a.nodes[near], q_new, resolution):
             trees.reverse()
             continue
         new = a.add(q_new, near)
@@ -264,8 +263,62 @@ def _towards(q_from: np.ndarray, q_to: np.ndarray, step: float) -> np.ndarray:
 
 
 def _edge(model, scene, qa, qb, resolution) -> bool:
+    """Whether the edge between two free configurations is free."""
     A, B = qa[None], qb[None]
-    return bool(_edges_free(model, scene, A, B, _intervals(model, A, B, resolution), known=1)[0])
+    return bool(_edges_free(model, scene, A, B, _intervals(model, A, B, resolution), known=2)[0])
+
+
+class _Draws:
+    """The random targets of the coming iterations, drawn a block at a time, with each one's
+    new node (``step`` from the nearest node of the tree that will extend towards it) checked
+    for collision in one batch: most extensions fail at their new node, and one check of many
+    configurations costs little more than one of one.
+
+    The trees swap every iteration, so the tree of each iteration of a block is known when it
+    is drawn.  A tree that grew since then is searched again among its new nodes only; if one
+    is closer, that iteration's new node is placed and checked again.  The plan is the one the
+    iterations would give drawn one at a time."""
+
+    def __init__(self, model, scene, rng, lower, upper, step) -> None:
+        self.model, self.scene, self.rng = model, scene, rng
+        self.lower, self.upper, self.step = lower, upper, step
+        self.size = 4  # the block size doubles up to _DRAWS: easy problems end in a few
+        self.queue: list[tuple] = []
+
+    def _fill(self, trees: list[_Tree], left: int) -> None:
+        size = min(self.size, left)
+        self.size = min(2 * self.size, _DRAWS)
+        targets = self.rng.uniform(self.lower, self.upper, (size, 6))
+        entries = []
+        for k, target in enumerate(targets):
+            tree = trees[k % 2]
+            near = tree.nearest(target)
+            entries.append(
+                (tree, tree.count, target, near, _towards(tree.nodes[near], target, self.step))
+            )
+        free = ~_collides(self.model, self.scene, np.array([e[4] for e in entries]))
+        self.queue = [(*e, bool(f)) for e, f in zip(entries, free)][::-1]
+
+    def next(self, trees: list[_Tree], left: int) -> tuple[int, np.ndarray, bool]:
+        """The nearest node of ``trees[0]``, the new node and whether it is free."""
+        if not self.queue:
+            self._fill(trees, left)
+        tree, count, target, near, q_new, free = self.queue.pop()
+        assert tree is trees[0]
+        if tree.count > count:  # grown since drawn: is a new node nearer?
+            d = tree.nodes[count : tree.count] - target
+            d2 = np.einsum("ij,ij->i", d, d)
+            k = int(np.argmin(d2))
+            gap = tree.nodes[near] - target
+            if d2[k] < gap @ gap:
+                near = count + k
+                q_new = _towards(tree.nodes[near], target, self.step)
+                free = not _collides(self.model, self.scene, q_new[None])[0]
+        return near, q_new, free
+
+
+#: The largest block of random targets drawn (and their new nodes checked) at once.
+_DRAWS = 64
 
 
 class _Tree:
