@@ -26,7 +26,6 @@ at once, so a collision anywhere on any edge is usually found in the first batch
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
 
@@ -477,11 +476,9 @@ def _edges_free(model, scene, A, B, counts, prefix: bool = False, known: int = 0
     if known:
         keep = (index > 0) & ((index < counts[edge]) if known == 2 else True)
         edge, index = edge[keep], index[keep]
-    t = index / counts[edge]
-    rank = np.concatenate([_rank(int(n)) for n in counts])  # coarse-to-fine rank per sample
-    rank = rank[keep] if known else rank
-    order = np.lexsort((edge, rank))
-    edge, t = edge[order], t[order]
+    n = counts[edge]
+    order = np.lexsort((index, edge, _depth(index, n)))  # coarse first, across the edges
+    edge, t = edge[order], index[order] / n[order]
     free = np.ones(len(A), dtype=bool)
     start, size = 0, len(A)  # one sample per edge, then batches doubling from _BATCH
     while start < len(edge):
@@ -502,30 +499,11 @@ def _edges_free(model, scene, A, B, counts, prefix: bool = False, known: int = 0
     return free
 
 
-@functools.lru_cache(maxsize=512)
-def _rank(n: int) -> np.ndarray:
-    """Position of each sample index 0 … n in the coarse-to-fine order (cached: edges of one
-    call mostly share a few sample counts)."""
-    rank = np.empty(n + 1, dtype=np.intp)
-    rank[_order(n)] = np.arange(n + 1)
-    rank.setflags(write=False)
-    return rank
-
-
-def _order(n: int) -> np.ndarray:
-    """Sample indices 0 … n, coarse first (ends, middle, quarters, …)."""
-    seen = np.zeros(n + 1, dtype=bool)
-    out = []
-    for index in (0, n):
-        if not seen[index]:
-            seen[index] = True
-            out.append(index)
-    step = n
-    while step > 1:
-        step = -(-step // 2)
-        grid = np.unique(np.minimum(np.arange(0, n + step, step), n))
-        new = grid[~seen[grid]]
-        seen[new] = True
-        out.extend(new.tolist())
-    rest = np.flatnonzero(~seen)
-    return np.concatenate([np.array(out, dtype=np.intp), rest])
+def _depth(index: np.ndarray, n: np.ndarray) -> np.ndarray:
+    """How fine a sample ``index`` of an edge cut into ``n`` intervals is: 0 for the ends, 1
+    for the middle, 2 for the quarters, … (of ``index / n`` rounded down to ``2^-B``, with
+    ``2^(B−1) > n``: distinct samples stay distinct)."""
+    bits = np.frexp(n)[1] + 1
+    scaled = (index << bits) // n
+    lowest = scaled & -scaled  # the coarsest power of two dividing it (0 at the start)
+    return np.where(index == 0, 0, bits - np.frexp(lowest)[1] + 1)

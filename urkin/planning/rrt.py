@@ -227,7 +227,7 @@ def rrt_connect(
         scene,
         path[:-1],
         path[1:],
-        _intervals(model, path[:-1], path[1:], resolution / 4),
+        _intervals(model, path[:-1], path[1:], resolution / 2),
         known=2,
     )
     if not fine.all():
@@ -235,7 +235,7 @@ def rrt_connect(
         return Plan(
             path,
             False,
-            f"edge {k} of the path collides when re-checked at {resolution / 4 * 1000:g} mm: "
+            f"edge {k} of the path collides when re-checked at {resolution / 2 * 1000:g} mm: "
             "plan again with a finer resolution",
             iterations,
             nodes,
@@ -403,9 +403,11 @@ def shortcut(
     """A shorter path through fewer waypoints: straight edges that skip waypoints replace the
     waypoints they skip when they are free.
 
+    Waypoints where the path goes straight on are dropped first (no check needed: the path
+    is the same).
     Each round draws ``batch`` candidate pairs of waypoints (``i < j − 1``), checks all their
-    edges in one batched call and applies the free one that skips the most; it stops after
-    ``rounds`` rounds or three rounds without a change.
+    edges in one batched call and applies the free ones that skip the most without
+    overlapping; it stops after ``rounds`` rounds or three rounds without a change.
 
     Returns
     -------
@@ -416,7 +418,7 @@ def shortcut(
     P, lead, _ = _joints(path, "path")
     if len(lead) != 1 or len(P) < 2:
         raise ValueError(f"path must have shape (M, 6) with M ≥ 2; got {np.shape(path)}")
-    P = P.copy()
+    P = _straightened(P)
     rng = np.random.default_rng(seed)
     blocked: set[bytes] = set()  # edges found in collision, by their end configurations
     idle = 0
@@ -446,10 +448,36 @@ def shortcut(
         if not free.any():
             idle += 1
             continue
-        best = int(np.argmax(np.where(free, j - i, -1)))
-        P = np.concatenate([P[: i[best] + 1], P[j[best] :]])
+        P = P[_kept(len(P), i[free], j[free])]
         idle = 0
     return P
+
+
+def _straightened(P: np.ndarray) -> np.ndarray:
+    """``P`` without the waypoints where it goes straight on (a connect's pieces) or stays:
+    the same path, with fewer waypoints to draw shortcuts between."""
+    d = np.diff(P, axis=0)
+    length = np.linalg.norm(d, axis=1)
+    step = d / np.where(length > 0, length, 1.0)[:, None]
+    on = (
+        (length[:-1] == 0)
+        | (length[1:] == 0)
+        | (np.einsum("ki,ki->k", step[:-1], step[1:]) >= 1 - 1e-12)
+    )
+    return P[np.concatenate([[True], ~on, [True]])]
+
+
+def _kept(m: int, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """Which of ``m`` waypoints stay when the free shortcuts ``i → j`` that skip the most and
+    do not overlap are taken (the longest first)."""
+    keep = np.ones(m, dtype=bool)
+    taken: list[tuple[int, int]] = []
+    for k in np.argsort(i - j, kind="stable"):  # longest skips first
+        a, b = int(i[k]), int(j[k])
+        if all(b <= c or d <= a for c, d in taken):
+            taken.append((a, b))
+            keep[a + 1 : b] = False
+    return keep
 
 
 def _all_blocked(P: np.ndarray, blocked: set[bytes]) -> bool:
