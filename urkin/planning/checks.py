@@ -64,9 +64,10 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
     hit = np.zeros(n, dtype=bool)
     if not len(model) or not n:
         return hit
-    F = _frames(model.robot, Q)[..., :3, :]  # (N, 8, 3, 4)
+    F4 = _frames(model.robot, Q)  # (N, 8, 4, 4)
+    F = F4[..., :3, :]
     if n <= _DIRECT:  # a few configurations: the broad phase would cost more than it saves
-        W = _place(F, model.frames, model.centres)
+        W = _place(F4, _placing(model))
         if len(model.pairs):
             d = W[:, model.pairs[:, 0]] - W[:, model.pairs[:, 1]]
             reach = model.radii[model.pairs[:, 0]] + model.radii[model.pairs[:, 1]]
@@ -77,7 +78,7 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
             hit |= touch.reshape(n, len(moving)).any(axis=1)
         return hit
     groups = _groups(model)
-    G = _place(F, groups.frames, groups.centres)  # (N, g, 3)
+    G = _place(F4, groups.place)  # (N, g, 3)
     if len(groups.pairs):
         a, b = groups.pairs[:, 0], groups.pairs[:, 1]
         d = G[:, a] - G[:, b]
@@ -106,10 +107,31 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
     return hit
 
 
-def _place(F: np.ndarray, frames: np.ndarray, centres: np.ndarray) -> np.ndarray:
-    """Centres (k, 3) fixed in frames (k,), placed by the frames F (N, 8, 3, 4): (N, k, 3)."""
-    A = F[:, frames]  # (N, k, 3, 4)
-    return np.einsum("nkij,kj->nki", A[..., :3], centres) + A[..., 3]
+def _place(F: np.ndarray, M: np.ndarray) -> np.ndarray:
+    """Centres fixed in frames, placed by the frames ``F`` (N, 8, 4, 4), with their placing
+    matrix ``M`` (128, 3k) (:func:`_placing_matrix`): (N, k, 3), one matrix product."""
+    return (F.reshape(len(F), 128) @ M).reshape(len(F), -1, 3)
+
+
+def _placing_matrix(frames: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    """(128, 3k): row ``16 f + 4 i + j`` of column ``3 m + i`` is the homogeneous centre's
+    ``j``-th coordinate for a centre ``m`` fixed in frame ``f``, so that the flattened frames
+    times it are the centres' coordinates ``i``."""
+    k = len(frames)
+    M = np.zeros((8, 4, 4, k, 3))  # frame, row i, column j, centre, coordinate
+    homogeneous = np.column_stack([centres, np.ones(k)])
+    for i in range(3):
+        M[frames, i, :, np.arange(k), i] = homogeneous
+    return M.reshape(128, 3 * k)
+
+
+def _placing(model: SphereModel) -> np.ndarray:
+    """The placing matrix of the model's spheres (built once per model and kept on it)."""
+    found = model.__dict__.get("_placing")
+    if found is None:
+        found = _placing_matrix(model.frames, model.centres)
+        object.__setattr__(model, "_placing", found)
+    return found
 
 
 def _points(model: SphereModel, F: np.ndarray, rows: np.ndarray, spheres: np.ndarray):
@@ -134,7 +156,8 @@ class _Groups:
     ``frames``, ``centres``, ``radii``: each group's ball, fixed in its frame; ``members``
     (g, m): the spheres of each group, padded with −1; ``moving``: the groups not on the base;
     ``pairs`` (gp, 2): group pairs holding at least one self-collision pair of spheres;
-    ``pair_group`` (P,): the group pair of each sphere pair."""
+    ``pair_group`` (P,): the group pair of each sphere pair; ``place``: the balls' placing
+    matrix (:func:`_placing_matrix`)."""
 
     frames: np.ndarray
     centres: np.ndarray
@@ -143,6 +166,7 @@ class _Groups:
     moving: np.ndarray
     pairs: np.ndarray
     pair_group: np.ndarray
+    place: np.ndarray
 
 
 def _groups(model: SphereModel) -> _Groups:
@@ -181,14 +205,16 @@ def _build_groups(model: SphereModel) -> _Groups:
     frames = np.array([model.frames[m[0]] for m in parts], dtype=np.intp)
     by_pair = np.sort(of_sphere[model.pairs], axis=1) if len(model.pairs) else np.zeros((0, 2))
     pairs, pair_group = np.unique(by_pair.astype(np.intp), axis=0, return_inverse=True)
+    centres = np.array([c for c, _ in bounds])
     return _Groups(
         frames,
-        np.array([c for c, _ in bounds]),
+        centres,
         np.array([r for _, r in bounds]),
         members,
         np.flatnonzero(frames > 0),
         pairs.reshape(-1, 2),
         pair_group.reshape(-1),
+        _placing_matrix(frames, centres),
     )
 
 
@@ -403,8 +429,9 @@ def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -
     everywhere on the edge (and ``≤ ρ_j``).  Taken from the last joint back, each ``R_j``
     bounds the next ``T``; the speed is at most ``Σ_j |Δq_j| R_j``."""
     K = len(A)
-    F = _frames(model.robot, np.concatenate([A, B]))[..., :3, :]  # (2K, 8, 3, 4)
-    rel = _place(F, model.frames, model.centres)[:, :, None, :] - F[:, None, :6, :, 3]
+    F4 = _frames(model.robot, np.concatenate([A, B]))  # (2K, 8, 4, 4)
+    F = F4[..., :3, :]
+    rel = _place(F4, _placing(model))[:, :, None, :] - F[:, None, :6, :, 3]
     along = np.einsum("nsji,nji->nsj", rel, F[:, :6, :, 2])  # (2K, S, 6) along each axis
     r = np.sqrt(np.maximum(np.einsum("nsji,nsji->nsj", rel, rel) - along * along, 0.0))
     mid = (r[:K] + r[K:]) / 2  # (K, S, 6)
