@@ -126,6 +126,11 @@ def test_broad_phase_gives_the_verdicts_of_every_sphere(rng):
     free = planning.is_free(model, scene, Q)
     np.testing.assert_array_equal(free[clear], c.distance[clear] > 0)
     assert 0.1 < free.mean() < 0.9
+    # batches of every size the checks see (their frames are computed in two ways)
+    pieces = np.split(np.arange(len(Q)), np.cumsum([1, 2, 3, 5, 8, 40, 900, 1001]))
+    for rows in pieces:
+        np.testing.assert_array_equal(planning.is_free(model, scene, Q[rows]), free[rows])
+    np.testing.assert_array_equal([planning.is_free(model, scene, q) for q in Q[:50]], free[:50])
     assert np.any(c.obstacle >= 0) and np.any(c.other >= 0)  # both kinds of contact occur
 
 

@@ -66,24 +66,16 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
         return hit
     F4 = _frames(model.robot, Q)  # (N, 8, 4, 4)
     F = F4[..., :3, :]
-    if n <= _DIRECT:  # a few configurations: the broad phase would cost more than it saves
-        W = _place(F4, _placing(model))
-        if len(model.pairs):
-            d = W[:, model.pairs[:, 0]] - W[:, model.pairs[:, 1]]
-            reach = model.radii[model.pairs[:, 0]] + model.radii[model.pairs[:, 1]]
-            hit |= np.any(np.einsum("npi,npi->np", d, d) <= reach * reach, axis=1)
-        moving = model._moving
-        if len(scene) and len(moving):
-            touch = scene._touches(W[:, moving].reshape(-1, 3), np.tile(model.radii[moving], n))
-            hit |= touch.reshape(n, len(moving)).any(axis=1)
-        return hit
     groups = _groups(model)
-    G = _place(F4, groups.place)  # (N, g, 3)
+    flat = F4.reshape(n, 128)
+    G = (flat @ groups.place).reshape(n, -1, 3)  # (N, g, 3), as _place
     if len(groups.pairs):
-        a, b = groups.pairs[:, 0], groups.pairs[:, 1]
-        d = G[:, a] - G[:, b]
-        reach = groups.radii[a] + groups.radii[b]
-        near = np.einsum("npi,npi->np", d, d) <= reach * reach
+        gp = len(groups.pairs)
+        d = flat @ groups.apart  # (N, 3 gp): the pairs' x, then y, then z differences
+        d *= d
+        d2 = d[:, :gp] + d[:, gp : 2 * gp]
+        d2 += d[:, 2 * gp :]
+        near = d2 <= groups.reach2
         if near.any():
             rows, k = np.nonzero(near[:, groups.pair_group])
             i, j = model.pairs[k, 0], model.pairs[k, 1]
@@ -93,8 +85,8 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
     moving = groups.moving
     todo = np.flatnonzero(~hit)  # configurations not yet known to collide
     if len(scene) and len(moving) and len(todo):
-        balls = G[todo][:, moving].reshape(-1, 3)
-        touch = scene._touches(balls, np.tile(groups.radii[moving], len(todo)))
+        balls = G[todo[:, None], moving].reshape(-1, 3)
+        touch = scene._touches(balls, _repeated(groups.radii[moving], len(todo)))
         rows, k = np.nonzero(touch.reshape(len(todo), len(moving)))
         rows = todo[rows]
         if len(rows):
@@ -125,6 +117,11 @@ def _placing_matrix(frames: np.ndarray, centres: np.ndarray) -> np.ndarray:
     return M.reshape(128, 3 * k)
 
 
+def _repeated(radii: np.ndarray, n: int) -> np.ndarray:
+    """``radii`` (k,) once for each of ``n`` configurations: (n k,)."""
+    return np.broadcast_to(radii, (n, len(radii))).reshape(-1)
+
+
 def _placing(model: SphereModel) -> np.ndarray:
     """The placing matrix of the model's spheres (built once per model and kept on it)."""
     found = model.__dict__.get("_placing")
@@ -140,9 +137,6 @@ def _points(model: SphereModel, F: np.ndarray, rows: np.ndarray, spheres: np.nda
     return np.einsum("hij,hj->hi", A[..., :3], model.centres[spheres]) + A[..., 3]
 
 
-#: Up to this many configurations, _collides tests every sphere at once (no broad phase).
-_DIRECT = 4
-
 #: The largest radius of a group's bounding ball (m): a link's spheres are split until each
 #: group's ball is no larger.
 _GROUP_RADIUS = 0.1
@@ -157,7 +151,9 @@ class _Groups:
     (g, m): the spheres of each group, padded with −1; ``moving``: the groups not on the base;
     ``pairs`` (gp, 2): group pairs holding at least one self-collision pair of spheres;
     ``pair_group`` (P,): the group pair of each sphere pair; ``place``: the balls' placing
-    matrix (:func:`_placing_matrix`)."""
+    matrix (:func:`_placing_matrix`); ``apart`` (128, 3 gp): the placing matrix of the
+    differences of the group pairs' centres, coordinate by coordinate; ``reach2``: the
+    squared sums of their radii."""
 
     frames: np.ndarray
     centres: np.ndarray
@@ -167,6 +163,8 @@ class _Groups:
     pairs: np.ndarray
     pair_group: np.ndarray
     place: np.ndarray
+    apart: np.ndarray
+    reach2: np.ndarray
 
 
 def _groups(model: SphereModel) -> _Groups:
@@ -206,15 +204,22 @@ def _build_groups(model: SphereModel) -> _Groups:
     by_pair = np.sort(of_sphere[model.pairs], axis=1) if len(model.pairs) else np.zeros((0, 2))
     pairs, pair_group = np.unique(by_pair.astype(np.intp), axis=0, return_inverse=True)
     centres = np.array([c for c, _ in bounds])
+    radii = np.array([r for _, r in bounds])
+    place = _placing_matrix(frames, centres)
+    pairs = pairs.reshape(-1, 2)
+    by_ball = place.reshape(128, -1, 3)
+    apart = (by_ball[:, pairs[:, 0]] - by_ball[:, pairs[:, 1]]).transpose(0, 2, 1)
     return _Groups(
         frames,
         centres,
-        np.array([r for _, r in bounds]),
+        radii,
         members,
         np.flatnonzero(frames > 0),
-        pairs.reshape(-1, 2),
+        pairs,
         pair_group.reshape(-1),
-        _placing_matrix(frames, centres),
+        place,
+        np.ascontiguousarray(apart.reshape(128, -1)),
+        (radii[pairs[:, 0]] + radii[pairs[:, 1]]) ** 2,
     )
 
 

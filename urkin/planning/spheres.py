@@ -284,29 +284,17 @@ def _frames(robot: Robot, Q: np.ndarray) -> np.ndarray:
 
 
 #: Stack sizes for which :func:`_frames` multiplies link transforms.
-_CHAIN = (5, 1000)
+_CHAIN = (2, 1000)
 
 
 def _chain(robot: Robot, Q: np.ndarray) -> np.ndarray:
     """Frames 0 … 6 and the tool frame of checked configurations ``Q`` (N, 6): (N, 8, 4, 4)."""
     n = len(Q)
-    # cos α and sin α of UR twists are 0 or ±1: exact, as in the generated code
-    ca, sa = np.round(np.cos(robot.alpha)), np.round(np.sin(robot.alpha))
-    c, s = np.cos(Q), np.sin(Q)
-    A = np.empty((n, 6, 4, 4))  # T_{i-1,i} = Rz(θ) Tz(d) Tx(a) Rx(α), i = 1 … 6
-    A[..., 0, 0] = c
-    np.multiply(s, -ca, out=A[..., 0, 1])
-    np.multiply(s, sa, out=A[..., 0, 2])
-    np.multiply(c, robot.a, out=A[..., 0, 3])
-    A[..., 1, 0] = s
-    np.multiply(c, ca, out=A[..., 1, 1])
-    np.multiply(c, -sa, out=A[..., 1, 2])
-    np.multiply(s, robot.a, out=A[..., 1, 3])
-    A[..., 2, 0] = 0.0
-    A[..., 2, 1] = sa
-    A[..., 2, 2] = ca
-    A[..., 2, 3] = robot.d
-    A[..., 3, :] = (0.0, 0.0, 0.0, 1.0)
+    cos, sin, constant = _link_terms(robot)
+    A = np.cos(Q)[..., None] * cos  # T_{i-1,i} = Rz(θ) Tz(d) Tx(a) Rx(α), i = 1 … 6
+    A += np.sin(Q)[..., None] * sin
+    A += constant
+    A = A.reshape(n, 6, 4, 4)
     out = np.empty((n, 8, 4, 4))
     out[:, 0] = robot.base
     np.matmul(robot.base, A[:, 0], out=out[:, 1])
@@ -314,6 +302,23 @@ def _chain(robot: Robot, Q: np.ndarray) -> np.ndarray:
         np.matmul(out[:, i], A[:, i], out=out[:, i + 1])
     np.matmul(out[:, 6], robot.tool, out=out[:, 7])
     return out
+
+
+@functools.lru_cache(maxsize=64)
+def _link_terms(robot: Robot) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A DH link transform is linear in cos θ and sin θ: ``cos θ · C + sin θ · S + K``; the
+    (6, 16) matrices C, S and K of the six links (cos α and sin α of UR twists are 0 or ±1,
+    exact as in the generated code)."""
+    ca, sa = np.round(np.cos(robot.alpha)), np.round(np.sin(robot.alpha))
+    one, zero = np.ones(6), np.zeros(6)
+    cos = np.stack([one, zero, zero, robot.a, zero, ca, -sa, zero], axis=1)
+    sin = np.stack([zero, -ca, sa, zero, one, zero, zero, robot.a], axis=1)
+    constant = np.stack([zero, sa, ca, robot.d, zero, zero, zero, one], axis=1)
+    pad = np.zeros((6, 8))
+    terms = (np.hstack([cos, pad]), np.hstack([sin, pad]), np.hstack([pad, constant]))
+    for term in terms:
+        term.setflags(write=False)
+    return terms
 
 
 def _default_names(frames: Iterable[int]) -> tuple[str, ...]:
