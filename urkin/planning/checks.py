@@ -435,10 +435,12 @@ def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -
     bounds the next ``T``; the speed is at most ``Σ_j |Δq_j| R_j``."""
     K = len(A)
     F4 = _frames(model.robot, np.concatenate([A, B]))  # (2K, 8, 4, 4)
-    F = F4[..., :3, :]
-    rel = _place(F4, _placing(model))[:, :, None, :] - F[:, None, :6, :, 3]
-    along = np.einsum("nsji,nji->nsj", rel, F[:, :6, :, 2])  # (2K, S, 6) along each axis
-    r = np.sqrt(np.maximum(np.einsum("nsji,nsji->nsj", rel, rel) - along * along, 0.0))
+    # r_j: the centres' x and y in frame j − 1, whose z axis is joint j's axis
+    across = F4[:, :6, :3, :2].transpose(0, 2, 1, 3).reshape(2 * K, 3, 12)
+    xy = _place(F4, _placing(model)) @ across  # (2K, S, 12)
+    xy -= np.einsum("nji,njik->njk", F4[:, :6, :3, 3], F4[:, :6, :3, :2]).reshape(2 * K, 1, 12)
+    xy *= xy
+    r = np.sqrt(xy[..., 0::2] + xy[..., 1::2])  # (2K, S, 6)
     mid = (r[:K] + r[K:]) / 2  # (K, S, 6)
     dq = np.abs(B - A)
     T = np.zeros(mid.shape[:2])
@@ -488,8 +490,9 @@ def edges_free(
     return bool(free[0]) if lead == () else free.reshape(lead)
 
 
-#: Samples in the second batch of an edge check (the first holds one sample per edge).
-_BATCH = 32
+#: Samples in the first batch of an edge check (at least one per edge), the smallest second
+#: batch and how much each batch is larger than the one before.
+_FIRST, _BATCH, _GROWTH = 8, 64, 4
 
 
 def _edges_free(model, scene, A, B, counts, prefix: bool = False, known: int = 0) -> np.ndarray:
@@ -512,11 +515,11 @@ def _edges_free(model, scene, A, B, counts, prefix: bool = False, known: int = 0
     order = np.lexsort((index, edge, _depth(index, n)))  # coarse first, across the edges
     edge, t = edge[order], index[order] / n[order]
     free = np.ones(len(A), dtype=bool)
-    start, size = 0, len(A)  # one sample per edge, then batches doubling from _BATCH
+    start, size = 0, max(len(A), _FIRST)  # the coarsest samples, then batches from _BATCH
     while start < len(edge):
         e, s = edge[start : start + size], t[start : start + size]
         start += size
-        size = max(_BATCH, 2 * size)
+        size = max(_BATCH, _GROWTH * size)
         live = free[e]
         if not live.any():
             continue
