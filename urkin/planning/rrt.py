@@ -357,19 +357,21 @@ class _Tree:
 
 
 def _connect(model, scene, tree: _Tree, q_target: np.ndarray, step: float, resolution: float):
-    """Grow ``tree`` straight towards ``q_target`` as far as it is free (one batched check
-    of every piece); the index of the node at ``q_target`` if it was reached."""
+    """Grow ``tree`` straight towards ``q_target`` as far as it is free: the pieces' ends in
+    one check, then the pieces up to the first blocked end in one batched edge check; the
+    index of the node at ``q_target`` if it was reached."""
     near = tree.nearest(q_target)
     q_near = tree.nodes[near]
     pieces = max(1, math.ceil(float(np.max(np.abs(q_target - q_near))) / step))
     t = np.arange(pieces + 1)[:, None] / pieces
     points = q_near + t * (q_target - q_near)
-    A, B = points[:-1], points[1:]
-    free = _edges_free(
-        model, scene, A, B, _intervals(model, A, B, resolution), prefix=True, known=1
-    )
-    blocked = np.flatnonzero(~free)
+    blocked = np.flatnonzero(_collides(model, scene, points[1:]))
     usable = pieces if len(blocked) == 0 else int(blocked[0])
+    if usable:
+        A, B = points[:usable], points[1 : usable + 1]
+        counts = _intervals(model, A, B, resolution)
+        blocked = np.flatnonzero(~_edges_free(model, scene, A, B, counts, prefix=True, known=2))
+        usable = usable if len(blocked) == 0 else int(blocked[0])
     parent = near
     for k in range(1, usable + 1):
         parent = tree.add(points[k], parent)
