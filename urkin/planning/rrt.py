@@ -408,8 +408,9 @@ def shortcut(
     Waypoints where the path goes straight on are dropped first (no check needed: the path
     is the same).
     Each round draws ``batch`` candidate pairs of waypoints (``i < j − 1``), checks all their
-    edges in one batched call and applies the free ones that skip the most without
-    overlapping; it stops after ``rounds`` rounds or three rounds without a change.
+    edges in one batched call at a quarter of the samples, then the ones found free that skip
+    the most without overlapping at full resolution, and applies those that pass; it stops
+    after ``rounds`` rounds or three rounds without a change.
 
     Returns
     -------
@@ -443,14 +444,26 @@ def shortcut(
             if len(blocked) >= (len(P) - 1) * (len(P) - 2) // 2 and _all_blocked(P, blocked):
                 break  # every shortcut of this path is known blocked: no round can change it
             continue
-        free = _edges_free(
-            model, scene, P[i], P[j], _intervals(model, P[i], P[j], resolution), known=2
-        )
-        blocked.update(key for key, edge_free in zip(keys, free) if not edge_free)
-        if not free.any():
+        # every candidate at a quarter of the samples; at full resolution only the longest
+        # that do not overlap among those found free
+        counts = _intervals(model, P[i], P[j], resolution)
+        coarse = np.maximum(1, -(-counts // 4))
+        rough = _edges_free(model, scene, P[i], P[j], coarse, known=2)
+        chosen = np.flatnonzero(rough)[_apart(i[rough], j[rough])]
+        fine = np.zeros(0, dtype=bool)
+        if len(chosen):
+            A, B = P[i[chosen]], P[j[chosen]]
+            fine = _edges_free(model, scene, A, B, counts[chosen], known=2)
+        blocked.update(keys[k] for k in np.flatnonzero(~rough))
+        blocked.update(keys[k] for k in chosen[~fine])
+        taken = chosen[fine]
+        if not len(taken):
             idle += 1
             continue
-        P = P[_kept(len(P), i[free], j[free])]
+        keep = np.ones(len(P), dtype=bool)
+        for a, b in zip(i[taken], j[taken]):
+            keep[a + 1 : b] = False
+        P = P[keep]
         idle = 0
     return P
 
@@ -469,17 +482,14 @@ def _straightened(P: np.ndarray) -> np.ndarray:
     return P[np.concatenate([[True], ~on, [True]])]
 
 
-def _kept(m: int, i: np.ndarray, j: np.ndarray) -> np.ndarray:
-    """Which of ``m`` waypoints stay when the free shortcuts ``i → j`` that skip the most and
-    do not overlap are taken (the longest first)."""
-    keep = np.ones(m, dtype=bool)
-    taken: list[tuple[int, int]] = []
+def _apart(i: np.ndarray, j: np.ndarray) -> list[int]:
+    """The shortcuts ``i → j`` that skip the most waypoints without overlapping, the longest
+    first: their indices."""
+    taken: list[int] = []
     for k in np.argsort(i - j, kind="stable"):  # longest skips first
-        a, b = int(i[k]), int(j[k])
-        if all(b <= c or d <= a for c, d in taken):
-            taken.append((a, b))
-            keep[a + 1 : b] = False
-    return keep
+        if all(j[k] <= i[t] or j[t] <= i[k] for t in taken):
+            taken.append(int(k))
+    return taken
 
 
 def _all_blocked(P: np.ndarray, blocked: set[bytes]) -> bool:
