@@ -505,15 +505,21 @@ def _edges_free(model, scene, A, B, counts, prefix: bool = False, known: int = 0
     With ``prefix``, only the free prefix of the edges matters (a chain of pieces: nothing
     after the first blocked piece is used): every edge after a blocked one is reported
     blocked without being checked further."""
-    samples = counts + 1
-    edge = np.repeat(np.arange(len(A)), samples)
-    index = np.arange(len(edge)) - np.repeat(np.cumsum(samples) - samples, samples)
-    if known:
-        keep = (index > 0) & ((index < counts[edge]) if known == 2 else True)
-        edge, index = edge[keep], index[keep]
-    n = counts[edge]
-    order = np.lexsort((index, edge, _depth(index, n)))  # coarse first, across the edges
-    edge, t = edge[order], index[order] / n[order]
+    if len(A) == 1:  # one edge (an extension): its samples, coarse first
+        n = int(counts[0])
+        index = np.arange(1 if known else 0, n if known == 2 else n + 1)
+        index = index[np.argsort(_depth(index, n), kind="stable")]
+        edge, t = np.zeros(len(index), dtype=np.intp), index / n
+    else:
+        samples = counts + 1
+        edge = np.repeat(np.arange(len(A)), samples)
+        index = np.arange(len(edge)) - np.repeat(np.cumsum(samples) - samples, samples)
+        if known:
+            keep = (index > 0) & ((index < counts[edge]) if known == 2 else True)
+            edge, index = edge[keep], index[keep]
+        n = counts[edge]
+        order = np.lexsort((index, edge, _depth(index, n)))  # coarse first, across the edges
+        edge, t = edge[order], index[order] / n[order]
     free = np.ones(len(A), dtype=bool)
     start, size = 0, max(len(A), _FIRST)  # the coarsest samples, then batches from _BATCH
     while start < len(edge):

@@ -306,7 +306,7 @@ class Scene:
             B = len(L) // 3
             S = L[:B] + L[B : 2 * B]
             S += L[2 * B :]
-            hit |= np.any(S <= r2, axis=0)
+            hit = (S <= r2).any(axis=0)
         if len(self._small):
             # |p − c|² − (r + R)² as one product: [−2c, −2R, 1, |c|² − R²]·[p, r, |p|² − r², 1]
             A = np.empty((6, M))
@@ -334,11 +334,11 @@ class Scene:
             np.maximum(u, 0.0, out=u)
             v = np.abs(t) - self._cyl_h[self._big_cyl, None]
             np.maximum(v, 0.0, out=v)
-            hit |= np.any(u * u + v * v <= r2, axis=0)
+            hit |= (u * u + v * v <= r2).any(axis=0)
         if self.spheres:
             d2 = p2 - 2.0 * (self._sph_c @ Pt) + self._sph_c2[:, None]
             reach = r + self._sph_r[:, None]
-            hit |= np.any(d2 <= reach * reach, axis=0)
+            hit |= (d2 <= reach * reach).any(axis=0)
         return hit
 
     def _touch_boxes(self, P: np.ndarray, r: np.ndarray, k: np.ndarray) -> np.ndarray:
