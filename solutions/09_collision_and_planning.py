@@ -414,18 +414,25 @@ dq = np.abs(q_goal - q_start)
 per_joint = math.ceil(rho @ dq / resolution)
 per_sphere = planning.edge_samples(fitted, q_start, q_goal, resolution)
 print(f"start → goal: D = Σ ρ_j|Δq_j| = {rho @ dq:.2f} m → {per_joint} pieces; urkin, which "
-      f"bounds each sphere with its own ρ: {per_sphere} pieces")
+      f"bounds each sphere's distances to the axes on this edge: {per_sphere} pieces")
 samples = q_start + (np.arange(per_sphere + 1) / per_sphere)[:, None] * (q_goal - q_start)
 moved = np.linalg.norm(np.diff(fitted.place(samples), axis=0), axis=-1).max()
 print(f"the farthest any sphere centre moves between two of urkin's samples: "
       f"{1000 * moved:.1f} mm (≤ {1000 * resolution:.0f} mm)")
 
 # %% [markdown]
-# One $\rho_j$ per joint is simple and safe. urkin keeps one per sphere and takes the largest
-# $\sum_j \rho_{sj} |\Delta q_j|$ over the spheres, which is never more. Either way the bound
-# is generous: the sphere centres really move a fraction of the resolution between two
-# samples, because the joints' arcs rarely all point the same way, and few centres are as far
-# from every axis as $\rho$ allows. The figure shows the clearance along the edge — free at
+# One $\rho_j$ per joint is simple and safe, and generous: few centres are as far from every
+# axis as $\rho$ allows. urkin bounds each sphere's distance $r_j$ to each axis *on this
+# edge*. $r_j$ does not depend on the joints up to $j$ (they carry the axis and the centre
+# together), only on the later ones, which change it at most at the rate
+# $T_j = \sum_{m > j} R_m |\Delta q_m|$ per unit of $s$, where $R_m$ bounds $r_m$. Measured at
+# the two ends, $r_j(s) \le \min(r_j(0) + s\,T_j,\ r_j(1) + (1 - s)\,T_j)$, which is at most
+# $R_j = \min(\rho_j, (r_j(0) + r_j(1) + T_j) / 2)$ anywhere on the edge. Working back from the
+# last joint (whose $T$ is zero), every $R_j$ is known when the next $T$ needs it, and
+# $\sum_j R_j |\Delta q_j|$, the largest over the spheres, replaces $D$: on random edges about
+# half the samples, with the same guarantee. Even so the centres really move a fraction of
+# the resolution between two samples, because the joints' arcs rarely all point the same
+# way. The figure shows the clearance along the edge — free at
 # both waypoints, in the shelf between them — and the samples urkin's check takes (it tests
 # them coarse to fine — the ends, the middle, the quarters … — and stops at the first
 # collision it finds).
