@@ -10,6 +10,7 @@ import pytest
 
 import urkin
 from urkin import planning
+from urkin.planning.spheres import MESH_GAP
 from urkin.transforms import random_rotations
 
 UR5 = urkin.robot("ur5")
@@ -171,9 +172,15 @@ def test_clearance_is_the_smallest_gap_of_every_pair(rng):
     env = TABLE.signed_distances(W[:, moving])[..., 0] - MODEL.radii[moving]
     i, j = MODEL.pairs.T
     own = np.linalg.norm(W[:, i] - W[:, j], axis=-1) - MODEL.radii[i] - MODEL.radii[j]
-    np.testing.assert_allclose(c.distance, np.minimum(env.min(1), own.min(1)), atol=1e-12)
+    (meshes,) = MODEL.meshes  # the forearm and wrist 2, tested on their tabulated meshes
+    tabulated = meshes.lower_bound(Q) - MESH_GAP
+    expected = np.minimum(np.minimum(env.min(1), own.min(1)), tabulated)
+    np.testing.assert_allclose(c.distance, expected, atol=1e-12)
     is_self = c.obstacle < 0
     np.testing.assert_array_equal(is_self, c.other >= 0)
+    assert np.any(c.distance == tabulated)  # the tabulated pair is the closest somewhere
+    for q in Q[c.distance == tabulated][:3]:
+        assert "the forearm and wrist 2 meshes" in planning.explain(MODEL, planning.Scene(), q)
 
 
 def test_explain_names_the_pair_and_the_depth():

@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike
 
 from urkin.kinematics import _joints
 from urkin.planning.scene import Scene
-from urkin.planning.spheres import SphereModel, _frames
+from urkin.planning.spheres import FRAME_NAMES, MESH_GAP, SphereModel, _frames
 
 __all__ = ["Clearance", "clearance", "edge_samples", "edges_free", "explain", "is_free"]
 
@@ -82,6 +82,8 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
             d = _points(model, F, rows, i) - _points(model, F, rows, j)
             reach = model.radii[i] + model.radii[j]
             hit[rows[np.einsum("ki,ki->k", d, d) <= reach * reach]] = True
+    for pair in model.meshes:  # links whose meshes are tabulated
+        hit |= pair.collides(Q)
     moving = groups.moving
     todo = np.flatnonzero(~hit)  # configurations not yet known to collide
     if len(scene) and len(moving) and len(todo):
@@ -330,6 +332,18 @@ def clearance(model: SphereModel, scene: Scene, q: ArrayLike) -> Clearance:
         sphere = np.where(closer, i[k], sphere)
         other = np.where(closer, j[k], -1)
         obstacle = np.where(closer, -1, obstacle)
+    for pair in model.meshes:  # the nearest spheres of the two links name the pair
+        gap = pair.lower_bound(Q) - MESH_GAP
+        closer = gap < best
+        if closer.any():
+            i, j = np.flatnonzero(model.frames == pair.frames[0]), model.frames == pair.frames[1]
+            j = np.flatnonzero(j)
+            d = np.linalg.norm(W[:, i, None] - W[:, None, j], axis=-1).reshape(n, -1)
+            k = d.argmin(axis=1)
+            best = np.where(closer, gap, best)
+            sphere = np.where(closer, i[k // len(j)], sphere)
+            other = np.where(closer, j[k % len(j)], other)
+            obstacle = np.where(closer, -1, obstacle)
     return Clearance(*(a.reshape(lead) for a in (best, sphere, obstacle, other)))
 
 
@@ -359,6 +373,16 @@ def explain(model: SphereModel, scene: Scene, q: ArrayLike) -> str:
         b = f"{kind} '{scene.names[int(c.obstacle)]}'"
     else:
         b = f"{model.names[int(c.other)]} (self-collision)"
+        pair = {model.frames[int(c.sphere)], model.frames[int(c.other)]}
+        if any(pair == set(meshes.frames) for meshes in model.meshes):
+            a, b = (FRAME_NAMES[f] for f in sorted(pair))
+            gap = (float(c.distance) + MESH_GAP) * 1000
+            if gap < MESH_GAP * 1000:
+                return (
+                    f"in collision: the {a} and {b} meshes come within {MESH_GAP * 1000:g} mm "
+                    "(self-collision)"
+                )
+            return f"free: the closest pair is the {a} and {b} meshes, at least {gap:.0f} mm apart"
     depth = float(c.distance) * 1000
     if depth <= 0:
         return f"in collision: {a} penetrates {b} by {-depth:.0f} mm"
@@ -446,7 +470,11 @@ def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -
     T = np.zeros(mid.shape[:2])
     for j in range(5, -1, -1):  # T = Σ_{m>j} |Δq_m| R_m
         T += dq[:, j, None] * np.minimum(rho[:, j], mid[..., j] + T / 2)
-    return T.max(axis=1)
+    travel = T.max(axis=1)
+    for pair in model.meshes:  # how far one tabulated mesh moves relative to the other
+        a = pair.joints[0]
+        np.maximum(travel, dq[:, a : a + 2] @ pair.reach, out=travel)
+    return travel
 
 
 def edges_free(
