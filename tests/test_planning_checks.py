@@ -10,7 +10,6 @@ import pytest
 
 import urkin
 from urkin import planning
-from urkin.planning.spheres import MESH_GAP
 from urkin.transforms import random_rotations
 
 UR5 = urkin.robot("ur5")
@@ -173,7 +172,7 @@ def test_clearance_is_the_smallest_gap_of_every_pair(rng):
     i, j = MODEL.pairs.T
     own = np.linalg.norm(W[:, i] - W[:, j], axis=-1) - MODEL.radii[i] - MODEL.radii[j]
     (meshes,) = MODEL.meshes  # the forearm and wrist 2, tested on their tabulated meshes
-    tabulated = meshes.lower_bound(Q) - MESH_GAP
+    tabulated = meshes.lower_bound(Q)
     expected = np.minimum(np.minimum(env.min(1), own.min(1)), tabulated)
     np.testing.assert_allclose(c.distance, expected, atol=1e-12)
     is_self = c.obstacle < 0

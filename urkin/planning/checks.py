@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike
 
 from urkin.kinematics import _joints
 from urkin.planning.scene import Scene
-from urkin.planning.spheres import FRAME_NAMES, MESH_GAP, SphereModel, _frames
+from urkin.planning.spheres import FRAME_NAMES, SphereModel, _frames
 
 __all__ = ["Clearance", "clearance", "edge_samples", "edges_free", "explain", "is_free"]
 
@@ -333,7 +333,7 @@ def clearance(model: SphereModel, scene: Scene, q: ArrayLike) -> Clearance:
         other = np.where(closer, j[k], -1)
         obstacle = np.where(closer, -1, obstacle)
     for pair in model.meshes:  # the nearest spheres of the two links name the pair
-        gap = pair.lower_bound(Q) - MESH_GAP
+        gap = pair.lower_bound(Q)
         closer = gap < best
         if closer.any():
             i, j = np.flatnonzero(model.frames == pair.frames[0]), model.frames == pair.frames[1]
@@ -376,12 +376,9 @@ def explain(model: SphereModel, scene: Scene, q: ArrayLike) -> str:
         pair = {model.frames[int(c.sphere)], model.frames[int(c.other)]}
         if any(pair == set(meshes.frames) for meshes in model.meshes):
             a, b = (FRAME_NAMES[f] for f in sorted(pair))
-            gap = (float(c.distance) + MESH_GAP) * 1000
-            if gap < MESH_GAP * 1000:
-                return (
-                    f"in collision: the {a} and {b} meshes come within {MESH_GAP * 1000:g} mm "
-                    "(self-collision)"
-                )
+            if float(c.distance) <= 0:
+                return f"in collision: the {a} and {b} meshes may touch (self-collision)"
+            gap = float(c.distance) * 1000
             return f"free: the closest pair is the {a} and {b} meshes, at least {gap:.0f} mm apart"
     depth = float(c.distance) * 1000
     if depth <= 0:

@@ -64,7 +64,6 @@ from urkin.robots import robot as _robot_by_name
 
 __all__ = [
     "FRAME_NAMES",
-    "MESH_GAP",
     "TOOL_FRAME",
     "MeshPair",
     "SphereModel",
@@ -79,10 +78,6 @@ TOOL_FRAME = 7
 
 #: The self-pair rule's sampling (see the module notes).
 _PAIR_SAMPLES, _PAIR_MARGIN, _PAIR_SEED = 20_000, 0.02, 0
-
-
-#: A tabulated pair of links is in collision where their meshes may come this close (m).
-MESH_GAP = 0.001
 
 
 @dataclass(frozen=True, eq=False)
@@ -141,8 +136,8 @@ class MeshPair:
         return best
 
     def collides(self, Q: np.ndarray) -> np.ndarray:
-        """Whether the meshes may come within :data:`MESH_GAP` at configurations ``Q``."""
-        return self.lower_bound(Q) < MESH_GAP
+        """Whether the meshes may touch at configurations ``Q`` (N, 6): (N,) bool."""
+        return self.lower_bound(Q) <= 0.0
 
 
 @dataclass(frozen=True, eq=False)
