@@ -9,15 +9,17 @@ and a Robotiq 2F-85 gripper, mounted 0.9144 m up a pedestal.  This module turns 
   ``base_link`` (DH frame 0 is ``base_link`` turned by π about z,
   :data:`urkin.robots.T_BASE_LINK_BASE`), joint limits from the URDF (±π on every joint);
   joint angles are the URDF's (UR's URDF joints read the controller's angles);
-* its spheres: urkin's, fitted to the arm's collision meshes (:func:`planning.sphere_model`),
-  plus VAMP's spheres of the sensor and the gripper (fingers open, as in every request),
-  carried into the flange frame (``tool0``) through the URDF's fixed joints;
+* its spheres: urkin's, fitted to the arm's collision meshes (:func:`planning.sphere_model`;
+  the forearm and wrist 2 are tested on their tabulated meshes), plus VAMP's spheres of the
+  sensor and the gripper (fingers open, as in every request), carried into the flange frame
+  (``tool0``) through the URDF's fixed joints;
 * scenes: every collision object's primitives (boxes and cylinders, with MoveIt's
   ``[height, radius]`` for cylinders about their pose's z axis), named by their ``id``;
 * a problem: the start's and the first goal constraint's six arm joints.
 
-A problem is *valid for urkin* when its start and goal are free under urkin's model (VAMP
-keeps those free under its own spheres, 689 of the 700).  ``problems()`` returns every
+A problem is *valid for urkin* when its start and goal are free under urkin's model: 673 of
+the 700 (VAMP keeps those free under its own spheres, 689; with the forearm and wrist 2
+tested on their spheres, urkin kept 553).  ``problems()`` returns every
 problem with ``reason`` saying why an invalid one is left out.
 """
 

@@ -132,11 +132,11 @@ def run_urkin(problem: Problem, seed: int, time_limit: float) -> Run:
 
 
 def reach_bounds() -> np.ndarray:
-    """R (6,): the most any sphere centre moves per radian of each joint, as urkin's edge
-    sampling bounds it, read back from ``planning.edge_samples`` (rounded up to 1 µm)."""
-    step = 1e-6
-    counts = [planning.edge_samples(MODEL, np.zeros(6), e, resolution=step) for e in np.eye(6)]
-    return np.array(counts) * step
+    """R (6,): the most any sphere centre moves per radian of each joint, in any
+    configuration: urkin's per-link bound ρ_j (``planning.checks._reach``), the largest over
+    the spheres.  (urkin's own edges use a tighter bound from each edge's two ends, which a
+    fixed joint-space segment length cannot.)"""
+    return planning.checks._reach(MODEL).max(axis=0)
 
 
 def segment_length() -> float:
@@ -220,8 +220,8 @@ def ompl_runner() -> tuple[Callable[[Problem, int, float], Run] | None, str]:
         f"OMPL {version('ompl')}: RRTConnect with its default range, 0.2 × the space's extent "
         f"{space.getMaximumExtent():.2f} rad = {0.2 * space.getMaximumExtent():.2f} rad (urkin: "
         f"steps of 0.5 rad in the largest joint), then simplifySolution().  Edge checks matched to "
-        f"urkin's: R_j, the most any sphere centre moves per radian of joint j (urkin's bound, "
-        f"read from planning.edge_samples), gives ‖R‖₂ = {RESOLUTION / segment:.3f} m/rad, so a "
+        f"urkin's guarantee: R_j, the most any sphere centre moves per radian of joint j in any "
+        f"configuration (urkin's per-link bound), gives ‖R‖₂ = {RESOLUTION / segment:.3f} m/rad, so a "
         f"joint-space segment of {segment * 1000:.2f} mrad moves no centre more than "
         f"{RESOLUTION * 1000:g} mm (Σ|Δq_j| R_j ≤ ‖Δq‖₂ ‖R‖₂): longest valid segment fraction "
         f"{fraction:.4g}.  Validity: a Python callback calling planning.is_free on one state."

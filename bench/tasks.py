@@ -87,9 +87,7 @@ def ompl_planner():
             bounds.setHigh(j, float(upper[j]))
         space.setBounds(bounds)
         # urkin's bound R_j (m per rad of joint j) → the longest segment moving no sphere 1 cm
-        reach = (
-            np.array([planning.edge_samples(model, np.zeros(6), e, 1e-6) for e in np.eye(6)]) * 1e-6
-        )
+        reach = planning.checks._reach(model).max(axis=0)  # in any configuration
         space.setLongestValidSegmentFraction(
             RESOLUTION / float(np.linalg.norm(reach)) / space.getMaximumExtent()
         )

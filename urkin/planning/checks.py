@@ -525,8 +525,8 @@ def _edges_free(model, scene, A, B, counts, prefix: bool = False, known: int = 0
     across all the edges, in batches, skipping the edges already found in collision.
 
     ``known`` ends are not checked again: 1, the starts are known free (a tree's node, a
-    waypoint); 2, both ends are.  The first batch holds one sample per edge (its far end, or
-    its middle), the one most likely to collide: a random extension mostly fails there.
+    waypoint); 2, both ends are.  The first batch holds the coarsest samples, at least one per
+    edge (its far end, or its middle): where a random extension mostly fails.
     With ``prefix``, only the free prefix of the edges matters (a chain of pieces: nothing
     after the first blocked piece is used): every edge after a blocked one is reported
     blocked without being checked further."""
