@@ -221,8 +221,8 @@ def ompl_runner() -> tuple[Callable[[Problem, int, float], Run] | None, str]:
         f"{space.getMaximumExtent():.2f} rad = {0.2 * space.getMaximumExtent():.2f} rad (urkin: "
         f"steps of 0.5 rad in the largest joint), then simplifySolution().  Edge checks matched to "
         f"urkin's guarantee: R_j, the most any sphere centre moves per radian of joint j in any "
-        f"configuration (urkin's per-link bound), gives ‖R‖₂ = {RESOLUTION / segment:.3f} m/rad, so a "
-        f"joint-space segment of {segment * 1000:.2f} mrad moves no centre more than "
+        f"configuration (urkin's per-link bound), gives ‖R‖₂ = {RESOLUTION / segment:.3f} m/rad, "
+        f"so a joint-space segment of {segment * 1000:.2f} mrad moves no centre more than "
         f"{RESOLUTION * 1000:g} mm (Σ|Δq_j| R_j ≤ ‖Δq‖₂ ‖R‖₂): longest valid segment fraction "
         f"{fraction:.4g}.  Validity: a Python callback calling planning.is_free on one state."
     )
