@@ -89,3 +89,16 @@ def test_trees_grow_past_their_first_capacity():
     goal = [6.0, -1.3, 1.3, -1.57, -1.57, 0]
     plan = planning.rrt_connect(MODEL, scene, start, goal, seed=22, max_iterations=2)
     assert plan.nodes > 2 * 2 + 3
+
+
+def test_drawing_targets_a_block_at_a_time_gives_the_plan_of_one_at_a_time(monkeypatch):
+    """rrt_connect draws its random targets and checks their new nodes a block at a time; a
+    tree that grows within the block is searched again for nearer nodes, so the iterations
+    are those of drawing one target at a time (the default blocks against blocks of one)."""
+    plans = []
+    for block in (planning.rrt._DRAWS, 1):
+        monkeypatch.setattr(planning.rrt, "_DRAWS", block)
+        plans.append(planning.rrt_connect(MODEL, WALL, START, GOAL, seed=3, simplify=False))
+    assert plans[0].iterations > 64  # the trees grew while blocks were pending
+    assert plans[0].iterations == plans[1].iterations and plans[0].nodes == plans[1].nodes
+    np.testing.assert_array_equal(plans[0].path, plans[1].path)

@@ -282,7 +282,7 @@ class _Draws:
     def __init__(self, model, scene, rng, lower, upper, step) -> None:
         self.model, self.scene, self.rng = model, scene, rng
         self.lower, self.upper, self.step = lower, upper, step
-        self.size = 4  # the block size doubles up to _DRAWS: easy problems end in a few
+        self.size = min(4, _DRAWS)  # the block size doubles up to _DRAWS: easy problems end soon
         self.queue: list[tuple] = []
 
     def _fill(self, trees: list[_Tree], left: int) -> None:
