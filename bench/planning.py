@@ -16,7 +16,7 @@ straight edge is not (except in ``empty``, where no draw's is: that family times
 fixed cost).  Both planners get the same problems, the same seeds (1, 2, …) and the same time limit:
 
 * urkin: ``planning.rrt_connect(model, scene, start, goal, seed=s, time_limit=…)``, which
-  shortcuts its path and re-checks it at a quarter of its 1 cm resolution before returning;
+  shortcuts its path and re-checks it at half its 1 cm resolution before returning;
 * OMPL (``pip install ompl``; skipped with a note when missing): ``RRTConnect`` with default
   settings on a ``RealVectorStateSpace(6)`` bounded by the robot's joint limits, then
   ``SimpleSetup.simplifySolution()``; its state validity checker is a Python callback calling

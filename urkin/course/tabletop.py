@@ -191,7 +191,7 @@ class StackPrompt:
     >>> print(prompt.submit("0.22 0.15"))
     Not there: overlaps obstacle post by 45 mm. Type another x y.
     >>> print(prompt.submit("0.25 -0.05").splitlines()[0])
-    Done: A at (0.250, -0.050) on the table, B on A; 16 phases, 21.5 s of motion.
+    Done: A at (0.250, -0.050) on the table, B on A; 16 phases, 21.0 s of motion.
     """
 
     def __init__(

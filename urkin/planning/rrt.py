@@ -5,10 +5,13 @@ Two trees grow towards each other: one from the start, one from every goal confi
 draws a configuration within the joint limits, *extends* one tree by at most ``step`` radians
 towards it, then *connects* the other tree to the new node: the whole straight run to it, cut
 into pieces no longer than ``step``, is checked in one batched edge check and the free prefix
-is added.  The trees then swap roles.  The trees live in preallocated arrays; the nearest node
-is found over the whole tree with one array operation.  Every edge is checked with
+is added (the pieces' ends first, in one batch).  The trees then swap roles.  The random
+targets are drawn a block at a time and their new nodes checked in one batch; a tree that grew
+meanwhile is searched again, so the plan is that of drawing one target at a time.  The trees
+live in preallocated arrays; the nearest node is found over the whole tree with one array
+operation.  Every edge is checked with
 :func:`urkin.planning.edges_free` at ``resolution`` (no sphere centre moves further between
-samples), and the final path once more at a quarter of it.
+samples), and the final path once more at half of it.
 """
 
 from __future__ import annotations
