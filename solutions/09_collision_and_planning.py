@@ -344,12 +344,14 @@ for name, q in configurations.items():
 # distance of the closest pair — a sphere and an obstacle, or two spheres of the arm itself
 # (self-collision: the model lists which pairs of spheres can meet) — and `explain` puts it in
 # a sentence. One pair of links is the exception: the forearm and wrist 2 sit so close that
-# their spheres, which bulge 2–3 cm beyond the meshes, would overlap in configurations where
-# the links are a centimetre apart. Their relative pose depends on joints 4 and 5 only, so
-# the model carries a table of their meshes' exact distance over those two joints, one value
-# per degree, and tests that pair on it instead (`planning.spheres.MeshPair`). Two of the goal pose's configurations are free; in the others the arm reaches
-# down into the table. And the configuration halfway along the straight joint-space line from
-# the start to the goal has the wrist in the shelf's side — keep it in mind for section 3.
+# their spheres, which bulge 2–3 cm beyond the meshes, overlap where the links are a
+# centimetre apart (on the UR5 they would call almost a quarter of the free configurations
+# self-colliding). Their relative pose depends on joints 4 and 5 only, so the model carries a
+# table of their meshes' exact distance over those two joints, one value per degree, and
+# tests that pair on it instead (`planning.spheres.MeshPair`). Two of the goal pose's
+# configurations are free; in the others the arm reaches down into the table. And the
+# configuration halfway along the straight joint-space line from the start to the goal has
+# the wrist in the shelf's side — keep it in mind for section 3.
 
 # %%
 _ = urkin.plot.sphere_models_figure(
