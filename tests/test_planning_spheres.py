@@ -139,6 +139,8 @@ def test_tabulated_meshes_are_never_closer_than_their_table_says(name):
     rng = np.random.default_rng(31)
     Q = urkin.robots.random_configurations(model.robot, 4000, rng)
     bound = pair.lower_bound(Q)
+    wide = rng.uniform(-2 * np.pi, 2 * np.pi, (20_000, 6))  # the verdict skips clear cells
+    np.testing.assert_array_equal(pair.collides(wide), pair.lower_bound(wide) <= 0.0)
     near = np.flatnonzero(bound < 0.01)
     pick = np.concatenate([near[:25], np.flatnonzero(bound >= 0.01)[:25]])
     assert len(near) >= 10

@@ -109,35 +109,58 @@ class MeshPair:
     def __post_init__(self) -> None:
         self.distance.setflags(write=False)
         self.reach.setflags(write=False)
+        # a cell between four nodes is clear when even its point farthest from every node
+        # (half a step in each joint from the nearest) has a positive lower bound
+        D = self.distance
+        corners = np.minimum(
+            np.minimum(D, np.roll(D, -1, 0)), np.roll(np.minimum(D, np.roll(D, -1, 0)), -1, 1)
+        )
+        clear = corners - self._slope().sum() / 2 > 0.0
+        clear.setflags(write=False)
+        object.__setattr__(self, "_clear", clear)
 
     @property
     def joints(self) -> tuple[int, int]:
         """The two joints' indices into a configuration (0-based)."""
         return self.frames[0], self.frames[0] + 1
 
+    def _slope(self) -> np.ndarray:
+        """How much the distance can fall per grid step of each joint (m)."""
+        return self.reach * (2 * math.pi / len(self.distance))
+
+    def _cells(self, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The grid cell of each configuration (its lower nodes, (N, 2)) and the way past
+        them, in steps (N, 2)."""
+        step = 2 * math.pi / len(self.distance)
+        x = np.mod(Q[:, self.joints[0] : self.joints[0] + 2] + math.pi, 2 * math.pi) / step
+        low = np.floor(x)
+        return low.astype(np.intp) % len(self.distance), x - low
+
     def lower_bound(self, Q: np.ndarray) -> np.ndarray:
         """A lower bound of the meshes' distance at configurations ``Q`` (N, 6): (N,) metres
         (0 or less where they may touch)."""
-        n = len(self.distance)
-        step = 2 * math.pi / n
-        x = np.mod(Q[:, self.joints[0] : self.joints[0] + 2] + math.pi, 2 * math.pi) / step
-        low = np.floor(x)
-        after = x - low  # (N, 2) the way past the lower node, in steps
-        i = low.astype(np.intp) % n
-        j = (i + 1) % n
-        slope = self.reach * step  # the fall per step of each joint
-        best = self.distance[i[:, 0], i[:, 1]] - after @ slope
-        for a, b, da, db in (
-            (j[:, 0], i[:, 1], 1 - after[:, 0], after[:, 1]),
-            (i[:, 0], j[:, 1], after[:, 0], 1 - after[:, 1]),
-            (j[:, 0], j[:, 1], 1 - after[:, 0], 1 - after[:, 1]),
-        ):
-            np.maximum(best, self.distance[a, b] - (da * slope[0] + db * slope[1]), out=best)
-        return best
+        i, after = self._cells(Q)
+        j = (i + 1) % len(self.distance)
+        rows = np.column_stack([i[:, 0], j[:, 0], i[:, 0], j[:, 0]])  # the four nodes
+        cols = np.column_stack([i[:, 1], i[:, 1], j[:, 1], j[:, 1]])
+        slope = self._slope()
+        fall = np.abs(_FIRST - after[:, :1]) * slope[0]
+        fall += np.abs(_SECOND - after[:, 1:]) * slope[1]
+        return (self.distance[rows, cols] - fall).max(axis=1)
 
     def collides(self, Q: np.ndarray) -> np.ndarray:
-        """Whether the meshes may touch at configurations ``Q`` (N, 6): (N,) bool."""
-        return self.lower_bound(Q) <= 0.0
+        """Whether the meshes may touch at configurations ``Q`` (N, 6): (N,) bool (the
+        bound is computed only in the cells that are not clear)."""
+        i, _ = self._cells(Q)
+        maybe = ~self._clear[i[:, 0], i[:, 1]]
+        hit = np.zeros(len(Q), dtype=bool)
+        if maybe.any():
+            hit[maybe] = self.lower_bound(Q[maybe]) <= 0.0
+        return hit
+
+
+#: Each of the four nodes around a point, as steps along the first and the second joint.
+_FIRST, _SECOND = np.array([0.0, 1.0, 0.0, 1.0]), np.array([0.0, 0.0, 1.0, 1.0])
 
 
 @dataclass(frozen=True, eq=False)
