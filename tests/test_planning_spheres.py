@@ -180,3 +180,13 @@ def test_hand_built_models_check_their_rows():
         planning.SphereModel.from_rows(ur5, [[1, 0, 0, 0, 0.1], [4, 0, 0, 0, 0.1]], [[0, 5]])
     with pytest.raises(TypeError, match="robot must be a urkin Robot"):
         planning.SphereModel.from_rows("ur5", [[1, 0, 0, 0, 0.1]])
+
+
+def test_mesh_pairs_refuse_tables_they_cannot_use():
+    fine = np.zeros((4, 4)), np.zeros(2)
+    with pytest.raises(ValueError, match=r"frames must be \(a, a \+ 2\)"):
+        planning.spheres.MeshPair((3, 4), *fine)
+    with pytest.raises(ValueError, match=r"distance must be \(n, n\)"):
+        planning.spheres.MeshPair((3, 5), np.zeros((4, 3)), np.zeros(2))
+    with pytest.raises(ValueError, match="must be finite"):
+        planning.spheres.MeshPair((3, 5), np.full((4, 4), np.nan), np.zeros(2))

@@ -67,11 +67,10 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
     F4 = _frames(model.robot, Q)  # (N, 8, 4, 4)
     F = F4[..., :3, :]
     groups = _groups(model)
-    flat = F4.reshape(n, 128)
-    G = (flat @ groups.place).reshape(n, -1, 3)  # (N, g, 3), as _place
+    G = _place(F4, groups.place)  # (N, g, 3)
     if len(groups.pairs):
         gp = len(groups.pairs)
-        d = flat @ groups.apart  # (N, 3 gp): the pairs' x, then y, then z differences
+        d = F4.reshape(n, 128) @ groups.apart  # (N, 3 gp): the pairs' x, then y, then z differences
         d *= d
         d2 = d[:, :gp] + d[:, gp : 2 * gp]
         d2 += d[:, 2 * gp :]
@@ -271,10 +270,12 @@ class Clearance:
     ----------
     distance : ndarray
         The smallest signed distance between a sphere and an obstacle or a paired sphere
-        (metres; negative: minus the depth of the deepest penetration).  ``inf`` when there
-        is nothing to test.
+        (metres; negative: minus the depth of the deepest penetration), or the lower bound of
+        a tabulated mesh pair's distance (:class:`~urkin.planning.spheres.MeshPair`; 0 or less
+        where the meshes may touch).  ``inf`` when there is nothing to test.
     sphere : ndarray of int
-        The arm's sphere of that pair.
+        The arm's sphere of that pair (for a mesh pair: the nearest sphere of the first link,
+        ``other`` that of the second).
     obstacle : ndarray of int
         The obstacle's index in ``scene.names``, or −1 when the pair is two of the arm's spheres.
     other : ndarray of int
@@ -336,8 +337,7 @@ def clearance(model: SphereModel, scene: Scene, q: ArrayLike) -> Clearance:
         gap = pair.lower_bound(Q)
         closer = gap < best
         if closer.any():
-            i, j = np.flatnonzero(model.frames == pair.frames[0]), model.frames == pair.frames[1]
-            j = np.flatnonzero(j)
+            i, j = (np.flatnonzero(model.frames == f) for f in pair.frames)
             d = np.linalg.norm(W[:, i, None] - W[:, None, j], axis=-1).reshape(n, -1)
             k = d.argmin(axis=1)
             best = np.where(closer, gap, best)

@@ -107,6 +107,17 @@ class MeshPair:
     reach: np.ndarray
 
     def __post_init__(self) -> None:
+        a, b = self.frames
+        n = len(self.distance)
+        if b != a + 2 or not 0 <= a <= 4:
+            raise ValueError(f"frames must be (a, a + 2), 0 ≤ a ≤ 4; got {self.frames}")
+        if self.distance.shape != (n, n) or n < 2 or self.reach.shape != (2,):
+            raise ValueError(
+                f"distance must be (n, n) and reach (2,); got {self.distance.shape} and "
+                f"{self.reach.shape}"
+            )
+        if not (np.isfinite(self.distance).all() and np.all(self.reach >= 0)):
+            raise ValueError("distance must be finite and reach non-negative (metres)")
         self.distance.setflags(write=False)
         self.reach.setflags(write=False)
         # a cell between four nodes is clear when even its point farthest from every node
