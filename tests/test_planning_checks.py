@@ -212,6 +212,71 @@ def test_edges_catch_a_collision_between_free_ends():
     np.testing.assert_array_equal(result, [True, False])
 
 
+CLUTTER = planning.Scene(
+    boxes=[
+        planning.Box([0.45, 0.0, 0.2], [0.3, 0.02, 0.6], name="shelf side"),
+        planning.Box([0.4, 0.25, 0.35], [0.3, 0.4, 0.02], name="shelf"),
+        planning.Box([0, 0, -0.06], [2, 2, 0.1], name="table"),
+    ],
+    cylinders=[planning.Cylinder([0.3, -0.3, 0.1], [0, 0, 1], 0.03, 0.14)],
+    spheres=[planning.Sphere([-0.3, 0.3, 0.4], 0.1)],
+    capsules=[planning.Capsule([-0.4, -0.2, 0.1], [-0.2, -0.4, 0.5], 0.03)],
+)
+
+
+def test_grown_checks_are_checks_of_grown_spheres(rng):
+    """Grown by a margin, a configuration counts as colliding when any grown sphere touches an
+    obstacle or a grown paired sphere: the verdicts of a model with larger radii."""
+    rows = np.column_stack([MODEL.frames, MODEL.centres, MODEL.radii])
+    Q = np.concatenate([rng.uniform(-np.pi, np.pi, (2000, 6)), rng.normal(UP, 0.6, (2000, 6))])
+    for margin in (0.0, 0.002, 0.005):  # the shoulder's sphere is 6 mm above the table
+        grown = rows.copy()
+        grown[:, 4] += margin
+        bigger = planning.SphereModel.from_rows(UR5, grown, pairs=MODEL.pairs)
+        plain = planning.SphereModel.from_rows(UR5, rows, pairs=MODEL.pairs)
+        got = planning.checks._collides(plain, CLUTTER, Q, np.full((len(Q), len(plain)), margin))
+        c = planning.clearance(bigger, CLUTTER, Q).distance
+        clear = np.abs(c) > 1e-9
+        np.testing.assert_array_equal(got[clear], c[clear] <= 0)
+        assert 0.1 < got.mean() < 0.9
+    # a tabulated mesh pair counts within the margin of its lower bound
+    (pair,) = MODEL.meshes
+    bound = pair.lower_bound(Q)
+    for margin in (0.0, 0.01, 0.03):
+        np.testing.assert_array_equal(pair.collides(Q, np.full(len(Q), margin)), bound <= margin)
+
+
+@pytest.mark.parametrize("known", [0, 1, 2])
+def test_edge_verdicts_are_those_of_every_sample(rng, known):
+    """edges_free proves blocks of an edge free with grown spheres and checks the rest: its
+    verdicts are exactly those of checking every sample, on edges in a cluttered scene that
+    are mostly free, mostly blocked, or graze an obstacle, long and short."""
+    Q = rng.normal(UP, 0.8, (4000, 6))
+    Q = Q[planning.is_free(MODEL, CLUTTER, Q)]
+    A = Q[:300]
+    steps = rng.normal(size=A.shape)
+    steps *= rng.choice([0.02, 0.3, 1.0, 2.5], (len(A), 1)) / np.linalg.norm(steps, axis=1)[:, None]
+    B = A + steps
+    counts = planning.edge_samples(MODEL, A, B)
+    every = np.array(
+        [
+            planning.is_free(MODEL, CLUTTER, a + np.linspace(0, 1, n + 1)[:, None] * (b - a)).all()
+            for a, b, n in zip(A, B, counts)
+        ]
+    )
+    keep = np.ones(len(A), dtype=bool)
+    if known == 2:  # the function trusts known ends: give it only edges whose ends are free
+        keep = planning.is_free(MODEL, CLUTTER, B)
+    travel = planning.checks._travels(MODEL, A, B, planning.checks.RESOLUTION)
+    got = planning.checks._edges_free(
+        MODEL, CLUTTER, A[keep], B[keep], travel[keep], planning.checks.RESOLUTION, known=known
+    )
+    np.testing.assert_array_equal(got, every[keep])
+    assert 0.2 < every[keep].mean() < 0.99 and not every[keep].all()
+    one = [planning.edges_free(MODEL, CLUTTER, a, b) for a, b in zip(A[:40], B[:40])]
+    np.testing.assert_array_equal(one, every[:40])
+
+
 def _mounted_gripper_model() -> planning.SphereModel:
     """The UR5's spheres on an arm mounted on a tilted base, with two spheres on a tool."""
     from urkin.transforms import make_transform

@@ -19,7 +19,11 @@ its own frame's origin plus the lengths ``√(a_i² + d_i²)`` of the links in b
 most what the distances at the edge's two ends allow, given how fast the joints after ``j``
 can change it (:func:`_travel`; about half the samples of ``ρ_j`` alone on random edges);
 :func:`edge_samples` gives the count.  A collision missed between two free samples is
-therefore at most ``resolution / 2`` deep.  The
+therefore at most ``resolution / 2`` deep.  Most samples need no check of their own: the
+middle sample of each block of four intervals is checked with every sphere grown by the most
+that sphere can move over half the block, and where the grown arm is free the whole block is
+proven free, between its samples too (:func:`_edges_free`); only the samples of the other
+blocks are checked one by one.  The verdicts are those of checking every sample.  The
 samples are taken coarse to fine (both ends, the middle, the quarters, …) across all the edges
 at once, so a collision anywhere on any edge is usually found in the first batches.
 """
@@ -52,8 +56,14 @@ def _check(model: SphereModel, scene: Scene) -> None:
         raise TypeError(f"scene must be a planning.Scene; got {type(scene).__name__}")
 
 
-def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
+def _collides(
+    model: SphereModel, scene: Scene, Q: np.ndarray, grow: np.ndarray | None = None
+) -> np.ndarray:
     """Whether each configuration of ``Q`` (N, 6), checked, is in collision: (N,) bool.
+
+    With ``grow`` (N, S + P), each sphere's radius grows by its column, and a tabulated mesh
+    pair collides when its distance may be within its column (:func:`_edges_free` proves
+    blocks of an edge free with it).
 
     Two phases.  The groups' bounding balls (:func:`_groups`) are tested first, against the
     scene and against each other; only the spheres of a group whose ball touches an obstacle,
@@ -68,26 +78,38 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
     F = F4[..., :3, :]
     groups = _groups(model)
     G = _place(F4, groups.place)  # (N, g, 3)
+    if grow is not None:  # a ball grows by the most any of its spheres grows
+        grow_groups = grow[:, groups.filled].max(axis=2)  # (N, g)
     if len(groups.pairs):
         gp = len(groups.pairs)
         d = F4.reshape(n, 128) @ groups.apart  # (N, 3 gp): the pairs' x, then y, then z differences
         d *= d
         d2 = d[:, :gp] + d[:, gp : 2 * gp]
         d2 += d[:, 2 * gp :]
-        near = d2 <= groups.reach2
+        if grow is None:
+            near = d2 <= groups.reach2
+        else:
+            reach = groups.reach + grow_groups[:, groups.pairs[:, 0]]
+            reach += grow_groups[:, groups.pairs[:, 1]]
+            near = d2 <= reach * reach
         if near.any():
             rows, k = np.nonzero(near[:, groups.pair_group])
             i, j = model.pairs[k, 0], model.pairs[k, 1]
             d = _points(model, F, rows, i) - _points(model, F, rows, j)
             reach = model.radii[i] + model.radii[j]
+            if grow is not None:
+                reach = reach + grow[rows, i] + grow[rows, j]
             hit[rows[np.einsum("ki,ki->k", d, d) <= reach * reach]] = True
-    for pair in model.meshes:  # links whose meshes are tabulated
-        hit |= pair.collides(Q)
+    for p, pair in enumerate(model.meshes):  # links whose meshes are tabulated
+        hit |= pair.collides(Q, None if grow is None else grow[:, len(model) + p])
     moving = groups.moving
     todo = np.flatnonzero(~hit)  # configurations not yet known to collide
     if len(scene) and len(moving) and len(todo):
         balls = G[todo[:, None], moving].reshape(-1, 3)
-        touch = scene._touches(balls, _repeated(groups.radii[moving], len(todo)))
+        radii = _repeated(groups.radii[moving], len(todo))
+        if grow is not None:
+            radii = radii + grow_groups[todo[:, None], moving].reshape(-1)
+        touch = scene._touches(balls, radii)
         rows, k = np.nonzero(touch.reshape(len(todo), len(moving)))
         rows = todo[rows]
         if len(rows):
@@ -95,7 +117,10 @@ def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
             valid = members >= 0
             rows = np.repeat(rows, valid.sum(axis=1))
             spheres = members[valid]
-            touch = scene._touches(_points(model, F, rows, spheres), model.radii[spheres])
+            radii = model.radii[spheres]
+            if grow is not None:
+                radii = radii + grow[rows, spheres]
+            touch = scene._touches(_points(model, F, rows, spheres), radii)
             hit[rows[touch]] = True
     return hit
 
@@ -149,22 +174,25 @@ class _Groups:
     :func:`_collides`.
 
     ``frames``, ``centres``, ``radii``: each group's ball, fixed in its frame; ``members``
-    (g, m): the spheres of each group, padded with −1; ``moving``: the groups not on the base;
+    (g, m): the spheres of each group, padded with −1 (``filled``: padded with the group's
+    first sphere); ``moving``: the groups not on the base;
     ``pairs`` (gp, 2): group pairs holding at least one self-collision pair of spheres;
     ``pair_group`` (P,): the group pair of each sphere pair; ``place``: the balls' placing
     matrix (:func:`_placing_matrix`); ``apart`` (128, 3 gp): the placing matrix of the
-    differences of the group pairs' centres, coordinate by coordinate; ``reach2``: the
-    squared sums of their radii."""
+    differences of the group pairs' centres, coordinate by coordinate; ``reach``: the sums
+    of their radii, ``reach2`` their squares."""
 
     frames: np.ndarray
     centres: np.ndarray
     radii: np.ndarray
     members: np.ndarray
+    filled: np.ndarray
     moving: np.ndarray
     pairs: np.ndarray
     pair_group: np.ndarray
     place: np.ndarray
     apart: np.ndarray
+    reach: np.ndarray
     reach2: np.ndarray
 
 
@@ -215,11 +243,13 @@ def _build_groups(model: SphereModel) -> _Groups:
         centres,
         radii,
         members,
+        np.where(members >= 0, members, members[:, :1]),
         np.flatnonzero(frames > 0),
         pairs,
         pair_group.reshape(-1),
         place,
         np.ascontiguousarray(apart.reshape(128, -1)),
+        radii[pairs[:, 0]] + radii[pairs[:, 1]],
         (radii[pairs[:, 0]] + radii[pairs[:, 1]]) ** 2,
     )
 
@@ -434,20 +464,28 @@ def _edge_ends(qa: ArrayLike, qb: ArrayLike) -> tuple[np.ndarray, np.ndarray, tu
 
 
 def _intervals(model, A, B, resolution) -> np.ndarray:
+    travel = _travels(model, A, B, resolution).max(axis=1, initial=0.0)
+    return np.maximum(1, np.ceil(travel / resolution)).astype(np.intp)
+
+
+def _travels(model, A, B, resolution) -> np.ndarray:
+    """:func:`_travel` of the edges ``A`` → ``B`` (K, S + P), after checking ``resolution``."""
     if not resolution > 0:
         raise ValueError(f"resolution must be a positive distance (m); got {resolution}")
     if not len(model):
-        return np.ones(len(A), dtype=np.intp)
+        return np.zeros((len(A), len(model.meshes)))
     rho = model.__dict__.get("_rho")
     if rho is None:
         rho = _reach(model)
         object.__setattr__(model, "_rho", rho)
-    return np.maximum(1, np.ceil(_travel(model, rho, A, B) / resolution)).astype(np.intp)
+    return _travel(model, rho, A, B)
 
 
 def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """A bound on the speed of every sphere centre along each edge, ``A`` → ``B`` (K, 6): (K,)
-    metres per edge, the most any centre can move along it (module notes).
+    """Bounds on the speeds along each edge ``A`` → ``B`` (K, 6), in metres per edge: of each
+    sphere centre (the most it can move along the edge; module notes), then of each
+    tabulated mesh pair (the most its second link's mesh moves relative to the first's):
+    (K, S + P); the largest of a row bounds every centre's and every mesh's move.
 
     The distance ``r_j`` of a centre from joint ``j``'s axis depends only on the joints after
     ``j``, so along the edge it changes at most at the rate ``T_j = Σ_{m>j} |Δq_m| R_m`` where
@@ -467,11 +505,9 @@ def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -
     T = np.zeros(mid.shape[:2])
     for j in range(5, -1, -1):  # T = Σ_{m>j} |Δq_m| R_m
         T += dq[:, j, None] * np.minimum(rho[:, j], mid[..., j] + T / 2)
-    travel = T.max(axis=1)
-    for pair in model.meshes:  # how far one tabulated mesh moves relative to the other
-        a = pair.joints[0]
-        np.maximum(travel, dq[:, a : a + 2] @ pair.reach, out=travel)
-    return travel
+    # how far one tabulated mesh moves relative to the other
+    relative = [dq[:, p.joints[0] : p.joints[0] + 2] @ p.reach for p in model.meshes]
+    return np.column_stack([T, *relative]) if relative else T
 
 
 def edges_free(
@@ -511,58 +547,118 @@ def edges_free(
     """
     _check(model, scene)
     A, B, lead = _edge_ends(qa, qb)
-    free = _edges_free(model, scene, A, B, _intervals(model, A, B, resolution))
+    free = _edges_free(model, scene, A, B, _travels(model, A, B, resolution), resolution)
     return bool(free[0]) if lead == () else free.reshape(lead)
 
 
-#: Samples in the first batch of an edge check (at least one per edge), the smallest second
-#: batch and how much each batch is larger than the one before.
-_FIRST, _BATCH, _GROWTH = 8, 64, 4
+#: Samples in the first batch of an edge check (at least one per edge), the smallest batch
+#: after it and how much each batch is larger than the one before.
+_FIRST, _BATCH, _GROWTH = 16, 64, 4
+#: Intervals of an edge one sample proves free (even): checked with every sphere grown by the
+#: most a centre can move over half as many intervals, the block's middle sample stands for
+#: the whole block.
+_BLOCK = 4
 
 
-def _edges_free(model, scene, A, B, counts, prefix: bool = False, known: int = 0) -> np.ndarray:
-    """Edges (K, 6) → (K,) free, each cut into ``counts`` intervals; coarse samples first,
-    across all the edges, in batches, skipping the edges already found in collision.
+def _edges_free(
+    model,
+    scene,
+    A,
+    B,
+    speeds,
+    resolution,
+    prefix: bool = False,
+    known: int = 0,
+    prove: bool = True,
+) -> np.ndarray:
+    """Edges (K, 6) → (K,) free: every sample free, with each edge cut into
+    ``n = ceil(travel / resolution)`` intervals (``speeds`` (K, S + P): :func:`_travel`;
+    ``travel``, the largest of a row).
+
+    Two passes, each coarse samples first across all the edges, in batches, skipping the edges
+    already found in collision.  The first pass checks the middle sample of every block of
+    ``_BLOCK`` intervals with each sphere grown by the most it can move over half a block
+    (``_BLOCK / 2 · speed / n``; a mesh pair's distance likewise): where that grown model is
+    free, no sphere can reach an obstacle or another sphere anywhere on the block (a pair's
+    gap shrinks by at most what both spheres move), so the block's samples are all free.  It
+    also checks the samples after the last whole block and the ends.  The second pass checks
+    the samples of the blocks the first could not prove free.  The verdicts are those of
+    checking every sample, with far fewer checks where the arm keeps clear of everything.
 
     ``known`` ends are not checked again: 1, the starts are known free (a tree's node, a
-    waypoint); 2, both ends are.  The first batch holds the coarsest samples, at least one per
-    edge (its far end, or its middle): where a random extension mostly fails.
-    With ``prefix``, only the free prefix of the edges matters (a chain of pieces: nothing
-    after the first blocked piece is used): every edge after a blocked one is reported
-    blocked without being checked further."""
-    if len(A) == 1:  # one edge (an extension): its samples, coarse first
-        n = int(counts[0])
-        index = np.arange(1 if known else 0, n if known == 2 else n + 1)
-        index = index[np.argsort(_depth(index, n), kind="stable")]
-        edge, t = np.zeros(len(index), dtype=np.intp), index / n
-    else:
-        samples = counts + 1
-        edge = np.repeat(np.arange(len(A)), samples)
-        index = np.arange(len(edge)) - np.repeat(np.cumsum(samples) - samples, samples)
-        if known:
-            keep = (index > 0) & ((index < counts[edge]) if known == 2 else True)
-            edge, index = edge[keep], index[keep]
-        n = counts[edge]
-        order = np.lexsort((index, edge, _depth(index, n)))  # coarse first, across the edges
-        edge, t = edge[order], index[order] / n[order]
+    waypoint); 2, both ends are.  With ``prefix``, only the free prefix of the edges matters
+    (a chain of pieces: nothing after the first blocked piece is used): every edge after a
+    blocked one is reported blocked without being checked further.  Without ``prove``, one
+    pass checks every sample (a rough look at a coarse resolution, where grown spheres would
+    prove little)."""
+    counts = np.maximum(1, np.ceil(speeds.max(axis=1, initial=0.0) / resolution))
+    counts = counts.astype(np.intp)
+    samples = counts + 1
+    first = np.cumsum(samples) - samples  # each edge's first sample in the flat arrays
+    edge = np.repeat(np.arange(len(A)), samples)
+    index = np.arange(len(edge)) - first[edge]
+    n = counts[edge]
+    whole = (counts // _BLOCK)[edge] * _BLOCK if prove else np.zeros(len(edge), dtype=np.intp)
+    middle = (index % _BLOCK == _BLOCK // 2) & (index < whole)
+    known_free = (index == 0) if known else np.zeros(len(edge), dtype=bool)
+    if known == 2:
+        known_free |= index == n
+    plain = ((index > whole) | (index == 0) | (index == n)) & ~known_free
     free = np.ones(len(A), dtype=bool)
-    start, size = 0, max(len(A), _FIRST)  # the coarsest samples, then batches from _BATCH
-    while start < len(edge):
-        e, s = edge[start : start + size], t[start : start + size]
+    # the first pass: the blocks' middles, grown, and the other samples it must check
+    pick = np.flatnonzero(middle | plain)
+    half = np.where(middle[pick], (_BLOCK / 2) * (1 + 1e-9), 0.0) / n[pick]
+    grown = speeds[edge[pick]] * half[:, None]  # (picked, S + P)
+    hit = _check_samples(model, scene, A, B, edge, index, n, pick, grown, free, prefix)
+    if not free.any():
+        return free
+    proven = known_free.copy()
+    proven[pick[~hit]] = True  # free, and for a middle: its whole block
+    done = pick[middle[pick] & ~hit]
+    for offset in range(1, _BLOCK // 2 + 1):
+        proven[done - offset] = True
+        proven[done + offset] = True
+    # the second pass: every sample not proven free, on the edges still free
+    rest = np.flatnonzero(~proven & free[edge])
+    if len(rest):
+        _check_samples(model, scene, A, B, edge, index, n, rest, None, free, prefix)
+    return free
+
+
+def _check_samples(model, scene, A, B, edge, index, n, pick, grown, free, prefix) -> np.ndarray:
+    """Check the samples ``pick`` (of the flat ``edge``, ``index``, ``n`` arrays), coarse
+    first, in batches, each grown by ``grown`` (or not at all); samples not grown that collide
+    mark their edges blocked in ``free``.  Returns which of ``pick`` were hit (False for
+    those skipped because their edge was already blocked)."""
+    order = np.lexsort((index[pick], edge[pick], _depth(index[pick], n[pick])))
+    pick = pick[order]
+    grow = None if grown is None else grown[order]
+    plain = None if grown is None else ~grown.any(axis=1)[order]
+    hit = np.zeros(len(pick), dtype=bool)
+    start, size = 0, max(int(free.sum()), _FIRST)
+    while start < len(pick):
+        batch = np.arange(start, min(start + size, len(pick)))
         start += size
         size = max(_BATCH, _GROWTH * size)
-        live = free[e]
-        if not live.any():
+        batch = batch[free[edge[pick[batch]]]]
+        if not len(batch):
             continue
-        e, s = e[live], s[live]
-        Q = A[e] + s[:, None] * (B[e] - A[e])
-        hit = _collides(model, scene, Q)
-        free[e[hit]] = False
-        if prefix and hit.any():
-            free[e[hit].min() :] = False
-        if not free.any():
-            break
-    return free
+        s = pick[batch]
+        e = edge[s]
+        t = index[s] / n[s]
+        Q = A[e] + t[:, None] * (B[e] - A[e])
+        found = _collides(model, scene, Q, None if grow is None else grow[batch])
+        hit[batch] = found
+        blocked = found if grow is None else found & plain[batch]
+        if blocked.any():
+            free[e[blocked]] = False
+            if prefix:
+                free[e[blocked].min() :] = False
+            if not free.any():
+                break
+    out = np.zeros(len(pick), dtype=bool)
+    out[order] = hit
+    return out
 
 
 def _depth(index: np.ndarray, n: np.ndarray) -> np.ndarray:

@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike
 
 from urkin.analytic_ik import ik_analytic
 from urkin.kinematics import _joints
-from urkin.planning.checks import RESOLUTION, _check, _collides, _edges_free, _intervals, explain
+from urkin.planning.checks import RESOLUTION, _check, _collides, _edges_free, _travels, explain
 from urkin.planning.scene import Scene
 from urkin.planning.spheres import SphereModel
 
@@ -175,16 +175,9 @@ def rrt_connect(
     ]
     goal_indices = np.flatnonzero(free)
     # the straight edge first: often enough in an open scene
-    direct = _edges_free(
-        model,
-        scene,
-        np.repeat(q_start[None], len(goal_indices), 0),
-        G[goal_indices],
-        _intervals(
-            model, np.repeat(q_start[None], len(goal_indices), 0), G[goal_indices], resolution
-        ),
-        known=2,
-    )
+    starts = np.repeat(q_start[None], len(goal_indices), 0)
+    travel = _travels(model, starts, G[goal_indices], resolution)
+    direct = _edges_free(model, scene, starts, G[goal_indices], travel, resolution, known=2)
     iterations = 0
     path = None
     if direct.any():
@@ -225,14 +218,8 @@ def rrt_connect(
         )
     if simplify and len(path) > 2:
         path = shortcut(model, scene, path, seed=seed, resolution=resolution)
-    fine = _edges_free(
-        model,
-        scene,
-        path[:-1],
-        path[1:],
-        _intervals(model, path[:-1], path[1:], resolution / 2),
-        known=2,
-    )
+    travel = _travels(model, path[:-1], path[1:], resolution / 2)
+    fine = _edges_free(model, scene, path[:-1], path[1:], travel, resolution / 2, known=2)
     if not fine.all():
         k = int(np.flatnonzero(~fine)[0])
         return Plan(
@@ -268,7 +255,8 @@ def _towards(q_from: np.ndarray, q_to: np.ndarray, step: float) -> np.ndarray:
 def _edge(model, scene, qa, qb, resolution) -> bool:
     """Whether the edge between two free configurations is free."""
     A, B = qa[None], qb[None]
-    return bool(_edges_free(model, scene, A, B, _intervals(model, A, B, resolution), known=2)[0])
+    travel = _travels(model, A, B, resolution)
+    return bool(_edges_free(model, scene, A, B, travel, resolution, known=2)[0])
 
 
 class _Draws:
@@ -372,8 +360,9 @@ def _connect(model, scene, tree: _Tree, q_target: np.ndarray, step: float, resol
     usable = pieces if len(blocked) == 0 else int(blocked[0])
     if usable:
         A, B = points[:usable], points[1 : usable + 1]
-        counts = _intervals(model, A, B, resolution)
-        blocked = np.flatnonzero(~_edges_free(model, scene, A, B, counts, prefix=True, known=2))
+        travel = _travels(model, A, B, resolution)
+        free = _edges_free(model, scene, A, B, travel, resolution, prefix=True, known=2)
+        blocked = np.flatnonzero(~free)
         usable = usable if len(blocked) == 0 else int(blocked[0])
     parent = near
     for k in range(1, usable + 1):
@@ -449,14 +438,13 @@ def shortcut(
             continue
         # every candidate at a quarter of the samples; at full resolution only the longest
         # that do not overlap among those found free
-        counts = _intervals(model, P[i], P[j], resolution)
-        coarse = np.maximum(1, -(-counts // 4))
-        rough = _edges_free(model, scene, P[i], P[j], coarse, known=2)
+        speeds = _travels(model, P[i], P[j], resolution)
+        rough = _edges_free(model, scene, P[i], P[j], speeds, 4 * resolution, known=2, prove=False)
         chosen = np.flatnonzero(rough)[_apart(i[rough], j[rough])]
         fine = np.zeros(0, dtype=bool)
         if len(chosen):
             A, B = P[i[chosen]], P[j[chosen]]
-            fine = _edges_free(model, scene, A, B, counts[chosen], known=2)
+            fine = _edges_free(model, scene, A, B, speeds[chosen], resolution, known=2)
         blocked.update(keys[k] for k in np.flatnonzero(~rough))
         blocked.update(keys[k] for k in chosen[~fine])
         taken = chosen[fine]

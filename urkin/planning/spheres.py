@@ -120,15 +120,15 @@ class MeshPair:
             raise ValueError("distance must be finite and reach non-negative (metres)")
         self.distance.setflags(write=False)
         self.reach.setflags(write=False)
-        # a cell between four nodes is clear when even its point farthest from every node
-        # (half a step in each joint from the nearest) has a positive lower bound
+        # a lower bound over each cell between four nodes: at its point farthest from every
+        # node (half a step in each joint from the nearest)
         D = self.distance
         corners = np.minimum(
             np.minimum(D, np.roll(D, -1, 0)), np.roll(np.minimum(D, np.roll(D, -1, 0)), -1, 1)
         )
-        clear = corners - self._slope().sum() / 2 > 0.0
-        clear.setflags(write=False)
-        object.__setattr__(self, "_clear", clear)
+        floor = corners - self._slope().sum() / 2
+        floor.setflags(write=False)
+        object.__setattr__(self, "_floor", floor)
 
     @property
     def joints(self) -> tuple[int, int]:
@@ -159,14 +159,16 @@ class MeshPair:
         fall += np.abs(_SECOND - after[:, 1:]) * slope[1]
         return (self.distance[rows, cols] - fall).max(axis=1)
 
-    def collides(self, Q: np.ndarray) -> np.ndarray:
-        """Whether the meshes may touch at configurations ``Q`` (N, 6): (N,) bool (the
-        bound is computed only in the cells that are not clear)."""
+    def collides(self, Q: np.ndarray, margin: np.ndarray | None = None) -> np.ndarray:
+        """Whether the meshes may touch at configurations ``Q`` (N, 6), or come within
+        ``margin`` (N,) metres of each other: (N,) bool (the bound is computed only in the
+        cells whose lower bound does not already rule it out)."""
         i, _ = self._cells(Q)
-        maybe = ~self._clear[i[:, 0], i[:, 1]]
+        within = 0.0 if margin is None else margin
+        maybe = self._floor[i[:, 0], i[:, 1]] <= within
         hit = np.zeros(len(Q), dtype=bool)
         if maybe.any():
-            hit[maybe] = self.lower_bound(Q[maybe]) <= 0.0
+            hit[maybe] = self.lower_bound(Q[maybe]) <= (0.0 if margin is None else margin[maybe])
         return hit
 
 
