@@ -102,3 +102,19 @@ def test_drawing_targets_a_block_at_a_time_gives_the_plan_of_one_at_a_time(monke
     assert plans[0].iterations > 64  # the trees grew while blocks were pending
     assert plans[0].iterations == plans[1].iterations and plans[0].nodes == plans[1].nodes
     np.testing.assert_array_equal(plans[0].path, plans[1].path)
+
+
+def test_a_shortcut_that_fails_the_finer_recheck_gives_its_waypoints_back(monkeypatch):
+    """The final re-check at half the resolution can find what a shortcut's check missed;
+    the planner then puts back the waypoints that shortcut skipped (here a shortcut that
+    skips everything: the straight edge through the wall)."""
+    raw = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=1, simplify=False)
+    assert raw.success and len(raw.path) > 2
+    monkeypatch.setattr(planning.rrt, "shortcut", lambda model, scene, path, **_: path[[0, -1]])
+    plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=1)
+    assert plan.success
+    np.testing.assert_array_equal(plan.path, raw.path)
+    # only the skipped waypoints of a blocked edge come back
+    path = raw.path[[0, 2, len(raw.path) - 1]]
+    back = planning.rrt._restored(path, raw.path, np.array([False, True]))
+    np.testing.assert_array_equal(back, np.vstack([raw.path[[0]], raw.path[2:]]))

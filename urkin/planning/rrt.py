@@ -11,7 +11,8 @@ meanwhile is searched again, so the plan is that of drawing one target at a time
 live in preallocated arrays; the nearest node is found over the whole tree with one array
 operation.  Every edge is checked with
 :func:`urkin.planning.edges_free` at ``resolution`` (no sphere centre moves further between
-samples), and the final path once more at half of it.
+samples), and the final path once more at half of it (where a shortcut fails there, the
+waypoints it skipped are put back and checked again).
 """
 
 from __future__ import annotations
@@ -216,10 +217,15 @@ def rrt_connect(
             G,
             time.perf_counter() - t0,
         )
+    raw = path
     if simplify and len(path) > 2:
         path = shortcut(model, scene, path, seed=seed, resolution=resolution)
-    travel = _travels(model, path[:-1], path[1:], resolution / 2)
-    fine = _edges_free(model, scene, path[:-1], path[1:], travel, resolution / 2, known=2)
+    fine = _fine(model, scene, path, resolution)
+    if not fine.all() and len(path) < len(raw):
+        # a shortcut that passed at the resolution but not at half of it: the waypoints it
+        # skipped come back, and the edges between them are re-checked
+        path = _restored(path, raw, ~fine)
+        fine = _fine(model, scene, path, resolution)
     if not fine.all():
         k = int(np.flatnonzero(~fine)[0])
         return Plan(
@@ -234,6 +240,24 @@ def rrt_connect(
             time.perf_counter() - t0,
         )
     return Plan(path, True, "", iterations, nodes, reached, G, time.perf_counter() - t0)
+
+
+def _fine(model, scene, path: np.ndarray, resolution: float) -> np.ndarray:
+    """Whether each edge of ``path`` is free at half the resolution."""
+    travel = _travels(model, path[:-1], path[1:], resolution / 2)
+    return _edges_free(model, scene, path[:-1], path[1:], travel, resolution / 2, known=2)
+
+
+def _restored(path: np.ndarray, raw: np.ndarray, blocked: np.ndarray) -> np.ndarray:
+    """``path`` (waypoints of ``raw``, in order) with the waypoints of ``raw`` that its
+    ``blocked`` edges skip put back."""
+    where = {q.tobytes(): k for k, q in enumerate(raw)}
+    keep = np.zeros(len(raw), dtype=bool)
+    index = [where[q.tobytes()] for q in path]
+    keep[index] = True
+    for k in np.flatnonzero(blocked):
+        keep[index[k] : index[k + 1]] = True
+    return raw[keep]
 
 
 def _within(q: np.ndarray, lower: np.ndarray, upper: np.ndarray, name: str) -> None:
