@@ -169,7 +169,7 @@ def rrt_connect(
         if not value > 0:
             raise ValueError(f"{name} must be positive; got {value}")
     rng = np.random.default_rng(seed)
-    capacity = 2 * max_iterations + len(G) + 2
+    capacity = min(2 * max_iterations, 4096) + len(G) + 2  # doubled when full
     trees = [
         _Tree(capacity, q_start[None], np.array([-1])),
         _Tree(capacity, G[free], np.flatnonzero(free)),
