@@ -442,7 +442,11 @@ print(f"the farthest any sphere centre moves between two of urkin's samples: "
 # way. The figure shows the clearance along the edge — free at
 # both waypoints, in the shelf between them — and the samples urkin's check takes (it tests
 # them coarse to fine — the ends, the middle, the quarters … — and stops at the first
-# collision it finds).
+# collision it finds). Most of them need no test of their own: urkin first tests the middle
+# sample of every block of four intervals with each sphere grown by the most it can move over
+# half a block; where that fattened arm is free, the whole block is, between its samples too,
+# and only the blocks near an obstacle are tested sample by sample. The verdict is the same,
+# for about half the work.
 
 # %%
 _ = urkin.plot.edge_clearance_figure(

@@ -184,14 +184,14 @@ def rrt_connect(
     if direct.any():
         k = int(goal_indices[np.flatnonzero(direct)[0]])
         path, reached = np.array([q_start, G[k]]), k
-    draws = _Draws(model, scene, rng, lower, upper, step)
+    draws = _Draws(model, scene, rng, lower, upper, step, resolution)
     while path is None and iterations < max_iterations:
         if time_limit is not None and time.perf_counter() - t0 > time_limit:
             break
         a, b = trees[0], trees[1]
-        near, q_new, free_end = draws.next(trees, max_iterations - iterations)
+        near, q_new, free_end, speeds = draws.next(trees, max_iterations - iterations)
         iterations += 1
-        if not free_end or not _edge(model, scene, a.nodes[near], q_new, resolution):
+        if not free_end or not _edge(model, scene, a.nodes[near], q_new, resolution, speeds):
             trees.reverse()
             continue
         new = a.add(q_new, near)
@@ -276,27 +276,30 @@ def _towards(q_from: np.ndarray, q_to: np.ndarray, step: float) -> np.ndarray:
     return q_to.copy() if largest <= step else q_from + delta * (step / largest)
 
 
-def _edge(model, scene, qa, qb, resolution) -> bool:
-    """Whether the edge between two free configurations is free."""
+def _edge(model, scene, qa, qb, resolution, speeds=None) -> bool:
+    """Whether the edge between two free configurations is free (``speeds``: its
+    :func:`~urkin.planning.checks._travel`, if known)."""
     A, B = qa[None], qb[None]
-    travel = _travels(model, A, B, resolution)
+    travel = _travels(model, A, B, resolution) if speeds is None else speeds[None]
     return bool(_edges_free(model, scene, A, B, travel, resolution, known=2)[0])
 
 
 class _Draws:
     """The random targets of the coming iterations, drawn a block at a time, with each one's
     new node (``step`` from the nearest node of the tree that will extend towards it) checked
-    for collision in one batch: most extensions fail at their new node, and one check of many
-    configurations costs little more than one of one.
+    for collision in one batch, and the speed bounds of the free ones' edges found in one
+    more: most extensions fail at their new node, and one check of many configurations costs
+    little more than one of one.
 
     The trees swap every iteration, so the tree of each iteration of a block is known when it
     is drawn.  A tree that grew since then is searched again among its new nodes only; if one
     is closer, that iteration's new node is placed and checked again.  The plan is the one the
     iterations would give drawn one at a time."""
 
-    def __init__(self, model, scene, rng, lower, upper, step) -> None:
+    def __init__(self, model, scene, rng, lower, upper, step, resolution) -> None:
         self.model, self.scene, self.rng = model, scene, rng
         self.lower, self.upper, self.step = lower, upper, step
+        self.resolution = resolution
         self.size = min(4, _DRAWS)  # the block size doubles up to _DRAWS: easy problems end soon
         self.queue: list[tuple] = []
 
@@ -312,13 +315,21 @@ class _Draws:
                 (tree, tree.count, target, near, _towards(tree.nodes[near], target, self.step))
             )
         free = ~_collides(self.model, self.scene, np.array([e[4] for e in entries]))
-        self.queue = [(*e, bool(f)) for e, f in zip(entries, free)][::-1]
+        speeds: list[np.ndarray | None] = [None] * len(entries)
+        if free.any():  # the speed bounds of the free ones' edges, in one batch too
+            ends = [e for e, f in zip(entries, free) if f]
+            A = np.array([e[0].nodes[e[3]] for e in ends])
+            found = _travels(self.model, A, np.array([e[4] for e in ends]), self.resolution)
+            for k, row in zip(np.flatnonzero(free), found):
+                speeds[k] = row
+        self.queue = [(*e, bool(f), v) for e, f, v in zip(entries, free, speeds)][::-1]
 
-    def next(self, trees: list[_Tree], left: int) -> tuple[int, np.ndarray, bool]:
-        """The nearest node of ``trees[0]``, the new node and whether it is free."""
+    def next(self, trees: list[_Tree], left: int) -> tuple:
+        """The nearest node of ``trees[0]``, the new node, whether it is free and the speed
+        bounds of the edge between them (None if not known)."""
         if not self.queue:
             self._fill(trees, left)
-        tree, count, target, near, q_new, free = self.queue.pop()
+        tree, count, target, near, q_new, free, speeds = self.queue.pop()
         assert tree is trees[0]
         if tree.count > count:  # grown since drawn: is a new node nearer?
             d = tree.nodes[count : tree.count] - target
@@ -326,10 +337,10 @@ class _Draws:
             k = int(np.argmin(d2))
             gap = tree.nodes[near] - target
             if d2[k] < gap @ gap:
-                near = count + k
+                near, speeds = count + k, None
                 q_new = _towards(tree.nodes[near], target, self.step)
                 free = not _collides(self.model, self.scene, q_new[None])[0]
-        return near, q_new, free
+        return near, q_new, free, speeds
 
 
 #: The largest block of random targets drawn (and their new nodes checked) at once.
