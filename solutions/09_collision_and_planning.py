@@ -762,7 +762,10 @@ for name, grown in runs.items():
 #
 # `planning.rrt_connect(model, scene, start, goals)` is RRT-Connect with every edge checked at
 # the resolution, its trees kept in preallocated arrays, the nearest node found with one array
-# operation, and each *connect* checked in one batch. Given a pose instead of configurations,
+# operation, and each *connect* checked in one batch. It keeps the trees balanced, as VAMP
+# does: while one tree has more than twice the other's nodes, the smaller one extends instead
+# of the trees swapping, so a tree hemmed in by obstacles (a gripper inside a cage) gets the
+# draws it needs. Given a pose instead of configurations,
 # it plans to **all** its closed-form solutions at once: the goal tree starts with one root per
 # free solution, and the plan reports which one it reached. It first tries the straight edge
 # to every goal (in an open cell that is often enough), and the path it returns is checked once

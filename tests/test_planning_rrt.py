@@ -93,15 +93,42 @@ def test_trees_grow_past_their_first_capacity():
 
 def test_drawing_targets_a_block_at_a_time_gives_the_plan_of_one_at_a_time(monkeypatch):
     """rrt_connect draws its random targets and checks their new nodes a block at a time; a
-    tree that grows within the block is searched again for nearer nodes, so the iterations
-    are those of drawing one target at a time (the default blocks against blocks of one)."""
+    tree that grows within the block is searched again for nearer nodes, and the tree that
+    extends is chosen again from the trees' sizes, so the iterations are those of drawing one
+    target at a time (the default blocks against blocks of one)."""
+    foreseen = []  # whether the tree foreseen at the draw was the one that extended
+    original = planning.rrt._Draws.next
+
+    def next_(self, trees, left):
+        drawn = self.queue[-1][0] if self.queue else None
+        result = original(self, trees, left)
+        if drawn is not None:
+            foreseen.append(drawn is result[0])
+        return result
+
+    monkeypatch.setattr(planning.rrt._Draws, "next", next_)
     plans = []
     for block in (planning.rrt._DRAWS, 1):
         monkeypatch.setattr(planning.rrt, "_DRAWS", block)
         plans.append(planning.rrt_connect(MODEL, WALL, START, GOAL, seed=3, simplify=False))
     assert plans[0].iterations > 64  # the trees grew while blocks were pending
+    assert not all(foreseen)  # and the balance of the trees changed which one extends
     assert plans[0].iterations == plans[1].iterations and plans[0].nodes == plans[1].nodes
     np.testing.assert_array_equal(plans[0].path, plans[1].path)
+
+
+def test_the_smaller_tree_extends_while_the_other_is_twice_its_size():
+    start, goal = (planning.rrt._Tree(8, np.zeros((n, 6)), np.arange(n) - 1) for n in (1, 1))
+    trees = [start, goal]
+    assert planning.rrt._extending(trees, None) is start  # the start's tree first
+    assert planning.rrt._extending(trees, start) is goal  # then they alternate
+    for _ in range(2):
+        start.add(np.ones(6), 0)
+    assert start.count == 3 and goal.count == 1
+    assert planning.rrt._extending(trees, goal) is goal  # the smaller, again and again
+    assert planning.rrt._extending(trees, start) is goal
+    goal.add(np.ones(6), 0)
+    assert planning.rrt._extending(trees, goal) is start  # balanced again: alternate
 
 
 def test_a_shortcut_that_fails_the_finer_recheck_gives_its_waypoints_back(monkeypatch):

@@ -5,7 +5,8 @@ Two trees grow towards each other: one from the start, one from every goal confi
 draws a configuration within the joint limits, *extends* one tree by at most ``step`` radians
 towards it, then *connects* the other tree to the new node: the whole straight run to it, cut
 into pieces no longer than ``step``, is checked in one batched edge check and the free prefix
-is added (the pieces' ends first, in one batch).  The trees then swap roles.  The random
+is added (the pieces' ends first, in one batch).  The trees then swap roles, unless one has
+more than twice the other's nodes: then the smaller extends, as in VAMP.  The random
 targets are drawn a block at a time and their new nodes checked in one batch; a tree that grew
 meanwhile is searched again, so the plan is that of drawing one target at a time.  The trees
 live in preallocated arrays; the nearest node is found over the whole tree with one array
@@ -188,17 +189,15 @@ def rrt_connect(
     while path is None and iterations < max_iterations:
         if time_limit is not None and time.perf_counter() - t0 > time_limit:
             break
-        a, b = trees[0], trees[1]
-        near, q_new, free_end, speeds = draws.next(trees, max_iterations - iterations)
+        a, near, q_new, free_end, speeds = draws.next(trees, max_iterations - iterations)
+        b = trees[1] if a is trees[0] else trees[0]
         iterations += 1
         if not free_end or not _edge(model, scene, a.nodes[near], q_new, resolution, speeds):
-            trees.reverse()
             continue
         new = a.add(q_new, near)
         link = _connect(model, scene, b, q_new, step, resolution)
         if link is not None:
             path, reached = _join(a, b, new, link)
-        trees.reverse()
     nodes = trees[0].count + trees[1].count
     if path is None:
         limit = (
@@ -291,15 +290,17 @@ class _Draws:
     more: most extensions fail at their new node, and one check of many configurations costs
     little more than one of one.
 
-    The trees swap every iteration, so the tree of each iteration of a block is known when it
-    is drawn.  A tree that grew since then is searched again among its new nodes only; if one
-    is closer, that iteration's new node is placed and checked again.  The plan is the one the
-    iterations would give drawn one at a time."""
+    Which tree extends in each iteration of a block (:func:`_extending`) is foreseen when it
+    is drawn, from the trees' sizes then; if the trees' growth changed it, the new node is
+    placed from the other tree and checked again.  A tree that grew since the draw is searched
+    again among its new nodes only; if one is closer, that iteration's new node is placed and
+    checked again.  The plan is the one the iterations would give drawn one at a time."""
 
     def __init__(self, model, scene, rng, lower, upper, step, resolution) -> None:
         self.model, self.scene, self.rng = model, scene, rng
         self.lower, self.upper, self.step = lower, upper, step
         self.resolution = resolution
+        self.last: _Tree | None = None  # the tree that extended in the last iteration
         self.size = min(4, _DRAWS)  # the block size doubles up to _DRAWS: easy problems end soon
         self.queue: list[tuple] = []
 
@@ -308,8 +309,9 @@ class _Draws:
         self.size = min(2 * self.size, _DRAWS)
         targets = self.rng.uniform(self.lower, self.upper, (size, 6))
         entries = []
-        for k, target in enumerate(targets):
-            tree = trees[k % 2]
+        last = self.last
+        for target in targets:
+            tree = last = _extending(trees, last)
             near = tree.nearest(target)
             entries.append(
                 (tree, tree.count, target, near, _towards(tree.nodes[near], target, self.step))
@@ -325,13 +327,17 @@ class _Draws:
         self.queue = [(*e, bool(f), v) for e, f, v in zip(entries, free, speeds)][::-1]
 
     def next(self, trees: list[_Tree], left: int) -> tuple:
-        """The nearest node of ``trees[0]``, the new node, whether it is free and the speed
-        bounds of the edge between them (None if not known)."""
+        """The tree that extends, its node nearest the target, the new node, whether it is
+        free and the speed bounds of the edge between them (None if not known)."""
         if not self.queue:
             self._fill(trees, left)
         tree, count, target, near, q_new, free, speeds = self.queue.pop()
-        assert tree is trees[0]
-        if tree.count > count:  # grown since drawn: is a new node nearer?
+        self.last = extending = _extending(trees, self.last)
+        if extending is not tree:  # the other tree extends: its own new node
+            tree, near, speeds = extending, extending.nearest(target), None
+            q_new = _towards(tree.nodes[near], target, self.step)
+            free = not _collides(self.model, self.scene, q_new[None])[0]
+        elif tree.count > count:  # grown since drawn: is a new node nearer?
             d = tree.nodes[count : tree.count] - target
             d2 = np.einsum("ij,ij->i", d, d)
             k = int(np.argmin(d2))
@@ -340,7 +346,19 @@ class _Draws:
                 near, speeds = count + k, None
                 q_new = _towards(tree.nodes[near], target, self.step)
                 free = not _collides(self.model, self.scene, q_new[None])[0]
-        return near, q_new, free, speeds
+        return tree, near, q_new, free, speeds
+
+
+def _extending(trees: list[_Tree], last: _Tree | None) -> _Tree:
+    """The tree that extends next: the smaller while the other has more than twice its nodes
+    (balanced trees, as VAMP grows them: a tree hemmed in by obstacles gets the draws), else
+    the one that did not extend last (the start's tree first)."""
+    start, goal = trees
+    if start.count > 2 * goal.count:
+        return goal
+    if goal.count > 2 * start.count:
+        return start
+    return goal if last is start else start
 
 
 #: The largest block of random targets drawn (and their new nodes checked) at once.
