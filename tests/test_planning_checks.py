@@ -234,11 +234,18 @@ def test_grown_checks_are_checks_of_grown_spheres(rng):
         grown[:, 4] += margin
         bigger = planning.SphereModel.from_rows(UR5, grown, pairs=MODEL.pairs)
         plain = planning.SphereModel.from_rows(UR5, rows, pairs=MODEL.pairs)
-        got = planning.checks._collides(plain, CLUTTER, Q, np.full((len(Q), len(plain)), margin))
+        grow = np.full((len(Q), len(plain)), margin)
+        got, as_they_are = planning.checks._hits(plain, CLUTTER, Q, grow)
         c = planning.clearance(bigger, CLUTTER, Q).distance
         clear = np.abs(c) > 1e-9
         np.testing.assert_array_equal(got[clear], c[clear] <= 0)
+        np.testing.assert_array_equal(as_they_are, ~planning.is_free(plain, CLUTTER, Q))
         assert 0.1 < got.mean() < 0.9
+    # with a tabulated mesh pair too, the verdicts as they are come with the grown ones
+    grow = np.full((len(Q), len(MODEL) + 1), 0.01)
+    got, as_they_are = planning.checks._hits(MODEL, CLUTTER, Q, grow)
+    np.testing.assert_array_equal(as_they_are, ~planning.is_free(MODEL, CLUTTER, Q))
+    assert np.all(got >= as_they_are) and np.any(got > as_they_are)
     # a tabulated mesh pair counts within the margin of its lower bound
     (pair,) = MODEL.meshes
     bound = pair.lower_bound(Q)

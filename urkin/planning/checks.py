@@ -56,24 +56,33 @@ def _check(model: SphereModel, scene: Scene) -> None:
         raise TypeError(f"scene must be a planning.Scene; got {type(scene).__name__}")
 
 
-def _collides(
-    model: SphereModel, scene: Scene, Q: np.ndarray, grow: np.ndarray | None = None
-) -> np.ndarray:
+def _collides(model: SphereModel, scene: Scene, Q: np.ndarray) -> np.ndarray:
     """Whether each configuration of ``Q`` (N, 6), checked, is in collision: (N,) bool.
-
-    With ``grow`` (N, S + P), each sphere's radius grows by its column, and a tabulated mesh
-    pair collides when its distance may be within its column (:func:`_edges_free` proves
-    blocks of an edge free with it).
 
     Two phases.  The groups' bounding balls (:func:`_groups`) are tested first, against the
     scene and against each other; only the spheres of a group whose ball touches an obstacle,
     and only the sphere pairs of two groups whose balls meet, are then placed and tested.  A
     group's ball holds every sphere of the group, so a sphere can touch nothing its group's
     ball does not: the verdicts are those of testing every sphere."""
+    return _hits(model, scene, Q, None)[1]
+
+
+def _hits(
+    model: SphereModel, scene: Scene, Q: np.ndarray, grow: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_collides` of ``Q`` (N, 6) grown by ``grow`` (N, S + P), and as they are: two
+    (N,) bools, the first True wherever the second is.
+
+    Grown, each sphere's radius grows by its column, and a tabulated mesh pair collides when
+    its distance may be within its column (:func:`_edges_free` proves blocks of an edge free
+    with it).  The broad phase tests the grown balls, and the spheres or pairs it finds are
+    tested grown and, where they touch grown, as they are.  Without ``grow`` both are the
+    verdicts as they are."""
     n = len(Q)
-    hit = np.zeros(n, dtype=bool)
+    hit = np.zeros(n, dtype=bool)  # as they are
+    grown = hit if grow is None else np.zeros(n, dtype=bool)
     if not len(model) or not n:
-        return hit
+        return grown, hit
     F4 = _frames(model.robot, Q)  # (N, 8, 4, 4)
     F = F4[..., :3, :]
     groups = _groups(model)
@@ -96,14 +105,21 @@ def _collides(
             rows, k = np.nonzero(near[:, groups.pair_group])
             i, j = model.pairs[k, 0], model.pairs[k, 1]
             d = _points(model, F, rows, i) - _points(model, F, rows, j)
+            d2 = np.einsum("ki,ki->k", d, d)
             reach = model.radii[i] + model.radii[j]
+            hit[rows[d2 <= reach * reach]] = True
             if grow is not None:
-                reach = reach + grow[rows, i] + grow[rows, j]
-            hit[rows[np.einsum("ki,ki->k", d, d) <= reach * reach]] = True
+                reach += grow[rows, i] + grow[rows, j]
+                grown[rows[d2 <= reach * reach]] = True
     for p, pair in enumerate(model.meshes):  # links whose meshes are tabulated
-        hit |= pair.collides(Q, None if grow is None else grow[:, len(model) + p])
+        if grow is None:
+            hit |= pair.collides(Q)
+        else:
+            near = np.flatnonzero(pair.collides(Q, grow[:, len(model) + p]))
+            grown[near] = True
+            hit[near[pair.collides(Q[near])]] = True
     moving = groups.moving
-    todo = np.flatnonzero(~hit)  # configurations not yet known to collide
+    todo = np.flatnonzero(~hit)  # configurations not yet known to collide as they are
     if len(scene) and len(moving) and len(todo):
         balls = G[todo[:, None], moving].reshape(-1, 3)
         radii = _repeated(groups.radii[moving], len(todo))
@@ -117,12 +133,15 @@ def _collides(
             valid = members >= 0
             rows = np.repeat(rows, valid.sum(axis=1))
             spheres = members[valid]
-            radii = model.radii[spheres]
-            if grow is not None:
-                radii = radii + grow[rows, spheres]
-            touch = scene._touches(_points(model, F, rows, spheres), radii)
-            hit[rows[touch]] = True
-    return hit
+            centres = _points(model, F, rows, spheres)
+            if grow is None:
+                hit[rows[scene._touches(centres, model.radii[spheres])]] = True
+            else:
+                touch = scene._touches(centres, model.radii[spheres] + grow[rows, spheres])
+                rows, spheres, centres = rows[touch], spheres[touch], centres[touch]
+                grown[rows] = True
+                hit[rows[scene._touches(centres, model.radii[spheres])]] = True
+    return grown, hit
 
 
 def _place(F: np.ndarray, M: np.ndarray) -> np.ndarray:
@@ -580,9 +599,11 @@ def _edges_free(
     ``_BLOCK`` intervals with each sphere grown by the most it can move over half a block
     (``_BLOCK / 2 · speed / n``; a mesh pair's distance likewise): where that grown model is
     free, no sphere can reach an obstacle or another sphere anywhere on the block (a pair's
-    gap shrinks by at most what both spheres move), so the block's samples are all free.  It
-    also checks the samples after the last whole block and the ends.  The second pass checks
-    the samples of the blocks the first could not prove free.  The verdicts are those of
+    gap shrinks by at most what both spheres move), so the block's samples are all free.
+    Where it is not, the middle is checked as it is too, in the same call (a collision there
+    blocks the edge at once).  The first pass also checks the samples after the last whole
+    block and the ends.  The second pass checks the other samples of the blocks the first
+    could not prove free.  The verdicts are those of
     checking every sample, with far fewer checks where the arm keeps clear of everything.
 
     ``known`` ends are not checked again: 1, the starts are known free (a tree's node, a
@@ -609,12 +630,12 @@ def _edges_free(
     pick = np.flatnonzero(middle | plain)
     half = np.where(middle[pick], (_BLOCK / 2) * (1 + 1e-9), 0.0) / n[pick]
     grown = speeds[edge[pick]] * half[:, None]  # (picked, S + P)
-    hit = _check_samples(model, scene, A, B, edge, index, n, pick, grown, free, prefix)
+    hit, touched = _check_samples(model, scene, A, B, edge, index, n, pick, grown, free, prefix)
     if not free.any():
         return free
     proven = known_free.copy()
-    proven[pick[~hit]] = True  # free, and for a middle: its whole block
-    done = pick[middle[pick] & ~hit]
+    proven[pick[~hit]] = True  # free as it is
+    done = pick[middle[pick] & ~touched]  # free grown: its whole block too
     for offset in range(1, _BLOCK // 2 + 1):
         proven[done - offset] = True
         proven[done + offset] = True
@@ -625,16 +646,17 @@ def _edges_free(
     return free
 
 
-def _check_samples(model, scene, A, B, edge, index, n, pick, grown, free, prefix) -> np.ndarray:
+def _check_samples(model, scene, A, B, edge, index, n, pick, grown, free, prefix):
     """Check the samples ``pick`` (of the flat ``edge``, ``index``, ``n`` arrays), coarse
-    first, in batches, each grown by ``grown`` (or not at all); samples not grown that collide
-    mark their edges blocked in ``free``.  Returns which of ``pick`` were hit (False for
-    those skipped because their edge was already blocked)."""
+    first, in batches, as they are and (with ``grown`` (picked, S + P)) grown; samples that
+    collide mark their edges blocked in ``free``.  Returns which of ``pick`` collide, and
+    which collide grown (both False for those skipped because their edge was already
+    blocked)."""
     order = np.lexsort((index[pick], edge[pick], _depth(index[pick], n[pick])))
     pick = pick[order]
     grow = None if grown is None else grown[order]
-    plain = None if grown is None else ~grown.any(axis=1)[order]
     hit = np.zeros(len(pick), dtype=bool)
+    touched = np.zeros(len(pick), dtype=bool)
     start, size = 0, max(int(free.sum()), _FIRST)
     while start < len(pick):
         batch = np.arange(start, min(start + size, len(pick)))
@@ -647,17 +669,16 @@ def _check_samples(model, scene, A, B, edge, index, n, pick, grown, free, prefix
         e = edge[s]
         t = index[s] / n[s]
         Q = A[e] + t[:, None] * (B[e] - A[e])
-        found = _collides(model, scene, Q, None if grow is None else grow[batch])
-        hit[batch] = found
-        blocked = found if grow is None else found & plain[batch]
+        touched[batch], blocked = _hits(model, scene, Q, None if grow is None else grow[batch])
+        hit[batch] = blocked
         if blocked.any():
             free[e[blocked]] = False
             if prefix:
                 free[e[blocked].min() :] = False
             if not free.any():
                 break
-    out = np.zeros(len(pick), dtype=bool)
-    out[order] = hit
+    out = np.zeros((2, len(pick)), dtype=bool)
+    out[0, order], out[1, order] = hit, touched
     return out
 
 
