@@ -145,3 +145,27 @@ def test_a_shortcut_that_fails_the_finer_recheck_gives_its_waypoints_back(monkey
     path = raw.path[[0, 2, len(raw.path) - 1]]
     back = planning.rrt._restored(path, raw.path, np.array([False, True]))
     np.testing.assert_array_equal(back, np.vstack([raw.path[[0]], raw.path[2:]]))
+
+
+def test_an_edge_of_the_trees_that_fails_the_finer_recheck_is_planned_again(monkeypatch):
+    """Where an edge of the trees passed at the resolution but fails the re-check at half of
+    it, the way between its ends is planned again at half the resolution (here the re-check
+    is made to refuse the first edge once)."""
+    real_fine, calls = planning.rrt._fine, []
+
+    def fine(model, scene, path, resolution):
+        calls.append(resolution)
+        verdicts = real_fine(model, scene, path, resolution)
+        if len(calls) == 1:
+            verdicts[0] = False
+        return verdicts
+
+    monkeypatch.setattr(planning.rrt, "_fine", fine)
+    plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
+    assert plan.success
+    assert calls[:2] == [0.01, 0.005]  # the path at 1 cm, then the edge's new plan at 5 mm
+    assert planning.edges_free(MODEL, WALL, plan.path[:-1], plan.path[1:], resolution=0.002).all()
+    # when the new plan fails too, the planner says so
+    monkeypatch.setattr(planning.rrt, "_fine", lambda *a: np.zeros(len(a[2]) - 1, bool))
+    plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
+    assert not plan.success and "re-checked at 5 mm" in plan.reason

@@ -112,12 +112,11 @@ def _hits(
                 reach += grow[rows, i] + grow[rows, j]
                 grown[rows[d2 <= reach * reach]] = True
     for p, pair in enumerate(model.meshes):  # links whose meshes are tabulated
-        if grow is None:
-            hit |= pair.collides(Q)
-        else:
-            near = np.flatnonzero(pair.collides(Q, grow[:, len(model) + p]))
-            grown[near] = True
-            hit[near[pair.collides(Q[near])]] = True
+        margin = None if grow is None else grow[:, len(model) + p]
+        rows, bound = pair._bounds(Q, margin)
+        hit[rows[bound <= 0.0]] = True
+        if grow is not None:
+            grown[rows[bound <= margin[rows]]] = True
     moving = groups.moving
     todo = np.flatnonzero(~hit)  # configurations not yet known to collide as they are
     if len(scene) and len(moving) and len(todo):
@@ -164,7 +163,7 @@ def _placing_matrix(frames: np.ndarray, centres: np.ndarray) -> np.ndarray:
 
 def _repeated(radii: np.ndarray, n: int) -> np.ndarray:
     """``radii`` (k,) once for each of ``n`` configurations: (n k,)."""
-    return np.broadcast_to(radii, (n, len(radii))).reshape(-1)
+    return np.repeat(radii[None], n, axis=0).reshape(-1)
 
 
 def _placing(model: SphereModel) -> np.ndarray:

@@ -12,8 +12,9 @@ meanwhile is searched again, so the plan is that of drawing one target at a time
 live in preallocated arrays; the nearest node is found over the whole tree with one array
 operation.  Every edge is checked with
 :func:`urkin.planning.edges_free` at ``resolution`` (no sphere centre moves further between
-samples), and the final path once more at half of it (where a shortcut fails there, the
-waypoints it skipped are put back and checked again).
+samples), and the final path once more at half of it: where a shortcut fails there, the
+waypoints it skipped are put back and checked again; where an edge of the trees fails, the
+way between its ends is planned again at half the resolution.
 """
 
 from __future__ import annotations
@@ -225,6 +226,26 @@ def rrt_connect(
         # skipped come back, and the edges between them are re-checked
         path = _restored(path, raw, ~fine)
         fine = _fine(model, scene, path, resolution)
+    if not fine.all() and resolution > _FINEST:
+        # an edge of the trees that passed at the resolution but not at half of it: planned
+        # again between its ends at half the resolution (and re-checked at a quarter)
+        left = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
+        for k in np.flatnonzero(~fine)[::-1]:  # from the last: the indices before stay valid
+            sub = rrt_connect(
+                model,
+                scene,
+                path[k],
+                path[k + 1],
+                seed=seed,
+                max_iterations=max_iterations,
+                time_limit=left,
+                step=step,
+                resolution=resolution / 2,
+                simplify=simplify,
+            )
+            if sub.success:
+                path = np.concatenate([path[:k], sub.path, path[k + 2 :]])
+                fine = np.concatenate([fine[:k], np.ones(len(sub.path) - 1, bool), fine[k + 1 :]])
     if not fine.all():
         k = int(np.flatnonzero(~fine)[0])
         return Plan(
@@ -239,6 +260,10 @@ def rrt_connect(
             time.perf_counter() - t0,
         )
     return Plan(path, True, "", iterations, nodes, reached, G, time.perf_counter() - t0)
+
+
+#: The finest resolution an edge that fails the final re-check is planned again at (m).
+_FINEST = 1e-3
 
 
 def _fine(model, scene, path: np.ndarray, resolution: float) -> np.ndarray:

@@ -150,7 +150,10 @@ class MeshPair:
     def lower_bound(self, Q: np.ndarray) -> np.ndarray:
         """A lower bound of the meshes' distance at configurations ``Q`` (N, 6): (N,) metres
         (0 or less where they may touch)."""
-        i, after = self._cells(Q)
+        return self._lower(*self._cells(Q))
+
+    def _lower(self, i: np.ndarray, after: np.ndarray) -> np.ndarray:
+        """:meth:`lower_bound` in cells ``i`` (N, 2), ``after`` steps past their lower nodes."""
         j = (i + 1) % len(self.distance)
         rows = np.column_stack([i[:, 0], j[:, 0], i[:, 0], j[:, 0]])  # the four nodes
         cols = np.column_stack([i[:, 1], i[:, 1], j[:, 1], j[:, 1]])
@@ -163,13 +166,18 @@ class MeshPair:
         """Whether the meshes may touch at configurations ``Q`` (N, 6), or come within
         ``margin`` (N,) metres of each other: (N,) bool (the bound is computed only in the
         cells whose lower bound does not already rule it out)."""
-        i, _ = self._cells(Q)
-        within = 0.0 if margin is None else margin
-        maybe = self._floor[i[:, 0], i[:, 1]] <= within
+        rows, bound = self._bounds(Q, margin)
         hit = np.zeros(len(Q), dtype=bool)
-        if maybe.any():
-            hit[maybe] = self.lower_bound(Q[maybe]) <= (0.0 if margin is None else margin[maybe])
+        hit[rows] = bound <= (0.0 if margin is None else margin[rows])
         return hit
+
+    def _bounds(self, Q: np.ndarray, margin: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+        """The configurations of ``Q`` whose cell's bound does not rule out coming within
+        ``margin`` (N,) (or touching), and the lower bound of the distance at each."""
+        i, after = self._cells(Q)
+        floor = self._floor[i[:, 0], i[:, 1]]
+        rows = np.flatnonzero(floor <= (0.0 if margin is None else margin))
+        return rows, self._lower(i[rows], after[rows])
 
 
 #: Each of the four nodes around a point, as steps along the first and the second joint.
