@@ -132,7 +132,8 @@ def test_the_smaller_tree_extends_while_the_other_is_twice_its_size():
 
 
 def test_a_shortcut_that_fails_the_finer_recheck_gives_its_waypoints_back(monkeypatch):
-    """The final re-check at half the resolution can find what a shortcut's check missed;
+    """The final re-check at a quarter of the resolution can find what a shortcut's check
+    missed;
     the planner then puts back the waypoints that shortcut skipped (here a shortcut that
     skips everything: the straight edge through the wall)."""
     raw = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=1, simplify=False)
@@ -148,9 +149,9 @@ def test_a_shortcut_that_fails_the_finer_recheck_gives_its_waypoints_back(monkey
 
 
 def test_an_edge_of_the_trees_that_fails_the_finer_recheck_is_planned_again(monkeypatch):
-    """Where an edge of the trees passed at the resolution but fails the re-check at half of
-    it, the way between its ends is planned again at half the resolution (here the re-check
-    is made to refuse the first edge once)."""
+    """Where an edge of the trees passed at the resolution but fails the re-check at a quarter
+    of it, the way between its ends is planned again at half the resolution (here the
+    re-check is made to refuse the first edge once)."""
     real_fine, calls = planning.rrt._fine, []
 
     def fine(model, scene, path, resolution):
@@ -168,4 +169,4 @@ def test_an_edge_of_the_trees_that_fails_the_finer_recheck_is_planned_again(monk
     # when the new plan fails too, the planner says so
     monkeypatch.setattr(planning.rrt, "_fine", lambda *a: np.zeros(len(a[2]) - 1, bool))
     plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
-    assert not plan.success and "re-checked at 5 mm" in plan.reason
+    assert not plan.success and "re-checked at 2.5 mm" in plan.reason

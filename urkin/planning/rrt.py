@@ -12,7 +12,7 @@ meanwhile is searched again, so the plan is that of drawing one target at a time
 live in preallocated arrays; the nearest node is found over the whole tree with one array
 operation.  Every edge is checked with
 :func:`urkin.planning.edges_free` at ``resolution`` (no sphere centre moves further between
-samples), and the final path once more at half of it: where a shortcut fails there, the
+samples), and the final path once more at a quarter of it: where a shortcut fails there, the
 waypoints it skipped are put back and checked again; where an edge of the trees fails, the
 way between its ends is planned again at half the resolution.
 """
@@ -222,13 +222,13 @@ def rrt_connect(
         path = shortcut(model, scene, path, seed=seed, resolution=resolution)
     fine = _fine(model, scene, path, resolution)
     if not fine.all() and len(path) < len(raw):
-        # a shortcut that passed at the resolution but not at half of it: the waypoints it
+        # a shortcut that passed at the resolution but not at a quarter: the waypoints it
         # skipped come back, and the edges between them are re-checked
         path = _restored(path, raw, ~fine)
         fine = _fine(model, scene, path, resolution)
     if not fine.all() and resolution > _FINEST:
-        # an edge of the trees that passed at the resolution but not at half of it: planned
-        # again between its ends at half the resolution (and re-checked at a quarter)
+        # an edge of the trees that passed at the resolution but not at a quarter: planned
+        # again between its ends at half the resolution (and re-checked at an eighth)
         left = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
         for k in np.flatnonzero(~fine)[::-1]:  # from the last: the indices before stay valid
             sub = rrt_connect(
@@ -251,8 +251,8 @@ def rrt_connect(
         return Plan(
             path,
             False,
-            f"edge {k} of the path collides when re-checked at {resolution / 2 * 1000:g} mm: "
-            "plan again with a finer resolution",
+            f"edge {k} of the path collides when re-checked at {resolution / _RECHECK * 1000:g} "
+            "mm: plan again with a finer resolution",
             iterations,
             nodes,
             reached,
@@ -262,14 +262,16 @@ def rrt_connect(
     return Plan(path, True, "", iterations, nodes, reached, G, time.perf_counter() - t0)
 
 
-#: The finest resolution an edge that fails the final re-check is planned again at (m).
-_FINEST = 1e-3
+#: The finest resolution an edge that fails the final re-check is planned again at (m), and
+#: how much finer than the planning resolution the final re-check is.
+_FINEST, _RECHECK = 1e-3, 4
 
 
 def _fine(model, scene, path: np.ndarray, resolution: float) -> np.ndarray:
-    """Whether each edge of ``path`` is free at half the resolution."""
-    travel = _travels(model, path[:-1], path[1:], resolution / 2)
-    return _edges_free(model, scene, path[:-1], path[1:], travel, resolution / 2, known=2)
+    """Whether each edge of ``path`` is free at the resolution of the final re-check."""
+    finer = resolution / _RECHECK
+    travel = _travels(model, path[:-1], path[1:], finer)
+    return _edges_free(model, scene, path[:-1], path[1:], travel, finer, known=2)
 
 
 def _restored(path: np.ndarray, raw: np.ndarray, blocked: np.ndarray) -> np.ndarray:
