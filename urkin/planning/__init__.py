@@ -9,6 +9,7 @@
     planning.clearance(model, scene, Q)                     # signed distance and the pair
     planning.explain(model, scene, q)                       # a sentence
     planning.edges_free(model, scene, QA, QB)               # (K,) bool, straight edges
+    planning.certify_edges(model, scene, QA, QB)            # (K,) bool, proven free throughout
     plan = planning.rrt_connect(model, scene, q_start, goals, seed=0)
     traj = planning.time_parametrize(plan)                  # urkin.trajectory.Trajectory
     world = planning.World(robot, model, table, blocks)    # a tabletop of upright boxes
@@ -27,6 +28,7 @@ tests), :mod:`~urkin.planning.tabletop` (a world of boxes, goal validation),
 from urkin.planning.blocks import Block, block_spheres, box_separation, tool_yaw, top_down_grasp
 from urkin.planning.checks import (
     Clearance,
+    certify_edges,
     clearance,
     edge_samples,
     edges_free,
@@ -59,6 +61,7 @@ __all__ = [
     "World",
     "block_spheres",
     "box_separation",
+    "certify_edges",
     "clearance",
     "edge_samples",
     "edges_free",
