@@ -769,7 +769,9 @@ for name, grown in runs.items():
 # it plans to **all** its closed-form solutions at once: the goal tree starts with one root per
 # free solution, and the plan reports which one it reached. It first tries the straight edge
 # to every goal (in an open cell that is often enough), and the path it returns is checked once
-# more, at a quarter of the resolution (an edge that fails there is planned again, finer).
+# more, at a quarter of the resolution, and `planning.certify_edges` tries to prove each edge
+# free *between* its samples (the fattened-arm test, halving the pieces it cannot prove); an
+# edge that fails, or that it cannot prove, is planned again at half the resolution.
 
 # %%
 plan = planning.rrt_connect(fitted, scene, q_start, T_goal, seed=0, simplify=False)

@@ -170,3 +170,30 @@ def test_an_edge_of_the_trees_that_fails_the_finer_recheck_is_planned_again(monk
     monkeypatch.setattr(planning.rrt, "_fine", lambda *a: np.zeros(len(a[2]) - 1, bool))
     plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
     assert not plan.success and "re-checked at 2.5 mm" in plan.reason
+
+
+def test_an_edge_free_at_the_samples_but_not_proven_is_planned_again(monkeypatch):
+    """An edge the final re-check passes but certify_edges cannot prove free (it may graze an
+    obstacle between samples) is planned again at half the resolution; if that fails, the
+    edge stays (it is free at every sample)."""
+    resolutions = []
+    real_fine, real_proven = planning.rrt._fine, planning.rrt._proven
+
+    def fine(model, scene, path, resolution):
+        resolutions.append(resolution)
+        return real_fine(model, scene, path, resolution)
+
+    def proven(model, scene, A, B, speeds, finest):
+        verdicts = real_proven(model, scene, A, B, speeds, finest)
+        if len(resolutions) == 1:
+            verdicts[0] = False  # the first edge of the first path is in doubt
+        return verdicts
+
+    monkeypatch.setattr(planning.rrt, "_fine", fine)
+    monkeypatch.setattr(planning.rrt, "_proven", proven)
+    plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
+    assert plan.success and resolutions[:2] == [0.01, 0.005]
+    # never proven: every edge is planned again, fails the same way, and stays
+    monkeypatch.setattr(planning.rrt, "_proven", lambda m, s, A, *_: np.zeros(len(A), bool))
+    plain = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
+    assert plain.success and len(plain.path) >= 2

@@ -14,8 +14,10 @@ live in preallocated arrays; the nearest node is found over the whole tree with 
 operation.  Every edge is checked with
 :func:`urkin.planning.edges_free` at ``resolution`` (no sphere centre moves further between
 samples), and the final path once more at a quarter of it: where a shortcut fails there, the
-waypoints it skipped are put back and checked again; where an edge of the trees fails, the
-way between its ends is planned again at half the resolution.
+waypoints it skipped are put back and checked again; where an edge of the trees fails, or
+passes but cannot be proven free between its samples (:func:`~urkin.planning.certify_edges`),
+the way between its ends is planned again at half the resolution (an edge in doubt stays if
+that fails).
 """
 
 from __future__ import annotations
@@ -29,7 +31,16 @@ from numpy.typing import ArrayLike
 
 from urkin.analytic_ik import ik_analytic
 from urkin.kinematics import _joints
-from urkin.planning.checks import RESOLUTION, _check, _collides, _edges_free, _travels, explain
+from urkin.planning.checks import (
+    FINEST,
+    RESOLUTION,
+    _check,
+    _collides,
+    _edges_free,
+    _proven,
+    _travels,
+    explain,
+)
 from urkin.planning.scene import Scene
 from urkin.planning.spheres import SphereModel
 
@@ -227,11 +238,23 @@ def rrt_connect(
         # skipped come back, and the edges between them are re-checked
         path = _restored(path, raw, ~fine)
         fine = _fine(model, scene, path, resolution)
-    if not fine.all() and resolution > _FINEST:
-        # an edge of the trees that passed at the resolution but not at a quarter: planned
-        # again between its ends at half the resolution (and re-checked at an eighth)
+    # edges free at the samples but not proven free between them (certify_edges) are in
+    # doubt: they may graze an obstacle between samples
+    doubt = fine.copy()
+    if fine.any():
+        doubt[fine] = ~_proven(
+            model,
+            scene,
+            path[:-1][fine],
+            path[1:][fine],
+            _travels(model, path[:-1][fine], path[1:][fine], resolution),
+            FINEST,
+        )
+    if (doubt.any() or not fine.all()) and resolution > _FINEST:
+        # an edge of the trees that failed the re-check, or is in doubt: planned again
+        # between its ends at half the resolution; an edge in doubt stays if that fails
         left = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
-        for k in np.flatnonzero(~fine)[::-1]:  # from the last: the indices before stay valid
+        for k in np.flatnonzero(~fine | doubt)[::-1]:  # the last first: earlier indices stay
             sub = rrt_connect(
                 model,
                 scene,
