@@ -250,7 +250,11 @@ def test_grown_checks_are_checks_of_grown_spheres(rng):
     (pair,) = MODEL.meshes
     bound = pair.lower_bound(Q)
     for margin in (0.0, 0.01, 0.03):
-        np.testing.assert_array_equal(pair.collides(Q, np.full(len(Q), margin)), bound <= margin)
+        rows, near = pair._bounds(Q, np.full(len(Q), margin))
+        within = np.zeros(len(Q), dtype=bool)
+        within[rows] = near <= margin
+        np.testing.assert_array_equal(within, bound <= margin)  # no cell skipped wrongly
+        np.testing.assert_array_equal(near, bound[rows])
 
 
 @pytest.mark.parametrize("known", [0, 1, 2])

@@ -367,7 +367,8 @@ class _Draws:
             entries.append(
                 (tree, tree.count, target, near, _towards(tree.nodes[near], target, self.step))
             )
-        free = ~_ends_blocked(self.model, self.scene, entries)
+        starts = np.array([e[0].nodes[e[3]] for e in entries])
+        free = ~_ends_blocked(self.model, self.scene, starts, np.array([e[4] for e in entries]))
         speeds: list[np.ndarray | None] = [None] * len(entries)
         if free.any():  # the speed bounds of the free ones' edges, in one batch too
             ends = [e for e, f in zip(entries, free) if f]
@@ -387,7 +388,7 @@ class _Draws:
         if extending is not tree:  # the other tree extends: its own new node
             tree, near, speeds = extending, extending.nearest(target), None
             q_new = _towards(tree.nodes[near], target, self.step)
-            free = not _ends_blocked(self.model, self.scene, [(tree, 0, 0, near, q_new)])[0]
+            free = not _ends_blocked(self.model, self.scene, tree.nodes[near], q_new)
         elif tree.count > count:  # grown since drawn: is a new node nearer?
             d = tree.nodes[count : tree.count] - target
             d2 = np.einsum("ij,ij->i", d, d)
@@ -396,19 +397,19 @@ class _Draws:
             if d2[k] < gap @ gap:
                 near, speeds = count + k, None
                 q_new = _towards(tree.nodes[near], target, self.step)
-                free = not _ends_blocked(self.model, self.scene, [(tree, 0, 0, near, q_new)])[0]
+                free = not _ends_blocked(self.model, self.scene, tree.nodes[near], q_new)
         return tree, near, q_new, free, speeds
 
 
-def _ends_blocked(model, scene, entries) -> np.ndarray:
-    """Whether each extension of ``entries`` (tree, …, nearest node, new node) is blocked at
-    its new node or at the middle of its edge, in one check: most blocked extensions are
-    found here, where one configuration costs a few microseconds, rather than by their edge
-    check."""
-    ends = np.array([e[4] for e in entries])
-    middles = (np.array([e[0].nodes[e[3]] for e in entries]) + ends) / 2
-    hit = _collides(model, scene, np.concatenate([ends, middles]))
-    return hit[: len(ends)] | hit[len(ends) :]
+def _ends_blocked(model, scene, starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """Whether each extension from ``starts`` to ``ends`` ((K, 6) or (6,)) is blocked at its
+    new node or at the middle of its edge, in one check: most blocked extensions are found
+    here, where one configuration costs a few microseconds, rather than by their edge check.
+    (K,) bool, or a bool for one extension."""
+    ends = np.atleast_2d(ends)
+    hit = _collides(model, scene, np.concatenate([ends, (starts + ends) / 2]))
+    blocked = hit[: len(ends)] | hit[len(ends) :]
+    return bool(blocked[0]) if np.ndim(starts) == 1 else blocked
 
 
 def _extending(trees: list[_Tree], last: _Tree | None) -> _Tree:

@@ -162,13 +162,12 @@ class MeshPair:
         fall += np.abs(_SECOND - after[:, 1:]) * slope[1]
         return (self.distance[rows, cols] - fall).max(axis=1)
 
-    def collides(self, Q: np.ndarray, margin: np.ndarray | None = None) -> np.ndarray:
-        """Whether the meshes may touch at configurations ``Q`` (N, 6), or come within
-        ``margin`` (N,) metres of each other: (N,) bool (the bound is computed only in the
-        cells whose lower bound does not already rule it out)."""
-        rows, bound = self._bounds(Q, margin)
+    def collides(self, Q: np.ndarray) -> np.ndarray:
+        """Whether the meshes may touch at configurations ``Q`` (N, 6): (N,) bool (the bound
+        is computed only in the cells whose lower bound does not already rule it out)."""
+        rows, bound = self._bounds(Q, None)
         hit = np.zeros(len(Q), dtype=bool)
-        hit[rows] = bound <= (0.0 if margin is None else margin[rows])
+        hit[rows] = bound <= 0.0
         return hit
 
     def _bounds(self, Q: np.ndarray, margin: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
