@@ -158,6 +158,10 @@ def test_touch_tests_agree_with_signed_distances_for_every_kind(rng):
     gap = scene.signed_distances(P) - r[:, None]
     clear = np.abs(gap).min(axis=1) > 1e-9  # away from touching by more than round-off
     np.testing.assert_array_equal(scene._touches(P, r)[clear], (gap <= 0).any(axis=1)[clear])
+    # the dense test of a few points: the squared gap to the nearest obstacle
+    np.testing.assert_array_equal((scene._gaps2(P) <= r * r)[clear], (gap <= 0).any(axis=1)[clear])
+    outside = np.maximum(scene.signed_distances(P), 0.0).min(axis=1)
+    np.testing.assert_allclose(np.sqrt(scene._gaps2(P)), outside, atol=1e-9)
     assert 0.01 < np.mean((gap <= 0).any(axis=1)) < 0.99
     for k in range(len(scene)):
         assert (gap[:, k] <= 0).any()  # every obstacle is touched by some ball
@@ -242,10 +246,16 @@ def test_grown_checks_are_checks_of_grown_spheres(rng):
         np.testing.assert_array_equal(as_they_are, ~planning.is_free(plain, CLUTTER, Q))
         assert 0.1 < got.mean() < 0.9
     # with a tabulated mesh pair too, the verdicts as they are come with the grown ones
-    grow = np.full((len(Q), len(MODEL) + 1), 0.01)
+    grow = rng.uniform(0.0, 0.02, (len(Q), len(MODEL) + 1))
     got, as_they_are = planning.checks._hits(MODEL, CLUTTER, Q, grow)
     np.testing.assert_array_equal(as_they_are, ~planning.is_free(MODEL, CLUTTER, Q))
     assert np.all(got >= as_they_are) and np.any(got > as_they_are)
+    # a few configurations at a time take the dense path (no broad phase): the same verdicts
+    assert len(Q) > planning.checks._DENSE
+    for rows in np.array_split(np.arange(len(Q)), 125):  # 32 at a time
+        few = planning.checks._hits(MODEL, CLUTTER, Q[rows], grow[rows])
+        np.testing.assert_array_equal(few[0], got[rows])
+        np.testing.assert_array_equal(few[1], as_they_are[rows])
     # a tabulated mesh pair counts within the margin of its lower bound
     (pair,) = MODEL.meshes
     bound = pair.lower_bound(Q)
@@ -286,6 +296,22 @@ def test_edge_verdicts_are_those_of_every_sample(rng, known):
     assert 0.2 < every[keep].mean() < 0.99 and not every[keep].all()
     one = [planning.edges_free(MODEL, CLUTTER, a, b) for a, b in zip(A[:40], B[:40])]
     np.testing.assert_array_equal(one, every[:40])
+    # one edge at a time (its own path, planned once per sample count), proving or not
+    for prove in (True, False):
+        single = [
+            planning.checks._edges_free(
+                MODEL,
+                CLUTTER,
+                A[k : k + 1],
+                B[k : k + 1],
+                travel[k : k + 1],
+                planning.checks.RESOLUTION,
+                known=known,
+                prove=prove,
+            )[0]
+            for k in np.flatnonzero(keep)[:120]
+        ]
+        np.testing.assert_array_equal(single, got[:120])
 
 
 def test_certified_edges_are_free_everywhere_and_open_ones_are_certified(rng):

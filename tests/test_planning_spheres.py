@@ -141,6 +141,14 @@ def test_tabulated_meshes_are_never_closer_than_their_table_says(name):
     bound = pair.lower_bound(Q)
     wide = rng.uniform(-2 * np.pi, 2 * np.pi, (20_000, 6))  # the verdict skips clear cells
     np.testing.assert_array_equal(pair.collides(wide), pair.lower_bound(wide) <= 0.0)
+    # at the grid's nodes the bound is the tabulated distance, whichever turn names them
+    n = len(pair.distance)
+    k = rng.integers(0, n, (500, 2))
+    nodes = np.zeros((500, 6))
+    nodes[:, 3:5] = -np.pi + 2 * np.pi * k / n + 2 * np.pi * rng.integers(-1, 2, (500, 2))
+    nodes[:5, 3:5] = np.pi  # where round-off may land on the far end of the table
+    k[:5] = 0
+    np.testing.assert_allclose(pair.lower_bound(nodes), pair.distance[k[:, 0], k[:, 1]], atol=1e-9)
     near = np.flatnonzero(bound < 0.01)
     pick = np.concatenate([near[:25], np.flatnonzero(bound >= 0.01)[:25]])
     assert len(near) >= 10

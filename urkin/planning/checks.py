@@ -7,6 +7,8 @@ grouped under bounding balls of at most 10 cm, the balls are tested first, and o
 of a ball that touches something are placed and tested (the verdicts are exactly those of
 testing every sphere).  The base's spheres are left out of the scene tests: they never move,
 so an obstacle that overlaps the base is a property of the scene, not of a configuration.
+A stack of at most 64 configurations skips the broad phase: there, testing every sphere
+against every obstacle takes fewer array operations than culling (the same verdicts).
 
 Contact counts as collision: a configuration is free when every sphere is strictly apart from
 every obstacle and from every sphere it is paired with.
@@ -30,6 +32,7 @@ at once, so a collision anywhere on any edge is usually found in the first batch
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -89,9 +92,11 @@ def _hits(
     tested grown and, where they touch grown, as they are.  Without ``grow`` both are the
     verdicts as they are."""
     n = len(Q)
+    if n <= _DENSE:
+        return _dense_hits(model, scene, Q, grow)
     hit = np.zeros(n, dtype=bool)  # as they are
     grown = hit if grow is None else np.zeros(n, dtype=bool)
-    if not len(model) or not n:
+    if not len(model):
         return grown, hit
     F4 = _frames(model.robot, Q)  # (N, 8, 4, 4)
     F = F4[..., :3, :]
@@ -121,12 +126,7 @@ def _hits(
             if grow is not None:
                 reach += grow[rows, i] + grow[rows, j]
                 grown[rows[d2 <= reach * reach]] = True
-    for p, pair in enumerate(model.meshes):  # links whose meshes are tabulated
-        margin = None if grow is None else grow[:, len(model) + p]
-        rows, bound = pair._bounds(Q, margin)
-        hit[rows[bound <= 0.0]] = True
-        if grow is not None:
-            grown[rows[bound <= margin[rows]]] = True
+    _mesh_hits(model, Q, grow, grown, hit)
     moving = groups.moving
     todo = np.flatnonzero(~hit)  # configurations not yet known to collide as they are
     if len(scene) and len(moving) and len(todo):
@@ -151,6 +151,89 @@ def _hits(
                 grown[rows] = True
                 hit[rows[scene._touches(centres, model.radii[spheres])]] = True
     return grown, hit
+
+
+#: Stacks up to this many configurations are checked by :func:`_dense_hits`.
+_DENSE = 64
+
+
+def _dense_hits(
+    model: SphereModel, scene: Scene, Q: np.ndarray, grow: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_hits` of a few configurations (N ≤ ``_DENSE``), with no broad phase: every
+    moving sphere against every obstacle (:meth:`Scene._gaps2`), every self-collision pair
+    from one matrix product.  The same tests, in a third of the array operations where
+    there are few configurations to cull."""
+    n = len(Q)
+    hit = np.zeros(n, dtype=bool)
+    grown = hit if grow is None else np.zeros(n, dtype=bool)
+    if not len(model) or not n:
+        return grown, hit
+    dense = _dense(model)
+    X = _frames(model.robot, Q).reshape(n, 128) @ dense.place  # centres, then pair differences
+    m = len(dense.moving)
+    npair = len(model.pairs)
+    if npair:
+        d = X[:, 3 * m :]
+        d = d * d
+        d2 = d[:, :npair] + d[:, npair : 2 * npair]
+        d2 += d[:, 2 * npair :]
+        hit |= (d2 <= dense.reach2).any(axis=1)
+        if grow is not None:
+            reach = dense.reach + grow[:, model.pairs[:, 0]]
+            reach += grow[:, model.pairs[:, 1]]
+            grown |= (d2 <= reach * reach).any(axis=1)
+    _mesh_hits(model, Q, grow, grown, hit)
+    if len(scene) and m:
+        gaps2 = scene._gaps2(X[:, : 3 * m].reshape(n * m, 3)).reshape(n, m)
+        hit |= (gaps2 <= dense.radii2).any(axis=1)
+        if grow is not None:
+            reach = dense.radii + grow[:, dense.moving]
+            grown |= (gaps2 <= reach * reach).any(axis=1)
+    return grown, hit
+
+
+@dataclass(frozen=True)
+class _Dense:
+    """The arrays of :func:`_dense_hits`: ``moving``, the spheres not on the base, with their
+    ``radii`` and ``radii2``; ``place`` (128, 3 moving + 3 P), the placing matrix of their
+    centres, then of the self-collision pairs' differences (x, then y, then z); ``reach``,
+    ``reach2``: the pairs' sums of radii and their squares."""
+
+    moving: np.ndarray
+    radii: np.ndarray
+    radii2: np.ndarray
+    place: np.ndarray
+    reach: np.ndarray
+    reach2: np.ndarray
+
+
+def _dense(model: SphereModel) -> _Dense:
+    """The model's :class:`_Dense` (built once per model and kept on it)."""
+    found = model.__dict__.get("_dense")
+    if found is None:
+        moving = np.flatnonzero(model.frames > 0)
+        i, j = model.pairs[:, 0], model.pairs[:, 1]
+        every = _placing(model).reshape(128, -1, 3)
+        apart = (every[:, i] - every[:, j]).transpose(0, 2, 1).reshape(128, -1)
+        place = np.hstack([every[:, moving].reshape(128, -1), apart])
+        reach = model.radii[i] + model.radii[j]
+        radii = model.radii[moving]
+        found = _Dense(moving, radii, radii**2, np.ascontiguousarray(place), reach, reach**2)
+        object.__setattr__(model, "_dense", found)
+    return found
+
+
+def _mesh_hits(model, Q, grow, grown, hit) -> None:
+    """Mark in ``hit`` the configurations ``Q`` where a tabulated mesh pair may touch, and in
+    ``grown`` where it may come within its column of ``grow`` (:func:`_hits`)."""
+    for p, pair in enumerate(model.meshes):
+        margin = None if grow is None else grow[:, len(model) + p]
+        rows, bound = pair._bounds(Q, margin)
+        if len(rows):
+            hit[rows[bound <= 0.0]] = True
+            if grow is not None:
+                grown[rows[bound <= margin[rows]]] = True
 
 
 def _place(F: np.ndarray, M: np.ndarray) -> np.ndarray:
@@ -525,17 +608,26 @@ def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -
     # r_j: the centres' x and y in frame j − 1, whose z axis is joint j's axis
     across = F4[:, :6, :3, :2].transpose(0, 2, 1, 3).reshape(2 * K, 3, 12)
     xy = _place(F4, _placing(model)) @ across  # (2K, S, 12)
-    xy -= np.einsum("nji,njik->njk", F4[:, :6, :3, 3], F4[:, :6, :3, :2]).reshape(2 * K, 1, 12)
+    xy -= (F4[:, :6, None, :3, 3] @ F4[:, :6, :3, :2]).reshape(2 * K, 1, 12)
     xy *= xy
-    r = np.sqrt(xy[..., 0::2] + xy[..., 1::2])  # (2K, S, 6)
-    mid = (r[:K] + r[K:]) / 2  # (K, S, 6)
-    dq = np.abs(B - A)
-    T = np.zeros(mid.shape[:2])
+    r = np.sqrt(xy[..., 0::2] + xy[..., 1::2]).transpose(2, 0, 1)  # (6, 2K, S)
+    mid = r[:, :K] + r[:, K:]
+    mid *= 0.5  # (6, K, S)
+    dq = np.abs(B - A).T[..., None]  # (6, K, 1)
+    half = dq * 0.5
+    S = len(model)
+    out = np.zeros((K, S + len(model.meshes)))
+    H = out[:, :S]  # T / 2 (halving is exact: the same bounds, in fewer operations)
     for j in range(5, -1, -1):  # T = Σ_{m>j} |Δq_m| R_m
-        T += dq[:, j, None] * np.minimum(rho[:, j], mid[..., j] + T / 2)
+        R = mid[j] + H
+        np.minimum(R, rho[:, j], out=R)
+        R *= half[j]
+        H += R
+    H *= 2.0
     # how far one tabulated mesh moves relative to the other
-    relative = [dq[:, p.joints[0] : p.joints[0] + 2] @ p.reach for p in model.meshes]
-    return np.column_stack([T, *relative]) if relative else T
+    for p, pair in enumerate(model.meshes):
+        out[:, S + p] = dq[pair.joints[0] : pair.joints[0] + 2, :, 0].T @ pair.reach
+    return out
 
 
 def edges_free(
@@ -697,6 +789,8 @@ def _edges_free(
     blocked one is reported blocked without being checked further.  Without ``prove``, one
     pass checks every sample (a rough look at a coarse resolution, where grown spheres would
     prove little)."""
+    if len(A) == 1:
+        return np.array([_edge_free(model, scene, A[0], B[0], speeds[0], resolution, known, prove)])
     counts = np.maximum(1, np.ceil(speeds.max(axis=1, initial=0.0) / resolution))
     counts = counts.astype(np.intp)
     samples = counts + 1
@@ -729,6 +823,79 @@ def _edges_free(
     if len(rest):
         _check_samples(model, scene, A, B, edge, index, n, rest, None, free, prefix)
     return free
+
+
+def _edge_free(model, scene, a, b, speed, resolution, known, prove) -> bool:
+    """:func:`_edges_free` of one edge ``a`` → ``b`` (6,), ``speed`` (S + P,): the same samples,
+    grown alike, with the bookkeeping of its sample count done once (:func:`_plan`)."""
+    n = max(1, math.ceil(speed.max(initial=0.0) / resolution))
+    plan = _plan(n, known, prove)
+    step = b - a
+    touched = np.zeros(len(plan.first), dtype=bool)
+    for part in plan.batches:
+        Q = a + plan.t[part, None] * step
+        grow = speed * plan.half[part, None] if prove else None
+        touched[part], hit = _hits(model, scene, Q, grow)
+        if hit.any():
+            return False
+    if not prove:
+        return True
+    proven = plan.known.copy()
+    proven[plan.first] = True  # free as they are
+    done = plan.first[plan.middle & ~touched]  # free grown: their whole blocks too
+    for offset in range(1, _BLOCK // 2 + 1):
+        proven[done - offset] = True
+        proven[done + offset] = True
+    rest = plan.order[~proven[plan.order]]
+    start, size = 0, _FIRST
+    while start < len(rest):
+        Q = a + (rest[start : start + size] / n)[:, None] * step
+        start += size
+        size = max(_BATCH, _GROWTH * size)
+        if _hits(model, scene, Q, None)[1].any():
+            return False
+    return True
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """How :func:`_edge_free` checks an edge of ``n`` intervals: ``first``, the samples of the
+    first pass, coarse first (``t``: where they are on the edge; ``half``: how far each grows,
+    in intervals times ``1 / n``, 0 for the plain ones; ``middle``: which are blocks'
+    middles), in ``batches`` (slices); ``known``, the samples known free; ``order``, every
+    sample, coarse first."""
+
+    first: np.ndarray
+    t: np.ndarray
+    half: np.ndarray
+    middle: np.ndarray
+    batches: tuple[slice, ...]
+    known: np.ndarray
+    order: np.ndarray
+
+
+@functools.lru_cache(maxsize=512)
+def _plan(n: int, known: int, prove: bool) -> _Plan:
+    """The :class:`_Plan` of an edge of ``n`` intervals (the samples :func:`_edges_free` picks
+    for one edge)."""
+    index = np.arange(n + 1)
+    whole = (n // _BLOCK) * _BLOCK if prove else 0
+    middle = (index % _BLOCK == _BLOCK // 2) & (index < whole)
+    known_free = (index == 0) if known else np.zeros(n + 1, dtype=bool)
+    if known == 2:
+        known_free |= index == n
+    plain = ((index > whole) | (index == 0) | (index == n)) & ~known_free
+    order = np.lexsort((index, _depth(index, np.full(n + 1, n))))
+    first = order[(middle | plain)[order]]
+    half = np.where(middle[first], (_BLOCK / 2) * (1 + 1e-9), 0.0) / n
+    batches, start, size = [], 0, _FIRST
+    while start < len(first):
+        batches.append(slice(start, start + size))
+        start += size
+        size = max(_BATCH, _GROWTH * size)
+    for array in (first, middle, known_free, order):
+        array.setflags(write=False)
+    return _Plan(first, first / n, half, middle[first], tuple(batches), known_free, order)
 
 
 def _check_samples(model, scene, A, B, edge, index, n, pick, grown, free, prefix):

@@ -127,8 +127,14 @@ class MeshPair:
             np.minimum(D, np.roll(D, -1, 0)), np.roll(np.minimum(D, np.roll(D, -1, 0)), -1, 1)
         )
         floor = corners - self._slope().sum() / 2
-        floor.setflags(write=False)
-        object.__setattr__(self, "_floor", floor)
+        # both tables flat, wrapped by two more rows and columns: a cell's lower node (i, k),
+        # 0 ≤ i, k ≤ n (n where round-off lands on 2π), is entry (n + 2) i + k, and the four
+        # nodes around it are that entry plus ``_nodes``
+        for name, table in (("_floor", floor), ("_flat", D)):
+            flat = np.pad(table, (0, 2), mode="wrap").reshape(-1)
+            flat.setflags(write=False)
+            object.__setattr__(self, name, flat)
+        object.__setattr__(self, "_nodes", np.array([0, n + 2, 1, n + 3]))
 
     @property
     def joints(self) -> tuple[int, int]:
@@ -140,27 +146,27 @@ class MeshPair:
         return self.reach * (2 * math.pi / len(self.distance))
 
     def _cells(self, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The grid cell of each configuration (its lower nodes, (N, 2)) and the way past
-        them, in steps (N, 2)."""
-        step = 2 * math.pi / len(self.distance)
-        x = np.mod(Q[:, self.joints[0] : self.joints[0] + 2] + math.pi, 2 * math.pi) / step
+        """The grid cell of each configuration (its lower node's entry in the flat tables,
+        (N,)) and the way past that node, in steps (N, 2)."""
+        n = len(self.distance)
+        x = Q[:, self.joints[0] : self.joints[0] + 2] + math.pi
+        np.mod(x, 2 * math.pi, out=x)
+        x *= n / (2 * math.pi)
         low = np.floor(x)
-        return low.astype(np.intp) % len(self.distance), x - low
+        x -= low
+        i = low.astype(np.intp)
+        return i[:, 0] * (n + 2) + i[:, 1], x
 
     def lower_bound(self, Q: np.ndarray) -> np.ndarray:
         """A lower bound of the meshes' distance at configurations ``Q`` (N, 6): (N,) metres
         (0 or less where they may touch)."""
         return self._lower(*self._cells(Q))
 
-    def _lower(self, i: np.ndarray, after: np.ndarray) -> np.ndarray:
-        """:meth:`lower_bound` in cells ``i`` (N, 2), ``after`` steps past their lower nodes."""
-        j = (i + 1) % len(self.distance)
-        rows = np.column_stack([i[:, 0], j[:, 0], i[:, 0], j[:, 0]])  # the four nodes
-        cols = np.column_stack([i[:, 1], i[:, 1], j[:, 1], j[:, 1]])
-        slope = self._slope()
-        fall = np.abs(_FIRST - after[:, :1]) * slope[0]
-        fall += np.abs(_SECOND - after[:, 1:]) * slope[1]
-        return (self.distance[rows, cols] - fall).max(axis=1)
+    def _lower(self, cell: np.ndarray, after: np.ndarray) -> np.ndarray:
+        """:meth:`lower_bound` in ``cell`` (N,), ``after`` (N, 2) steps past their lower nodes:
+        the best of the four nodes' distances less how far it can fall from each."""
+        fall = np.abs(_STEPS - after[:, None, :]) @ self._slope()  # (N, 4)
+        return (self._flat[cell[:, None] + self._nodes] - fall).max(axis=1)
 
     def collides(self, Q: np.ndarray) -> np.ndarray:
         """Whether the meshes may touch at configurations ``Q`` (N, 6): (N,) bool (the bound
@@ -173,14 +179,13 @@ class MeshPair:
     def _bounds(self, Q: np.ndarray, margin: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
         """The configurations of ``Q`` whose cell's bound does not rule out coming within
         ``margin`` (N,) (or touching), and the lower bound of the distance at each."""
-        i, after = self._cells(Q)
-        floor = self._floor[i[:, 0], i[:, 1]]
-        rows = np.flatnonzero(floor <= (0.0 if margin is None else margin))
-        return rows, self._lower(i[rows], after[rows])
+        cell, after = self._cells(Q)
+        rows = np.flatnonzero(self._floor[cell] <= (0.0 if margin is None else margin))
+        return rows, self._lower(cell[rows], after[rows])
 
 
-#: Each of the four nodes around a point, as steps along the first and the second joint.
-_FIRST, _SECOND = np.array([0.0, 1.0, 0.0, 1.0]), np.array([0.0, 0.0, 1.0, 1.0])
+#: Each of the four nodes around a point (MeshPair._nodes), as steps along the two joints.
+_STEPS = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
 
 
 @dataclass(frozen=True, eq=False)
