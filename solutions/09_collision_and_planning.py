@@ -103,7 +103,7 @@ print(f"the report's joint points lie on their joint axes: the farthest is "
       f"{below(max(off_axis), 1e-3)} m off")
 print(f"seed 001's model: {len(joint_spheres)} spheres; urkin's model of the UR3: "
       f"{len(fitted)} spheres, {len(fitted.pairs)} self-collision pairs of spheres, and "
-      f"{len(fitted.meshes)} pair of links tested on their meshes")
+      f"{len(fitted.meshes)} pairs of links tested on their meshes")
 
 # %% [markdown]
 # The report's numbers are consistent: every joint point is within half a millimetre of its
@@ -343,15 +343,18 @@ for name, q in configurations.items():
 # rule of the course: no Python loop over configurations). `clearance` gives the signed
 # distance of the closest pair — a sphere and an obstacle, or two spheres of the arm itself
 # (self-collision: the model lists which pairs of spheres can meet) — and `explain` puts it in
-# a sentence. One pair of links is the exception: the forearm and wrist 2 sit so close that
-# their spheres, which bulge 2–3 cm beyond the meshes, overlap where the links are a
+# a sentence. Three pairs of links are the exception. The forearm and wrist 2 sit so close
+# that their spheres, which bulge 1–3 cm beyond the meshes, overlap where the links are a
 # centimetre apart (on the UR5 they would call almost a quarter of the free configurations
 # self-colliding). Their relative pose depends on joints 4 and 5 only, so the model carries a
 # table of their meshes' exact distance over those two joints, one value per degree, and
-# tests that pair on it instead (`planning.spheres.MeshPair`). Two of the goal pose's
-# configurations are free; in the others the arm reaches down into the table. And the
-# configuration halfway along the straight joint-space line from the start to the goal has
-# the wrist in the shelf's side — keep it in mind for section 3.
+# tests that pair on it instead (`planning.spheres.MeshPair`). The base and the upper arm get
+# a table over joints 1 and 2; the forearm and wrist 3 one over joints 4 and 5 as well, with
+# wrist 3 — nearly round — replaced by the solid it sweeps turning about joint 6, so that the
+# table holds whatever joint 6 does. Two of the goal pose's configurations are free; in the
+# others the arm reaches down into the table. And the configuration halfway along the
+# straight joint-space line from the start to the goal has the wrist in the shelf's side —
+# keep it in mind for section 3.
 
 # %%
 _ = urkin.plot.sphere_models_figure(

@@ -1,26 +1,42 @@
-"""Tabulate the distance between the forearm's and wrist 2's collision meshes over joints 4, 5.
+"""Tabulate the distance between pairs of links' collision meshes over the two joints between.
 
     python -m tests.pair_tables     # writes urkin/planning/_pair_tables.py (needs coal)
 
-The forearm moves with DH frame 3 and wrist 2 with frame 5, so their relative pose
-``T_3_5 = A_4(q4) A_5(q5)`` depends on joints 4 and 5 only.  Their covering spheres reach
-2–3 cm beyond the meshes, and near each other that is the whole gap: of random UR5
-configurations, the spheres leave 34 % free of self-collision and the table 45 %, and 138 of
-VAMP's 700 MotionBenchMaker UR5 problems start or end in such a sphere overlap with the
-meshes 1–16 mm apart.  This script measures the meshes' exact distance (coal's BVH distance,
-triangles against triangles; 0 where they intersect) at every node of a grid of ``N × N``
-values of (q4, q5) over a full turn each, rounds it down to ``UNIT``, and caps it at ``CAP``
-(farther is free whatever the joints between nodes do).  It also stores, per joint, the
-largest distance of a wrist 2 vertex from that joint's axis: the speed bound with which
-:mod:`urkin.planning.spheres` turns node values into a lower bound of the distance anywhere
-between nodes.  ``tests/test_planning_spheres.py`` holds the table to surface samples of the
-meshes placed by the URDF at fresh configurations.
+Three pairs of links sit so close in folded configurations that their covering spheres, which
+reach 1–3 cm beyond the meshes, overlap where the meshes are clear:
+
+- the base (DH frame 0) and the upper arm (frame 2), whose relative pose ``A_1(q1) A_2(q2)``
+  depends on joints 1 and 2;
+- the forearm (frame 3) and wrist 2 (frame 5): ``A_4(q4) A_5(q5)``, joints 4 and 5;
+- the forearm and wrist 3 (frame 6), whose pose also depends on joint 6, about which wrist 3
+  is nearly round: the table holds the forearm's distance to wrist 3 *turned about joint 6's
+  axis by any angle* (a solid of revolution around the mesh, below), so it depends on joints
+  4 and 5 only and bounds the distance at every joint 6.
+
+Of random UR5 configurations, the spheres leave 34 % free of self-collision and the forearm
+and wrist 2's table 45 %; 138 of VAMP's 700 MotionBenchMaker UR5 problems start or end in such
+a sphere overlap with those meshes 1–16 mm apart, and 8 more with the base and upper arm or the
+forearm and wrist 3 (1–22 mm apart).  This script measures the exact distance (coal's BVH
+distance, triangles against triangles; 0 where they intersect) at every node of a grid of
+``N × N`` values of the two joints over a full turn each, rounds it down to ``UNIT``, and caps
+it at ``CAP`` (farther is free whatever the joints between nodes do).  It also stores, per
+joint, the largest distance of a vertex of the second link from that joint's axis: the speed
+bound with which :mod:`urkin.planning.spheres` turns node values into a lower bound of the
+distance anywhere between nodes.  ``tests/test_planning_spheres.py`` holds each table to
+surface samples of the meshes placed by the URDF at fresh configurations.
+
+The solid of revolution around wrist 3: its mesh, split until no edge is longer than ``EDGE``,
+in slabs ``SLAB`` thick along joint 6's axis; each slab's radius is the largest distance from
+the axis of a vertex within ``EDGE`` of the slab, plus ``EDGE`` (every surface point is within
+``EDGE`` of a vertex), drawn as a prism of ``SIDES`` faces circumscribing that circle, with
+discs closing the steps between slabs and the ends.
 """
 
 from __future__ import annotations
 
 import base64
 import io
+import itertools
 from pathlib import Path
 
 import numpy as np
@@ -28,12 +44,15 @@ import numpy as np
 import urkin
 from urkin.kinematics import dh_transform
 
-from .fit_spheres import mesh_in_dh_frames
+from .fit_spheres import mesh_in_dh_frames, subdivide
 
 N = 360  # grid nodes per joint turn: one per degree
 UNIT = 0.00025  # m: distances are stored as whole multiples of this, rounded down
 CAP = 0.06  # m: distances beyond this are stored as this
-FRAMES = (3, 5)  # the forearm and wrist 2
+#: The pairs of links tabulated (DH frames); a second frame three after the first is turned
+#: about its joint's axis (a solid of revolution).
+LINKS = ((0, 2), (3, 5), (3, 6))
+EDGE, SLAB, SIDES = 0.002, 0.002, 64
 OUT = Path(__file__).resolve().parents[1] / "urkin" / "planning" / "_pair_tables.py"
 
 
@@ -47,24 +66,64 @@ def bvh(coal, triangles: np.ndarray):
     return model
 
 
-def table(name: str) -> tuple[np.ndarray, np.ndarray]:
+def revolved(triangles: np.ndarray) -> np.ndarray:
+    """A closed surface of revolution about z holding ``triangles`` turned by any angle (see
+    the module notes): (M, 3, 3)."""
+    vertices = subdivide(triangles, EDGE).reshape(-1, 3)
+    r, z = np.hypot(vertices[:, 0], vertices[:, 1]), vertices[:, 2]
+    edges = np.arange(z.min() - EDGE, z.max() + EDGE + SLAB, SLAB)
+    radii = np.array(
+        [
+            r[(z >= lo - EDGE) & (z <= hi + EDGE)].max(initial=0.0) + EDGE
+            for lo, hi in itertools.pairwise(edges)
+        ]
+    ) / np.cos(np.pi / SIDES)
+    angle = np.arange(SIDES + 1) * (2 * np.pi / SIDES)
+    ring = np.column_stack([np.cos(angle), np.sin(angle)])  # (SIDES + 1, 2), closed
+
+    def at(radius: float, height: float) -> np.ndarray:
+        return np.column_stack([radius * ring, np.full(len(ring), height)])
+
+    out = []
+
+    def annulus(a: float, b: float, height: float) -> None:  # a disc when one radius is 0
+        inner, outer = at(min(a, b), height), at(max(a, b), height)
+        for m in range(SIDES):
+            out.extend([(inner[m], outer[m], outer[m + 1]), (inner[m], outer[m + 1], inner[m + 1])])
+
+    for k, radius in enumerate(radii):
+        lo, hi = at(radius, edges[k]), at(radius, edges[k + 1])
+        for m in range(SIDES):  # the prism's side
+            out.extend([(lo[m], lo[m + 1], hi[m + 1]), (lo[m], hi[m + 1], hi[m])])
+        annulus(radii[k - 1] if k else 0.0, radius, edges[k])  # the step below the slab
+    annulus(radii[-1], 0.0, edges[-1])  # the top
+    return np.array(out)
+
+
+def table(name: str, first: int, second: int) -> tuple[np.ndarray, np.ndarray]:
+    """The distance table of links ``first`` and ``second`` (DH frames) of arm ``name``, over
+    joints ``first + 1`` and ``first + 2``, and the second link's reach from those joints'
+    axes."""
     import coal
 
     arm = urkin.robot(name)
+    dh = arm.dh_table()
     meshes = mesh_in_dh_frames(name)
-    forearm, wrist2 = meshes[FRAMES[0]], meshes[FRAMES[1]]
-    a = coal.CollisionObject(bvh(coal, forearm), coal.Transform3s())
-    b = coal.CollisionObject(bvh(coal, wrist2), coal.Transform3s())
+    near, far = meshes[first], meshes[second]
+    if second == first + 3:  # turned about the last joint's axis: in the frame before it
+        A = dh_transform(0.0, dh[second - 1, 0], dh[second - 1, 1], dh[second - 1, 2])
+        far = revolved(far) @ A[:3, :3].T + A[:3, 3]
+    a = coal.CollisionObject(bvh(coal, near), coal.Transform3s())
+    b = coal.CollisionObject(bvh(coal, far), coal.Transform3s())
     request, result = coal.DistanceRequest(), coal.DistanceResult()
     hit_request, hit_result = coal.CollisionRequest(), coal.CollisionResult()
-    dh = arm.dh_table()
     angles = np.arange(N) * (2 * np.pi / N) - np.pi
-    A4 = dh_transform(angles, dh[3, 0], dh[3, 1], dh[3, 2])
-    A5 = dh_transform(angles, dh[4, 0], dh[4, 1], dh[4, 2])
+    A1 = dh_transform(angles, dh[first, 0], dh[first, 1], dh[first, 2])
+    A2 = dh_transform(angles, dh[first + 1, 0], dh[first + 1, 1], dh[first + 1, 2])
     out = np.empty((N, N))
     for i in range(N):
         for j in range(N):
-            T = A4[i] @ A5[j]
+            T = A1[i] @ A2[j]
             b.setTransform(coal.Transform3s(T[:3, :3], T[:3, 3]))
             result.clear()
             hit_result.clear()
@@ -73,39 +132,42 @@ def table(name: str) -> tuple[np.ndarray, np.ndarray]:
                 continue
             coal.distance(a, b, request, result)
             out[i, j] = max(result.min_distance, 0.0)
-    # speed bounds: a wrist 2 vertex's distance from joint 5's axis (z4) is fixed; from joint
-    # 4's (z3) it depends on q5: the largest over the grid
-    vertices = wrist2.reshape(-1, 3)
-    A5v = A5[:, :3, :3] @ vertices.T + A5[:, :3, 3:4]  # (N, 3, V) in frame 4
-    reach5 = float(np.hypot(A5v[:, 0], A5v[:, 1]).max())
-    in3 = A4[0, :3, :3] @ A5v + A4[0, :3, 3:4]  # frame 3 (the distance to z3 ignores q4)
-    reach4 = float(np.hypot(in3[:, 0], in3[:, 1]).max())
+    # speed bounds: a vertex's distance from the second joint's axis is fixed; from the
+    # first's it depends on the second joint: the largest over the grid
+    vertices = far.reshape(-1, 3)
+    moved = A2[:, :3, :3] @ vertices.T + A2[:, :3, 3:4]  # (N, 3, V) in frame first + 1
+    reach2 = float(np.hypot(moved[:, 0], moved[:, 1]).max())
+    placed = A1[0, :3, :3] @ moved + A1[0, :3, 3:4]  # frame first (the first joint's turn
+    reach1 = float(np.hypot(placed[:, 0], placed[:, 1]).max())  # does not change it)
     stored = np.floor(np.minimum(out, CAP) / UNIT).astype(np.uint8)
-    return stored, np.array([reach4, reach5])
+    return stored, np.array([reach1, reach2])
 
 
 def main() -> None:
     arrays = {}
     for name in ("ur3", "ur5", "ur10"):
-        stored, reach = table(name)
-        arrays[f"{name}_distance"] = stored
-        arrays[f"{name}_reach"] = reach
-        print(f"{name}: touching at {np.mean(stored == 0):.1%} of the nodes; reach {reach}")
+        for first, second in LINKS:
+            stored, reach = table(name, first, second)
+            key = f"{name}_{first}{second}"
+            arrays[f"{key}_distance"] = stored
+            arrays[f"{key}_reach"] = reach
+            print(f"{key}: touching at {np.mean(stored == 0):.1%} of the nodes; reach {reach}")
     buffer = io.BytesIO()
-    np.savez_compressed(buffer, unit=UNIT, frames=np.array(FRAMES), **arrays)
+    np.savez_compressed(buffer, unit=UNIT, links=np.array(LINKS), **arrays)
     text = base64.b64encode(buffer.getvalue()).decode()
     lines = [f'    b"{text[k : k + 88]}"' for k in range(0, len(text), 88)]
     OUT.write_text(HEADER + "NPZ = (\n" + "\n".join(lines) + "\n)\n", encoding="utf-8")
     print(f"wrote {OUT} ({OUT.stat().st_size:,d} bytes)")
 
 
-HEADER = '''"""The forearm's and wrist 2's collision meshes: their distance over joints 4 and 5.
+HEADER = '''"""Pairs of links' collision meshes: their distance over the two joints between them.
 
 Written by ``python -m tests.pair_tables`` (see it for the method, and
 :class:`urkin.planning.spheres.MeshPair` for the use); do not edit by hand.  ``NPZ`` is a
 compressed numpy archive, base64-encoded (a module, so that every copy of the package has
-it): ``unit`` (m), ``frames`` and, per arm, ``<arm>_distance`` (N, N) in units of ``unit``
-and ``<arm>_reach`` (2,) in metres.
+it): ``unit`` (m), ``links`` (k, 2) the pairs' DH frames and, per arm and pair,
+``<arm>_<a><b>_distance`` (N, N) in units of ``unit`` and ``<arm>_<a><b>_reach`` (2,) in
+metres.
 """
 
 '''

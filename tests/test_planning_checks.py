@@ -175,15 +175,19 @@ def test_clearance_is_the_smallest_gap_of_every_pair(rng):
     env = TABLE.signed_distances(W[:, moving])[..., 0] - MODEL.radii[moving]
     i, j = MODEL.pairs.T
     own = np.linalg.norm(W[:, i] - W[:, j], axis=-1) - MODEL.radii[i] - MODEL.radii[j]
-    (meshes,) = MODEL.meshes  # the forearm and wrist 2, tested on their tabulated meshes
-    tabulated = meshes.lower_bound(Q)
-    expected = np.minimum(np.minimum(env.min(1), own.min(1)), tabulated)
+    # the base and upper arm, the forearm and wrist 2, the forearm and wrist 3 (turned about
+    # joint 6): tested on their tabulated meshes
+    assert [pair.frames for pair in MODEL.meshes] == [(0, 2), (3, 5), (3, 6)]
+    tabulated = np.array([pair.lower_bound(Q) for pair in MODEL.meshes])  # (3, N)
+    expected = np.minimum(np.minimum(env.min(1), own.min(1)), tabulated.min(axis=0))
     np.testing.assert_allclose(c.distance, expected, atol=1e-12)
     is_self = c.obstacle < 0
     np.testing.assert_array_equal(is_self, c.other >= 0)
-    assert np.any(c.distance == tabulated)  # the tabulated pair is the closest somewhere
-    for q in Q[c.distance == tabulated][:3]:
-        assert "the forearm and wrist 2 meshes" in planning.explain(MODEL, planning.Scene(), q)
+    assert np.any(c.distance == tabulated.min(axis=0))  # a tabulated pair is the closest
+    for pair, bound in zip(MODEL.meshes, tabulated):
+        a, b = (planning.FRAME_NAMES[f] for f in pair.frames)
+        for q in Q[c.distance == bound][:2]:
+            assert f"the {a} and {b} meshes" in planning.explain(MODEL, planning.Scene(), q)
 
 
 def test_explain_names_the_pair_and_the_depth():
@@ -246,7 +250,7 @@ def test_grown_checks_are_checks_of_grown_spheres(rng):
         np.testing.assert_array_equal(as_they_are, ~planning.is_free(plain, CLUTTER, Q))
         assert 0.1 < got.mean() < 0.9
     # with a tabulated mesh pair too, the verdicts as they are come with the grown ones
-    grow = rng.uniform(0.0, 0.02, (len(Q), len(MODEL) + 1))
+    grow = rng.uniform(0.0, 0.02, (len(Q), len(MODEL) + len(MODEL.meshes)))
     got, as_they_are = planning.checks._hits(MODEL, CLUTTER, Q, grow)
     np.testing.assert_array_equal(as_they_are, ~planning.is_free(MODEL, CLUTTER, Q))
     assert np.all(got >= as_they_are) and np.any(got > as_they_are)
@@ -257,14 +261,14 @@ def test_grown_checks_are_checks_of_grown_spheres(rng):
         np.testing.assert_array_equal(few[0], got[rows])
         np.testing.assert_array_equal(few[1], as_they_are[rows])
     # a tabulated mesh pair counts within the margin of its lower bound
-    (pair,) = MODEL.meshes
-    bound = pair.lower_bound(Q)
-    for margin in (0.0, 0.01, 0.03):
-        rows, near = pair._bounds(Q, np.full(len(Q), margin))
-        within = np.zeros(len(Q), dtype=bool)
-        within[rows] = near <= margin
-        np.testing.assert_array_equal(within, bound <= margin)  # no cell skipped wrongly
-        np.testing.assert_array_equal(near, bound[rows])
+    for pair in MODEL.meshes:
+        bound = pair.lower_bound(Q)
+        for margin in (0.0, 0.01, 0.03):
+            rows, near = pair._bounds(Q, np.full(len(Q), margin))
+            within = np.zeros(len(Q), dtype=bool)
+            within[rows] = near <= margin
+            np.testing.assert_array_equal(within, bound <= margin)  # no cell skipped wrongly
+            np.testing.assert_array_equal(near, bound[rows])
 
 
 @pytest.mark.parametrize("known", [0, 1, 2])

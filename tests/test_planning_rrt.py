@@ -172,28 +172,59 @@ def test_an_edge_of_the_trees_that_fails_the_finer_recheck_is_planned_again(monk
     assert not plan.success and "re-checked at 2.5 mm" in plan.reason
 
 
-def test_an_edge_free_at_the_samples_but_not_proven_is_planned_again(monkeypatch):
+def test_an_edge_free_at_the_samples_but_not_proven_is_replaced(monkeypatch):
     """An edge the final re-check passes but certify_edges cannot prove free (it may graze an
-    obstacle between samples) is planned again at half the resolution; if that fails, the
-    edge stays (it is free at every sample)."""
+    obstacle between samples) is replaced by a detour through a waypoint near its middle whose
+    two edges are proven free; without a detour, it is planned again at half the resolution;
+    if that fails too, the edge stays (it is free at every sample)."""
     resolutions = []
     real_fine, real_proven = planning.rrt._fine, planning.rrt._proven
+    base = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
 
     def fine(model, scene, path, resolution):
         resolutions.append(resolution)
         return real_fine(model, scene, path, resolution)
 
-    def proven(model, scene, A, B, speeds, finest):
+    def doubt_first(model, scene, A, B, speeds, finest):
         verdicts = real_proven(model, scene, A, B, speeds, finest)
-        if len(resolutions) == 1:
+        if len(resolutions) == 1 and np.array_equal(A[0], base.path[0]):
             verdicts[0] = False  # the first edge of the first path is in doubt
         return verdicts
 
     monkeypatch.setattr(planning.rrt, "_fine", fine)
-    monkeypatch.setattr(planning.rrt, "_proven", proven)
+    monkeypatch.setattr(planning.rrt, "_proven", doubt_first)
+    plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
+    assert plan.success and resolutions == [0.01]  # no new plan: a detour
+    assert len(plan.path) == len(base.path) + 1
+    np.testing.assert_array_equal(plan.path[2:], base.path[1:])
+    detour = plan.path[1] - (base.path[0] + base.path[1]) / 2
+    assert 0 < np.abs(detour).max() < 2.0
+    assert planning.certify_edges(MODEL, WALL, plan.path[:-1], plan.path[1:]).all()
+    # without a detour: planned again at half the resolution
+    resolutions.clear()
+    monkeypatch.setattr(planning.rrt, "_detour", lambda *a: None)
     plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
     assert plan.success and resolutions[:2] == [0.01, 0.005]
     # never proven: every edge is planned again, fails the same way, and stays
     monkeypatch.setattr(planning.rrt, "_proven", lambda m, s, A, *_: np.zeros(len(A), bool))
     plain = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
     assert plain.success and len(plain.path) >= 2
+
+
+def test_a_detour_passes_an_obstacle_on_the_edge_with_both_edges_proven():
+    """_detour, given an edge that an obstacle cuts at its middle, finds a free waypoint
+    nearby whose edges to both ends are proven free, the nearest it tries."""
+    a, b = np.array([0.0, -1.2, 1.2, -1.6, -1.57, 0]), np.array([1.0, -1.2, 1.2, -1.6, -1.57, 0])
+    middle = MODEL.place((a + b) / 2)[-1]  # the flange's sphere, halfway: a ball there
+    scene = planning.Scene(spheres=[planning.Sphere(middle, 0.02)])
+    assert planning.is_free(MODEL, scene, np.array([a, b])).all()
+    assert not planning.edges_free(MODEL, scene, a, b)
+    assert not planning.certify_edges(MODEL, scene, a, b)
+    lower, upper = np.array(UR5.joint_limits).T
+    waypoint = planning.rrt._detour(MODEL, scene, a, b, np.random.default_rng(0), lower, upper)
+    assert waypoint is not None and planning.is_free(MODEL, scene, waypoint)
+    assert planning.certify_edges(MODEL, scene, [a, waypoint], [waypoint, b]).all()
+    blocked = planning.Scene(spheres=[planning.Sphere(middle, 2.0)])  # nothing gets around
+    assert (
+        planning.rrt._detour(MODEL, blocked, a, b, np.random.default_rng(0), lower, upper) is None
+    )

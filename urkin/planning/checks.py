@@ -41,7 +41,7 @@ from numpy.typing import ArrayLike
 
 from urkin.kinematics import _joints
 from urkin.planning.scene import Scene
-from urkin.planning.spheres import FRAME_NAMES, SphereModel, _frames
+from urkin.planning.spheres import FRAME_NAMES, SphereModel, _frames, _tables
 
 __all__ = [
     "Clearance",
@@ -226,14 +226,15 @@ def _dense(model: SphereModel) -> _Dense:
 
 def _mesh_hits(model, Q, grow, grown, hit) -> None:
     """Mark in ``hit`` the configurations ``Q`` where a tabulated mesh pair may touch, and in
-    ``grown`` where it may come within its column of ``grow`` (:func:`_hits`)."""
-    for p, pair in enumerate(model.meshes):
-        margin = None if grow is None else grow[:, len(model) + p]
-        rows, bound = pair._bounds(Q, margin)
-        if len(rows):
-            hit[rows[bound <= 0.0]] = True
-            if grow is not None:
-                grown[rows[bound <= margin[rows]]] = True
+    ``grown`` where it may come within its column of ``grow`` (:func:`_hits`); every pair at
+    once."""
+    if not model.meshes:
+        return
+    margin = None if grow is None else grow[:, len(model) :]
+    rows, pairs, bound = _tables(model.meshes).bounds(Q, margin)
+    hit[rows[bound <= 0.0]] = True
+    if grow is not None:
+        grown[rows[bound <= margin[rows, pairs]]] = True
 
 
 def _place(F: np.ndarray, M: np.ndarray) -> np.ndarray:

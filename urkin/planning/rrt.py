@@ -16,8 +16,9 @@ operation.  Every edge is checked with
 samples), and the final path once more at a quarter of it: where a shortcut fails there, the
 waypoints it skipped are put back and checked again; where an edge of the trees fails, or
 passes but cannot be proven free between its samples (:func:`~urkin.planning.certify_edges`),
-the way between its ends is planned again at half the resolution (an edge in doubt stays if
-that fails).
+it is replaced: an edge in doubt by a detour through a waypoint near its middle whose two
+edges are proven free (nearby candidates tried in one batch), and otherwise the way between
+its ends is planned again at half the resolution (an edge in doubt stays if both fail).
 """
 
 from __future__ import annotations
@@ -250,9 +251,17 @@ def rrt_connect(
             _travels(model, path[:-1][fine], path[1:][fine], resolution),
             FINEST,
         )
+    for k in np.flatnonzero(doubt)[::-1]:  # the last first: earlier indices stay
+        # an edge in doubt: around it through a waypoint near its middle, both halves proven
+        waypoint = _detour(model, scene, path[k], path[k + 1], rng, lower, upper)
+        if waypoint is not None:
+            path = np.concatenate([path[: k + 1], waypoint[None], path[k + 1 :]])
+            fine = np.concatenate([fine[:k], [True, True], fine[k + 1 :]])
+            doubt = np.concatenate([doubt[:k], [False, False], doubt[k + 1 :]])
     if (doubt.any() or not fine.all()) and resolution > _FINEST:
-        # an edge of the trees that failed the re-check, or is in doubt: planned again
-        # between its ends at half the resolution; an edge in doubt stays if that fails
+        # an edge of the trees that failed the re-check, or is in doubt and has no detour:
+        # planned again between its ends at half the resolution; an edge in doubt stays if
+        # that fails
         left = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
         for k in np.flatnonzero(~fine | doubt)[::-1]:  # the last first: earlier indices stay
             sub = rrt_connect(
@@ -289,6 +298,28 @@ def rrt_connect(
 #: The finest resolution an edge that fails the final re-check is planned again at (m), and
 #: how much finer than the planning resolution the final re-check is.
 _FINEST, _RECHECK = 1e-3, 4
+
+
+#: Detours around an edge in doubt: how far (rad, per joint, normal) candidate waypoints lie
+#: from the edge's middle, smallest first, and how many of each size, all tried in one batch.
+_DETOUR_SIZES, _DETOURS = (0.01, 0.03, 0.1, 0.3), 16
+
+
+def _detour(model, scene, a, b, rng, lower, upper) -> np.ndarray | None:
+    """A free waypoint near the middle of the edge ``a`` → ``b`` whose edges to ``a`` and to
+    ``b`` are both proven free (:func:`~urkin.planning.certify_edges`), the nearest of those
+    tried; None when none is."""
+    scale = np.repeat(_DETOUR_SIZES, _DETOURS)[:, None]
+    M = (a + b) / 2 + rng.normal(size=(len(scale), 6)) * scale
+    M = M[np.all((M >= lower) & (M <= upper), axis=1)]
+    M = M[~_collides(model, scene, M)]
+    if not len(M):
+        return None
+    A = np.concatenate([np.repeat(a[None], len(M), axis=0), M])
+    B = np.concatenate([M, np.repeat(b[None], len(M), axis=0)])
+    proven = _proven(model, scene, A, B, _travels(model, A, B, FINEST), FINEST)
+    both = proven[: len(M)] & proven[len(M) :]
+    return M[int(np.argmax(both))] if both.any() else None
 
 
 def _fine(model, scene, path: np.ndarray, resolution: float) -> np.ndarray:

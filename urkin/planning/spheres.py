@@ -21,14 +21,18 @@ Provenance of the fitted models
     follow a flat face).
 
 Self-collision pairs
-    The forearm and wrist 2 of the fitted models are tested on their meshes, not their
-    spheres: their relative pose depends on joints 4 and 5 only, and ``python -m
-    tests.pair_tables`` tabulates the meshes' exact distance over those two joints, one node
-    per degree (:class:`MeshPair`; between nodes a lower bound from the nearest four).  Their
-    spheres, which reach 2–3 cm beyond the surface, overlap where the links are 1–16 mm
-    apart: of random configurations, the spheres leave 34 % of the UR5's free of
-    self-collision, the table 45 % (UR10: 61 and 76 %; UR3: 56 % either way), and they put
-    the start or goal of 138 of VAMP's 700 MotionBenchMaker UR5 problems in collision.  The
+    Three pairs of links of the fitted models are tested on their meshes, not their
+    spheres: the base and the upper arm (their relative pose depends on joints 1 and 2
+    only), the forearm and wrist 2 (joints 4 and 5), and the forearm and wrist 3 turned
+    about joint 6's axis by any angle (a solid of revolution around its nearly round mesh:
+    joints 4 and 5 again).  ``python -m tests.pair_tables`` tabulates the exact distance of
+    each pair over its two joints, one node per degree (:class:`MeshPair`; between nodes a
+    lower bound from the nearest four).  Their spheres, which reach 1–3 cm beyond the
+    surface, overlap where the links are clear: of random configurations, the spheres leave
+    34 % of the UR5's free of self-collision, the forearm and wrist 2's table 45 % (UR10: 61
+    and 76 %; UR3: 56 % either way), and they put the start or goal of 138 of VAMP's 700
+    MotionBenchMaker UR5 problems in collision, 8 more with the base and upper arm or the
+    forearm and wrist 3 1–22 mm apart.  The
     other pairs of the fitted models are witnessed by the meshes: in 2,000 seeded random
     configurations, wherever two links that are not the same or adjacent came within 5 mm of
     each other, the two spheres holding the nearby points form a pair to test; pairs that
@@ -86,8 +90,11 @@ class MeshPair:
     them (``python -m tests.pair_tables``).
 
     The links move with DH frames ``a`` and ``a + 2``, so their relative pose depends on joints
-    ``a + 1`` and ``a + 2`` only.  ``distance`` (n, n) holds the meshes' exact distance (rounded
-    down; 0 where they intersect) at the grid nodes ``q = −π + 2π k / n`` of those joints;
+    ``a + 1`` and ``a + 2`` only; or with frames ``a`` and ``a + 3``, the second link's mesh
+    replaced by a solid of revolution about joint ``a + 3``'s axis that holds it turned by
+    any angle, whose pose depends on the same two joints.  ``distance`` (n, n) holds the
+    meshes' exact distance (rounded down; 0 where they intersect) at the grid nodes
+    ``q = −π + 2π k / n`` of those joints;
     ``reach`` (2,) bounds the distance of the second link's mesh from each joint's axis, so
     between nodes the distance falls at most by ``Σ |Δq| · reach``: :meth:`lower_bound` takes
     the best of the four surrounding nodes.
@@ -95,7 +102,7 @@ class MeshPair:
     Attributes
     ----------
     frames : tuple of int
-        The two links' DH frames, ``(a, a + 2)``.
+        The two links' DH frames, ``(a, a + 2)`` or ``(a, a + 3)``.
     distance : ndarray, shape (n, n)
         Metres; rows: the first joint, columns: the second.
     reach : ndarray, shape (2,)
@@ -109,8 +116,10 @@ class MeshPair:
     def __post_init__(self) -> None:
         a, b = self.frames
         n = len(self.distance)
-        if b != a + 2 or not 0 <= a <= 4:
-            raise ValueError(f"frames must be (a, a + 2), 0 ≤ a ≤ 4; got {self.frames}")
+        if b - a not in (2, 3) or not 0 <= a <= 6 - (b - a):
+            raise ValueError(
+                f"frames must be (a, a + 2) or (a, a + 3) within frames 0 … 6; got {self.frames}"
+            )
         if self.distance.shape != (n, n) or n < 2 or self.reach.shape != (2,):
             raise ValueError(
                 f"distance must be (n, n) and reach (2,); got {self.distance.shape} and "
@@ -186,6 +195,62 @@ class MeshPair:
 
 #: Each of the four nodes around a point (MeshPair._nodes), as steps along the two joints.
 _STEPS = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
+
+
+@dataclass(frozen=True)
+class _Tables:
+    """Several :class:`MeshPair` tables as one, so that checks bound every pair at once:
+    ``columns`` (2P,), the two joints of each pair; ``steps`` (P, 1), grid steps per radian;
+    ``stride`` and ``offset`` (P,), each pair's row length and first entry in ``floor`` and
+    ``flat`` (the pairs' flat tables, one after the other); ``nodes`` (P, 4), the four nodes
+    around a cell; ``slope`` (P, 1, 2)."""
+
+    columns: np.ndarray
+    steps: np.ndarray
+    stride: np.ndarray
+    offset: np.ndarray
+    floor: np.ndarray
+    flat: np.ndarray
+    nodes: np.ndarray
+    slope: np.ndarray
+
+    def bounds(
+        self, Q: np.ndarray, margin: np.ndarray | None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`MeshPair._bounds` of every pair: the configurations and pairs (rows, pairs)
+        whose cell's bound does not rule out coming within ``margin`` (N, P) (or touching),
+        and the lower bound of the distance at each."""
+        n, P = len(Q), len(self.steps)
+        x = Q[:, self.columns].reshape(n, P, 2) + math.pi
+        np.mod(x, 2 * math.pi, out=x)
+        x *= self.steps
+        low = np.floor(x)
+        x -= low
+        i = low.astype(np.intp)
+        cell = i[..., 0] * self.stride
+        cell += i[..., 1]
+        cell += self.offset  # (N, P)
+        rows, pairs = np.nonzero(self.floor[cell] <= (0.0 if margin is None else margin))
+        cell, after = cell[rows, pairs], x[rows, pairs]
+        fall = (np.abs(_STEPS - after[:, None, :]) * self.slope[pairs]).sum(axis=2)  # (H, 4)
+        return rows, pairs, (self.flat[cell[:, None] + self.nodes[pairs]] - fall).max(axis=1)
+
+
+@functools.lru_cache(maxsize=64)
+def _tables(meshes: tuple[MeshPair, ...]) -> _Tables:
+    """The :class:`_Tables` of ``meshes``."""
+    sizes = np.array([len(m._flat) for m in meshes])
+    offset = np.cumsum(sizes) - sizes
+    return _Tables(
+        np.array([j for m in meshes for j in m.joints]),
+        np.array([[len(m.distance) / (2 * math.pi)] for m in meshes]),
+        np.array([len(m.distance) + 2 for m in meshes]),
+        offset,
+        np.concatenate([m._floor for m in meshes]),
+        np.concatenate([m._flat for m in meshes]),
+        np.array([m._nodes for m in meshes]),
+        np.array([m._slope()[None] for m in meshes]),
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -520,31 +585,38 @@ def _fitted(name: str) -> SphereModel:
             f"fitted to the ROS-Industrial {arm.name} collision meshes (urkin.planning.spheres)"
         ),
     )
-    pair = _mesh_pair(name.lower())
-    on = model.frames[model.pairs]
-    spheres = np.all(np.sort(on, axis=1) == pair.frames, axis=1)  # tested on the meshes now
+    pairs = _mesh_pairs(name.lower())
+    on = np.sort(model.frames[model.pairs], axis=1)
+    tabled = np.zeros(len(model.pairs), dtype=bool)  # tested on the meshes now
+    for pair in pairs:
+        tabled |= np.all(on == pair.frames, axis=1)
+    links = ", ".join(
+        f"the {FRAME_NAMES[a]} and {FRAME_NAMES[b]}" for a, b in (p.frames for p in pairs)
+    )
     return SphereModel(
         arm,
         model.frames,
         model.centres,
         model.radii,
-        model.pairs[~spheres],
+        model.pairs[~tabled],
         model.names,
-        model.source + "; the forearm and wrist 2 tested on their tabulated meshes",
-        (pair,),
+        model.source + f"; {links} tested on their tabulated meshes",
+        pairs,
     )
 
 
 @functools.cache
-def _mesh_pair(name: str) -> MeshPair:
+def _mesh_pairs(name: str) -> tuple[MeshPair, ...]:
     from urkin.planning._pair_tables import NPZ
 
     with np.load(io.BytesIO(base64.b64decode(NPZ))) as data:
         unit = float(data["unit"])
-        a, b = (int(f) for f in data["frames"])
-        distance = data[f"{name}_distance"].astype(float) * unit
-        reach = data[f"{name}_reach"].astype(float)
-    return MeshPair((a, b), distance, reach)
+        pairs = []
+        for a, b in data["links"]:
+            key = f"{name}_{a}{b}"
+            distance = data[f"{key}_distance"].astype(float) * unit
+            pairs.append(MeshPair((int(a), int(b)), distance, data[f"{key}_reach"].astype(float)))
+    return tuple(pairs)
 
 
 def sphere_model(robot: Robot) -> SphereModel:
