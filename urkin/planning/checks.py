@@ -619,16 +619,57 @@ def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -
     S = len(model)
     out = np.zeros((K, S + len(model.meshes)))
     H = out[:, :S]  # T / 2 (halving is exact: the same bounds, in fewer operations)
+    R = np.empty((6, K, S))  # R_j, kept for the meshes
     for j in range(5, -1, -1):  # T = Σ_{m>j} |Δq_m| R_m
-        R = mid[j] + H
-        np.minimum(R, rho[:, j], out=R)
-        R *= half[j]
-        H += R
+        np.add(mid[j], H, out=R[j])
+        np.minimum(R[j], rho[:, j], out=R[j])
+        H += R[j] * half[j]
     H *= 2.0
-    # how far one tabulated mesh moves relative to the other
-    for p, pair in enumerate(model.meshes):
-        out[:, S + p] = dq[pair.joints[0] : pair.joints[0] + 2, :, 0].T @ pair.reach
+    # how far one tabulated mesh moves relative to the other: its points are within a known
+    # distance of its link's sphere centres, whose distances from the two joints' axes are
+    # bounded by R (and by the table's own reach)
+    if model.meshes:
+        joints, spheres, pad, reach = _mesh_reach(model)
+        far = R[joints[:, :, None], :, spheres[:, None, :]]  # (P, 2, m, K)
+        far += pad
+        reach = np.minimum(far.max(axis=2), reach)  # (P, 2, K)
+        reach *= dq[joints, :, 0]
+        out[:, S:] = reach.sum(axis=1).T
     return out
+
+
+#: How far a point of a link's mesh may lie beyond its spheres (m; they cover it by
+#: construction, and the coverage test allows 5 mm), and a solid of revolution (a
+#: :class:`~urkin.planning.spheres.MeshPair` three frames apart) beyond the turned mesh.
+_COVER, _SOLID = 0.005, 0.005
+
+
+def _mesh_reach(model: SphereModel) -> tuple[np.ndarray, ...]:
+    """For the tabulated pairs (P): their two joints (P, 2); the spheres on each one's second
+    link (P, m, padded by repeating one); how far from each centre a point of that link's
+    mesh — or of the solid it sweeps turning about the last joint: each centre's circle
+    about that axis, ``2 ρ`` across — can lie (P, 1, m, 1; infinite for a link without
+    spheres, which then keeps the table's reach); and the tables' reach (P, 2, 1) (cached)."""
+    found = model.__dict__.get("_mesh_reach")
+    if found is None:
+        width = max(1, max(np.sum(model.frames == p.frames[1]) for p in model.meshes))
+        spheres = np.zeros((len(model.meshes), width), dtype=np.intp)
+        pad = np.full((len(model.meshes), width), np.inf)
+        for p, pair in enumerate(model.meshes):
+            first, second = pair.frames
+            on = np.flatnonzero(model.frames == second)
+            if not len(on):
+                continue
+            far = model.radii[on] + _COVER
+            if second - first == 3:  # turned about joint `second`'s axis, z of its frame
+                far = far + 2 * np.hypot(*model.centres[on, :2].T) + _SOLID
+            spheres[p] = np.resize(on, width)
+            pad[p] = np.resize(far, width)
+        joints = np.array([[p.joints[0], p.joints[0] + 1] for p in model.meshes])
+        reach = np.array([p.reach for p in model.meshes])[..., None]
+        found = (joints, spheres, pad[:, None, :, None], reach)
+        object.__setattr__(model, "_mesh_reach", found)
+    return found
 
 
 def edges_free(
