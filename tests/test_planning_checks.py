@@ -254,10 +254,10 @@ def test_grown_checks_are_checks_of_grown_spheres(rng):
     got, as_they_are = planning.checks._hits(MODEL, CLUTTER, Q, grow)
     np.testing.assert_array_equal(as_they_are, ~planning.is_free(MODEL, CLUTTER, Q))
     assert np.all(got >= as_they_are) and np.any(got > as_they_are)
-    # a few configurations at a time take the dense path (no broad phase): the same verdicts
+    # the dense path (no broad phase, for a few configurations): the same verdicts
     assert len(Q) > planning.checks._DENSE
     for rows in np.array_split(np.arange(len(Q)), 125):  # 32 at a time
-        few = planning.checks._hits(MODEL, CLUTTER, Q[rows], grow[rows])
+        few = planning.checks._dense_hits(MODEL, CLUTTER, Q[rows], grow[rows])
         np.testing.assert_array_equal(few[0], got[rows])
         np.testing.assert_array_equal(few[1], as_they_are[rows])
     # a tabulated mesh pair counts within the margin of its lower bound

@@ -7,8 +7,9 @@ grouped under bounding balls of at most 10 cm, the balls are tested first, and o
 of a ball that touches something are placed and tested (the verdicts are exactly those of
 testing every sphere).  The base's spheres are left out of the scene tests: they never move,
 so an obstacle that overlaps the base is a property of the scene, not of a configuration.
-A stack of at most 64 configurations skips the broad phase: there, testing every sphere
-against every obstacle takes fewer array operations than culling (the same verdicts).
+A stack of at most 64 configurations of a small model in a small scene skips the broad
+phase: there, testing every sphere against every obstacle takes fewer array operations than
+culling (the same verdicts).
 
 Contact counts as collision: a configuration is free when every sphere is strictly apart from
 every obstacle and from every sphere it is paired with.
@@ -92,7 +93,7 @@ def _hits(
     tested grown and, where they touch grown, as they are.  Without ``grow`` both are the
     verdicts as they are."""
     n = len(Q)
-    if n <= _DENSE:
+    if n <= _DENSE and len(model.pairs) + len(_dense(model).moving) * len(scene) <= _DENSE_WORK:
         return _dense_hits(model, scene, Q, grow)
     hit = np.zeros(n, dtype=bool)  # as they are
     grown = hit if grow is None else np.zeros(n, dtype=bool)
@@ -153,8 +154,11 @@ def _hits(
     return grown, hit
 
 
-#: Stacks up to this many configurations are checked by :func:`_dense_hits`.
-_DENSE = 64
+#: Stacks up to this many configurations are checked by :func:`_dense_hits`, when the model
+#: and scene are small: self-collision pairs plus moving spheres times obstacles at most
+#: ``_DENSE_WORK`` (a bare UR5 with 21 pairs and 24 moving spheres among 10 boxes: 261; with
+#: VAMP's gripper among MotionBenchMaker's 15 obstacles, 875, where culling pays even for one).
+_DENSE, _DENSE_WORK = 64, 400
 
 
 def _dense_hits(
