@@ -260,15 +260,17 @@ def test_grown_checks_are_checks_of_grown_spheres(rng):
         few = planning.checks._dense_hits(MODEL, CLUTTER, Q[rows], grow[rows])
         np.testing.assert_array_equal(few[0], got[rows])
         np.testing.assert_array_equal(few[1], as_they_are[rows])
-    # a tabulated mesh pair counts within the margin of its lower bound
-    for pair in MODEL.meshes:
-        bound = pair.lower_bound(Q)
-        for margin in (0.0, 0.01, 0.03):
-            rows, near = pair._bounds(Q, np.full(len(Q), margin))
+    # a tabulated mesh pair counts within the margin of its lower bound; every pair bounded
+    # at once, cells ruled out by their floor skipped, gives each pair's own bound
+    tables = planning.spheres._tables(MODEL.meshes)
+    for margin in (0.0, 0.01, 0.03):
+        rows, pairs, near = tables.bounds(Q, np.full((len(Q), len(MODEL.meshes)), margin))
+        for p, pair in enumerate(MODEL.meshes):
+            bound = pair.lower_bound(Q)
             within = np.zeros(len(Q), dtype=bool)
-            within[rows] = near <= margin
+            within[rows[pairs == p]] = near[pairs == p] <= margin
             np.testing.assert_array_equal(within, bound <= margin)  # no cell skipped wrongly
-            np.testing.assert_array_equal(near, bound[rows])
+            np.testing.assert_array_equal(near[pairs == p], bound[rows[pairs == p]])
 
 
 @pytest.mark.parametrize("known", [0, 1, 2])

@@ -844,12 +844,7 @@ def _edges_free(
     edge = np.repeat(np.arange(len(A)), samples)
     index = np.arange(len(edge)) - first[edge]
     n = counts[edge]
-    whole = (counts // _BLOCK)[edge] * _BLOCK if prove else np.zeros(len(edge), dtype=np.intp)
-    middle = (index % _BLOCK == _BLOCK // 2) & (index < whole)
-    known_free = (index == 0) if known else np.zeros(len(edge), dtype=bool)
-    if known == 2:
-        known_free |= index == n
-    plain = ((index > whole) | (index == 0) | (index == n)) & ~known_free
+    middle, known_free, plain = _roles(index, n, known, prove)
     free = np.ones(len(A), dtype=bool)
     # the first pass: the blocks' middles, grown, and the other samples it must check
     pick = np.flatnonzero(middle | plain)
@@ -893,12 +888,8 @@ def _edge_free(model, scene, a, b, speed, resolution, known, prove) -> bool:
         proven[done - offset] = True
         proven[done + offset] = True
     rest = plan.order[~proven[plan.order]]
-    start, size = 0, _FIRST
-    while start < len(rest):
-        Q = a + (rest[start : start + size] / n)[:, None] * step
-        start += size
-        size = max(_BATCH, _GROWTH * size)
-        if _hits(model, scene, Q, None)[1].any():
+    for part in _batches(len(rest)):
+        if _hits(model, scene, a + (rest[part] / n)[:, None] * step, None)[1].any():
             return False
     return True
 
@@ -925,23 +916,38 @@ def _plan(n: int, known: int, prove: bool) -> _Plan:
     """The :class:`_Plan` of an edge of ``n`` intervals (the samples :func:`_edges_free` picks
     for one edge)."""
     index = np.arange(n + 1)
-    whole = (n // _BLOCK) * _BLOCK if prove else 0
-    middle = (index % _BLOCK == _BLOCK // 2) & (index < whole)
-    known_free = (index == 0) if known else np.zeros(n + 1, dtype=bool)
-    if known == 2:
-        known_free |= index == n
-    plain = ((index > whole) | (index == 0) | (index == n)) & ~known_free
+    middle, known_free, plain = _roles(index, np.full(n + 1, n), known, prove)
     order = np.lexsort((index, _depth(index, np.full(n + 1, n))))
     first = order[(middle | plain)[order]]
     half = np.where(middle[first], (_BLOCK / 2) * (1 + 1e-9), 0.0) / n
+    for array in (first, middle, known_free, order):
+        array.setflags(write=False)
+    return _Plan(first, first / n, half, middle[first], _batches(len(first)), known_free, order)
+
+
+def _roles(index: np.ndarray, n: np.ndarray, known: int, prove: bool):
+    """Of the samples ``index`` of edges cut into ``n`` intervals (both (M,)): which are the
+    middles of whole blocks (none without ``prove``), which ends are ``known`` free, and which
+    the first pass checks as they are (the samples after the last whole block, and the ends
+    not known free)."""
+    whole = (n // _BLOCK) * _BLOCK if prove else np.zeros_like(n)
+    middle = (index % _BLOCK == _BLOCK // 2) & (index < whole)
+    known_free = (index == 0) if known else np.zeros(len(index), dtype=bool)
+    if known == 2:
+        known_free |= index == n
+    plain = ((index > whole) | (index == 0) | (index == n)) & ~known_free
+    return middle, known_free, plain
+
+
+def _batches(count: int) -> tuple[slice, ...]:
+    """``count`` samples in batches, coarse ones first: ``_FIRST``, then each ``_GROWTH``
+    times larger (at least ``_BATCH``)."""
     batches, start, size = [], 0, _FIRST
-    while start < len(first):
+    while start < count:
         batches.append(slice(start, start + size))
         start += size
         size = max(_BATCH, _GROWTH * size)
-    for array in (first, middle, known_free, order):
-        array.setflags(write=False)
-    return _Plan(first, first / n, half, middle[first], tuple(batches), known_free, order)
+    return tuple(batches)
 
 
 def _check_samples(model, scene, A, B, edge, index, n, pick, grown, free, prefix):

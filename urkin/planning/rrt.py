@@ -307,8 +307,8 @@ _DETOUR_SIZES, _DETOURS = (0.01, 0.03, 0.1, 0.3), 16
 
 def _detour(model, scene, a, b, rng, lower, upper) -> np.ndarray | None:
     """A free waypoint near the middle of the edge ``a`` → ``b`` whose edges to ``a`` and to
-    ``b`` are both proven free (:func:`~urkin.planning.certify_edges`), the nearest of those
-    tried; None when none is."""
+    ``b`` are both proven free (:func:`~urkin.planning.certify_edges`): one from the smallest
+    spread that has any; None when no candidate is."""
     scale = np.repeat(_DETOUR_SIZES, _DETOURS)[:, None]
     M = (a + b) / 2 + rng.normal(size=(len(scale), 6)) * scale
     M = M[np.all((M >= lower) & (M <= upper), axis=1)]

@@ -203,21 +203,18 @@ class Scene:
         self._set("_box_R", np.array([b.rotation for b in boxes]).reshape(-1, 3, 3))
         self._set("_box_o", np.array([b.centre for b in boxes]).reshape(-1, 3))
         self._set("_box_hh", self._box_h.reshape(-1, 3))
-        # big boxes for _touches, axis-major: row k·B + b is box b's axis k, so one product
-        # gives (3B, M) local coordinates whose three (B, M) blocks add up without a reduction
-        R = self._box_R[big]
-        self._set("_big_R", R.transpose(2, 0, 1).reshape(-1, 3))
-        self._set(
-            "_big_c", (R.transpose(0, 2, 1) @ self._box_o[big][..., None])[..., 0].T.reshape(-1, 1)
-        )
-        self._set("_big_h", self._box_hh[big].T.reshape(-1, 1))
-        # every box, axis-major likewise, for _gaps2
+        # every box axis-major, for _gaps2: row k·B + b is box b's axis k, so one product gives
+        # (3B, M) local coordinates whose three (B, M) blocks add up without a reduction; the
+        # big ones alike for _touches
         R = self._box_R
         self._set("_all_R", R.transpose(2, 0, 1).reshape(-1, 3))
         self._set(
             "_all_c", (R.transpose(0, 2, 1) @ self._box_o[..., None])[..., 0].T.reshape(-1, 1)
         )
         self._set("_all_h", self._box_hh.T.reshape(-1, 1))
+        rows = np.tile(big, 3)  # the big boxes' rows, axis by axis
+        for name in ("R", "c", "h"):
+            self._set(f"_big_{name}", getattr(self, f"_all_{name}")[rows])
         cyl_bound = np.hypot(self._cyl_r, self._cyl_h)
         big_cyl = cyl_bound > _SMALL
         object.__setattr__(self, "_big_cyl", np.flatnonzero(big_cyl))

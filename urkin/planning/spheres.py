@@ -31,8 +31,8 @@ Self-collision pairs
     surface, overlap where the links are clear: of random configurations, the spheres leave
     34 % of the UR5's free of self-collision, the forearm and wrist 2's table 45 % (UR10: 61
     and 76 %; UR3: 56 % either way), and they put the start or goal of 138 of VAMP's 700
-    MotionBenchMaker UR5 problems in collision, 8 more with the base and upper arm or the
-    forearm and wrist 3 1–22 mm apart.  The
+    MotionBenchMaker UR5 problems in collision, and 8 more whose base and upper arm, or
+    forearm and wrist 3, are 1–22 mm apart.  The
     other pairs of the fitted models are witnessed by the meshes: in 2,000 seeded random
     configurations, wherever two links that are not the same or adjacent came within 5 mm of
     each other, the two spheres holding the nearby points form a pair to test; pairs that
@@ -154,43 +154,20 @@ class MeshPair:
         """How much the distance can fall per grid step of each joint (m)."""
         return self.reach * (2 * math.pi / len(self.distance))
 
-    def _cells(self, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The grid cell of each configuration (its lower node's entry in the flat tables,
-        (N,)) and the way past that node, in steps (N, 2)."""
-        n = len(self.distance)
-        x = Q[:, self.joints[0] : self.joints[0] + 2] + math.pi
-        np.mod(x, 2 * math.pi, out=x)
-        x *= n / (2 * math.pi)
-        low = np.floor(x)
-        x -= low
-        i = low.astype(np.intp)
-        return i[:, 0] * (n + 2) + i[:, 1], x
-
     def lower_bound(self, Q: np.ndarray) -> np.ndarray:
         """A lower bound of the meshes' distance at configurations ``Q`` (N, 6): (N,) metres
-        (0 or less where they may touch)."""
-        return self._lower(*self._cells(Q))
-
-    def _lower(self, cell: np.ndarray, after: np.ndarray) -> np.ndarray:
-        """:meth:`lower_bound` in ``cell`` (N,), ``after`` (N, 2) steps past their lower nodes:
-        the best of the four nodes' distances less how far it can fall from each."""
-        fall = np.abs(_STEPS - after[:, None, :]) @ self._slope()  # (N, 4)
-        return (self._flat[cell[:, None] + self._nodes] - fall).max(axis=1)
+        (0 or less where they may touch): the best of the four surrounding nodes' distances,
+        less how far it can fall from each."""
+        everywhere = np.full((len(Q), 1), np.inf)  # no cell ruled out
+        return _tables((self,)).bounds(Q, everywhere)[2]
 
     def collides(self, Q: np.ndarray) -> np.ndarray:
         """Whether the meshes may touch at configurations ``Q`` (N, 6): (N,) bool (the bound
         is computed only in the cells whose lower bound does not already rule it out)."""
-        rows, bound = self._bounds(Q, None)
+        rows, _, bound = _tables((self,)).bounds(Q, None)
         hit = np.zeros(len(Q), dtype=bool)
-        hit[rows] = bound <= 0.0
+        hit[rows[bound <= 0.0]] = True
         return hit
-
-    def _bounds(self, Q: np.ndarray, margin: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
-        """The configurations of ``Q`` whose cell's bound does not rule out coming within
-        ``margin`` (N,) (or touching), and the lower bound of the distance at each."""
-        cell, after = self._cells(Q)
-        rows = np.flatnonzero(self._floor[cell] <= (0.0 if margin is None else margin))
-        return rows, self._lower(cell[rows], after[rows])
 
 
 #: Each of the four nodes around a point (MeshPair._nodes), as steps along the two joints.
@@ -217,9 +194,9 @@ class _Tables:
     def bounds(
         self, Q: np.ndarray, margin: np.ndarray | None
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """:meth:`MeshPair._bounds` of every pair: the configurations and pairs (rows, pairs)
-        whose cell's bound does not rule out coming within ``margin`` (N, P) (or touching),
-        and the lower bound of the distance at each."""
+        """The configurations and pairs (rows, pairs, in row order) whose cell's lower bound
+        does not rule out coming within ``margin`` (N, P) (None: touching), and
+        :meth:`MeshPair.lower_bound` at each."""
         n, P = len(Q), len(self.steps)
         x = Q[:, self.columns].reshape(n, P, 2) + math.pi
         np.mod(x, 2 * math.pi, out=x)
