@@ -3,16 +3,23 @@
     python -m tests.fit_spheres          # prints urkin/planning/_sphere_tables.py (needs scipy)
 
 Each link's mesh is put in the DH frame it moves with (URDF chain against ``Rz(π)·fk_frames``).
-Its triangles are split until no edge is longer than 12 mm; the pieces are grouped by k-means
-on their centroids (area-weighted, farthest-point start, seeded); each group gets the smallest
-sphere the Bădoiu–Clarkson iteration finds around every vertex of its pieces, and its radius is
-then the largest distance to those vertices plus 0.5 mm.  A sphere that holds the three vertices
-of a triangle holds the whole triangle (a ball is convex), so the spheres cover every point of
-the mesh surface by construction; ``tests/test_planning_spheres.py`` checks it on points
-sampled afresh, with the spheres placed by urkin and the meshes by the URDF.  A link gets the
-fewest spheres (at most 12) such that each sphere's radius is within 1.35 times half its own
-group's thickness (the second largest extent of the group's vertices along their principal
-axes): a tube gets a row of spheres hardly wider than the tube, a compact housing one or two.
+Its triangles are split until no edge is longer than 12 mm, and the pieces are split into groups
+by halving: each group gets the smallest sphere the Bădoiu–Clarkson iteration finds around every
+vertex of its pieces (its radius then the largest distance to those vertices plus 0.5 mm).  A
+sphere that holds the three vertices of a triangle holds the whole triangle (a ball is convex),
+so the spheres cover every point of the mesh surface by construction;
+``tests/test_planning_spheres.py`` checks it on points sampled afresh, with the spheres placed by
+urkin and the meshes by the URDF.  How far a sphere reaches beyond its link is measured at 1,500
+points of its surface: from each, the distance to the nearest of 100,000 surface samples of the
+link, counted where the point lies outside (on the side the sample's outward normal points to);
+the mean over the points is the sphere's *excess*.  A group whose sphere's excess is above 6 mm is
+cut in two by a plane across one of its principal axes (at 30 … 70 % of its extent), the cut
+whose larger excess is smallest, when that is below 0.8 of the group's own; the halves are
+treated alike.  A tube is so cut into slices whose spheres are hardly wider than the tube, a
+compact housing into a few pieces; a flat face, which every ball covering it overshoots, stops
+the cutting once cuts stop paying.  (Grouping by k-means, which splits a tube's ring before its
+length, left spheres reaching 10–25 mm beyond the UR5's forearm and wrists, in the way of 15 of
+MotionBenchMaker's 700 start and goal configurations; these spheres, 2.)
 
 Self-collision pairs are witnessed by the meshes (MoveIt's setup assistant samples the same
 way, per link): in 2,000 seeded random configurations, wherever two non-adjacent links' meshes
@@ -35,7 +42,8 @@ from .robot_models import posed_meshes, sample_surface
 
 MAX_EDGE = 0.012
 MARGIN = 0.0005
-CAP = 1.35
+EXCESS, GAIN = 0.006, 0.8
+SURFACE_SAMPLES, SPHERE_SAMPLES = 100_000, 1500
 WITNESS_CONFIGURATIONS, WITNESS_DISTANCE, WITNESS_POINTS = 2000, 0.005, 3000
 
 
@@ -75,60 +83,81 @@ def enclosing(points: np.ndarray, iterations: int = 300) -> tuple[np.ndarray, fl
     return c, float(np.sqrt(np.max(np.sum((points - c) ** 2, axis=1))))
 
 
-def fit_link(
-    triangles: np.ndarray, k: int, seed: int = 0
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    pieces = subdivide(triangles, MAX_EDGE)
-    centroid = pieces.mean(axis=1)
-    area = 0.5 * np.linalg.norm(
-        np.cross(pieces[:, 1] - pieces[:, 0], pieces[:, 2] - pieces[:, 0]), axis=1
-    )
-    rng = np.random.default_rng(seed)
-    sample = rng.choice(len(centroid), size=min(3000, len(centroid)), replace=False)
-    points, weights = centroid[sample], area[sample]
-    centres = [points[rng.integers(len(points))]]
-    for _ in range(k - 1):
-        d = np.min(np.linalg.norm(points[:, None] - np.array(centres)[None], axis=2), axis=1)
-        centres.append(points[np.argmax(d)])
-    centres = np.array(centres)
-    for _ in range(60):
-        label = np.argmin(np.linalg.norm(points[:, None] - centres[None], axis=2), axis=1)
-        new = np.array(
-            [
-                np.average(points[label == j], axis=0, weights=weights[label == j] + 1e-12)
-                if np.any(label == j)
-                else centres[j]
-                for j in range(k)
-            ]
-        )
-        if np.allclose(new, centres, atol=1e-7):
-            break
-        centres = new
-    label = np.argmin(np.linalg.norm(centroid[:, None] - centres[None], axis=2), axis=1)
-    groups = [pieces[label == j].reshape(-1, 3) for j in range(k) if np.any(label == j)]
-    spheres = [enclosing(vertices) for vertices in groups]
-    return (
-        np.array([c for c, _ in spheres]),
-        np.array([r for _, r in spheres]) + MARGIN,
-        np.array([thickness(vertices) for vertices in groups]),
-    )
+class Excess:
+    """How far spheres reach beyond a link's surface (module notes), from seeded samples."""
+
+    def __init__(self, triangles: np.ndarray, seed: int = 0) -> None:
+        from scipy.spatial import cKDTree  # a developer tool: the tests never run the fit
+
+        rng = np.random.default_rng(seed)
+        a, b, c = triangles[:, 0], triangles[:, 1], triangles[:, 2]
+        normal = np.cross(b - a, c - a)
+        area = np.linalg.norm(normal, axis=1)
+        pick = rng.choice(len(triangles), size=SURFACE_SAMPLES, p=area / area.sum())
+        u, v = rng.random((2, SURFACE_SAMPLES))
+        flip = u + v > 1
+        u[flip], v[flip] = 1 - u[flip], 1 - v[flip]
+        self.points = a[pick] + u[:, None] * (b - a)[pick] + v[:, None] * (c - a)[pick]
+        self.normals = normal[pick] / np.maximum(area[pick], 1e-30)[:, None]
+        if np.mean(np.sum((self.points - self.points.mean(axis=0)) * self.normals, axis=1)) < 0:
+            self.normals = -self.normals  # outward
+        self.tree = cKDTree(self.points)
+        u = rng.normal(size=(SPHERE_SAMPLES, 3))
+        self.directions = u / np.linalg.norm(u, axis=1)[:, None]
+
+    def __call__(self, centre: np.ndarray, radius: float) -> float:
+        q = centre + radius * self.directions
+        d, k = self.tree.query(q)
+        outside = np.sum((q - self.points[k]) * self.normals[k], axis=1) > 0
+        return float(np.mean(np.where(outside, d, 0.0)))
 
 
-def thickness(vertices: np.ndarray) -> float:
-    """The second largest extent of ``vertices`` along their principal axes."""
-    centred = vertices - vertices.mean(axis=0)
-    axes = np.linalg.svd(centred, full_matrices=False)[2]
-    return float(np.sort(np.ptp(centred @ axes.T, axis=0))[-2])
+def sphere_of(group: np.ndarray) -> tuple[np.ndarray, float]:
+    """The sphere of a group of triangle pieces (module notes)."""
+    centre, radius = enclosing(group.reshape(-1, 3))
+    return centre, radius + MARGIN
 
 
-def fit(name: str, max_spheres: int = 12) -> list[tuple[int, np.ndarray, float]]:
+def cuts(group: np.ndarray):
+    """The candidate halvings of a group: across each principal axis at 30 … 70 %."""
+    vertices = group.reshape(-1, 3)
+    axes = np.linalg.svd(vertices - vertices.mean(axis=0), full_matrices=False)[2]
+    centroids = group.mean(axis=1)
+    for axis in axes:
+        s = centroids @ axis
+        for fraction in (0.3, 0.4, 0.5, 0.6, 0.7):
+            at = s.min() + fraction * (s.max() - s.min())
+            low, high = group[s <= at], group[s > at]
+            if len(low) >= 4 and len(high) >= 4:
+                yield low, high
+
+
+def fit_link(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The spheres (centres (K, 3), radii (K,)) of one link's mesh (module notes)."""
+    excess = Excess(triangles)
+    done, todo = [], [subdivide(triangles, MAX_EDGE)]
+    while todo:
+        group = todo.pop()
+        sphere = sphere_of(group)
+        own = excess(*sphere)
+        best = None
+        if own > EXCESS:
+            for low, high in cuts(group):
+                worst = max(excess(*sphere_of(low)), excess(*sphere_of(high)))
+                if best is None or worst < best[0]:
+                    best = (worst, low, high)
+        if best is None or best[0] > GAIN * own:
+            done.append(sphere)
+        else:
+            todo += [best[1], best[2]]
+    return np.array([c for c, _ in done]), np.array([r for _, r in done])
+
+
+def fit(name: str) -> list[tuple[int, np.ndarray, float]]:
     rows = []
     for frame, triangles in enumerate(mesh_in_dh_frames(name)):
-        for k in range(1, max_spheres + 1):
-            c, r, t = fit_link(triangles, k)
-            if np.all(r <= CAP * t / 2):
-                break
-        rows.extend((frame, centre, radius) for centre, radius in zip(c, r))
+        centres, radii = fit_link(triangles)
+        rows.extend((frame, centre, radius) for centre, radius in zip(centres, radii))
     return rows
 
 
@@ -186,14 +215,23 @@ def witnessed_pairs(name: str, rows) -> list[tuple[int, int]]:
     return [(int(x), int(y)) for x, y in zip(i[apart], j[apart])]
 
 
+def fitted(name: str) -> tuple[list, list[tuple[int, int]]]:
+    """An arm's rounded rows and their witnessed pairs."""
+    rows = [(f, np.round(c, 4) + 0.0, round(r + 5e-5, 4)) for f, c, r in fit(name)]
+    return rows, witnessed_pairs(name, rows)
+
+
 def main() -> None:
+    from concurrent.futures import ProcessPoolExecutor
+
+    names = ("ur3", "ur5", "ur10")
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        results = dict(zip(names, pool.map(fitted, names)))
     print(HEADER, end="")
     print("FITTED = {")
     pairs = {}
-    for name in ("ur3", "ur5", "ur10"):
-        rows = [(f, c, round(r + 5e-5, 4)) for f, c, r in fit(name)]
-        rows = [(f, np.round(c, 4) + 0.0, r) for f, c, r in rows]
-        pairs[name] = witnessed_pairs(name, rows)
+    for name, (rows, found) in results.items():
+        pairs[name] = found
         print(f'    "{name}": (  # {len(rows)} spheres')
         for frame, (x, y, z), radius in rows:
             print(f"        ({frame}, {x:.4f}, {y:.4f}, {z:.4f}, {radius:.4f}),")

@@ -14,7 +14,7 @@ from urkin.transforms import random_rotations
 
 UR5 = urkin.robot("ur5")
 MODEL = planning.sphere_model(UR5)
-# the table top 1 cm below the mounting plane (the shoulder's sphere reaches 4.5 mm below it)
+# the table top 1 cm below the mounting plane (a shoulder sphere reaches 7 mm below it)
 TABLE = planning.Scene(boxes=[planning.Box([0, 0, -0.06], [2, 2, 0.1], name="table")])
 UP = np.array([0, -np.pi / 2, 0, -np.pi / 2, 0, 0])
 
@@ -237,7 +237,7 @@ def test_grown_checks_are_checks_of_grown_spheres(rng):
     obstacle or a grown paired sphere: the verdicts of a model with larger radii."""
     rows = np.column_stack([MODEL.frames, MODEL.centres, MODEL.radii])
     Q = np.concatenate([rng.uniform(-np.pi, np.pi, (2000, 6)), rng.normal(UP, 0.6, (2000, 6))])
-    for margin in (0.0, 0.002, 0.005):  # the shoulder's sphere is 6 mm above the table
+    for margin in (0.0, 0.001, 0.002):  # a shoulder sphere is 3 mm above the table
         grown = rows.copy()
         grown[:, 4] += margin
         bigger = planning.SphereModel.from_rows(UR5, grown, pairs=MODEL.pairs)

@@ -37,7 +37,7 @@ def test_every_link_has_spheres_and_the_table_is_metres():
     for name in ("UR3", "UR5", "UR10"):
         model = planning.sphere_model(urkin.robot(name))
         assert set(model.frames.tolist()) == set(range(7))
-        assert np.all((model.radii > 0.02) & (model.radii < 0.2))
+        assert np.all((model.radii > 0.01) & (model.radii < 0.2))
 
 
 def test_models_follow_the_base_and_refuse_other_arms():

@@ -100,7 +100,7 @@ def _hits(
     if not len(model):
         return grown, hit
     F4 = _frames(model.robot, Q)  # (N, 8, 4, 4)
-    F = F4[..., :3, :]
+    points = _Points(model, F4)
     groups = _groups(model)
     G = _place(F4, groups.place)  # (N, g, 3)
     if grow is not None:  # a ball grows by the most any of its spheres grows
@@ -120,7 +120,7 @@ def _hits(
         if near.any():
             rows, k = np.nonzero(near[:, groups.pair_group])
             i, j = model.pairs[k, 0], model.pairs[k, 1]
-            d = _points(model, F, rows, i) - _points(model, F, rows, j)
+            d = points(rows, i) - points(rows, j)
             d2 = np.einsum("ki,ki->k", d, d)
             reach = model.radii[i] + model.radii[j]
             hit[rows[d2 <= reach * reach]] = True
@@ -143,7 +143,7 @@ def _hits(
             valid = members >= 0
             rows = np.repeat(rows, valid.sum(axis=1))
             spheres = members[valid]
-            centres = _points(model, F, rows, spheres)
+            centres = points(rows, spheres)
             if grow is None:
                 hit[rows[scene._touches(centres, model.radii[spheres])]] = True
             else:
@@ -156,9 +156,10 @@ def _hits(
 
 #: Stacks up to this many configurations are checked by :func:`_dense_hits`, when the model
 #: and scene are small: self-collision pairs plus moving spheres times obstacles at most
-#: ``_DENSE_WORK`` (a bare UR5 with 21 pairs and 24 moving spheres among 10 boxes: 261; with
-#: VAMP's gripper among MotionBenchMaker's 15 obstacles, 875, where culling pays even for one).
-_DENSE, _DENSE_WORK = 64, 400
+#: ``_DENSE_WORK`` (a bare UR5 with 136 pairs and 41 moving spheres among 10 boxes: 546; with
+#: VAMP's gripper among MotionBenchMaker's 15 obstacles, 1,410, where culling pays even for
+#: one).
+_DENSE, _DENSE_WORK = 64, 700
 
 
 def _dense_hits(
@@ -273,10 +274,22 @@ def _placing(model: SphereModel) -> np.ndarray:
     return found
 
 
-def _points(model: SphereModel, F: np.ndarray, rows: np.ndarray, spheres: np.ndarray):
-    """World centres of ``spheres`` (H,) in the configurations ``rows`` (H,): (H, 3)."""
-    A = F[rows, model.frames[spheres]]  # (H, 3, 4)
-    return np.einsum("hij,hj->hi", A[..., :3], model.centres[spheres]) + A[..., 3]
+class _Points:
+    """World centres of spheres in configurations, asked for as ``(rows (H,), spheres (H,))``:
+    gathered one by one while they are few, and once they are many (an eighth of every sphere
+    in every configuration), every sphere placed in one matrix product and looked up."""
+
+    def __init__(self, model: SphereModel, F4: np.ndarray) -> None:
+        self.model, self.F4, self.placed = model, F4, None
+
+    def __call__(self, rows: np.ndarray, spheres: np.ndarray) -> np.ndarray:
+        model = self.model
+        if self.placed is None and 8 * len(rows) >= len(self.F4) * len(model):
+            self.placed = _place(self.F4, _placing(model))
+        if self.placed is not None:
+            return self.placed[rows, spheres]
+        A = self.F4[rows, model.frames[spheres]]  # (H, 4, 4)
+        return np.einsum("hij,hj->hi", A[:, :3, :3], model.centres[spheres]) + A[:, :3, 3]
 
 
 #: The largest radius of a group's bounding ball (m): a link's spheres are split until each

@@ -11,14 +11,16 @@ Provenance of the fitted models
     Fitted to the ROS-Industrial ``ur_description`` collision meshes (BSD; copied from the
     ``example-robot-data`` 6.0.0 wheel into ``tests/data/meshes``) by ``python -m
     tests.fit_spheres``: each link's mesh in its DH frame, split into pieces no longer than
-    12 mm, grouped by k-means, each group enclosed by a sphere through the group's vertices
-    (plus 0.5 mm), with as many groups (at most 12 a link) as it takes for every sphere to be
-    within 1.35 times half its group's thickness.  A ball holding a triangle's corners holds
-    the whole triangle, so the spheres cover every point of the mesh surface;
-    ``tests/test_planning_spheres.py`` checks it on fresh surface samples, the meshes placed
-    by the URDF and the spheres by :func:`urkin.fk_frames`, at random configurations.  The
-    spheres reach up to 2–3 cm beyond the surface (they are conservative: a sphere cannot
-    follow a flat face).
+    12 mm, grouped by halving, each group enclosed by a sphere through the group's vertices
+    (plus 0.5 mm).  A group is cut in two, across a principal axis, while that makes its
+    sphere reach markedly less far beyond the link's surface (its *excess*: the mean, over
+    points of the sphere, of how far outside the mesh they lie), until it is within 6 mm: a
+    tube becomes a row of slices hardly wider than the tube, a housing a few pieces.  A ball
+    holding a triangle's corners holds the whole triangle, so the spheres cover every point
+    of the mesh surface; ``tests/test_planning_spheres.py`` checks it on fresh surface
+    samples, the meshes placed by the URDF and the spheres by :func:`urkin.fk_frames`, at
+    random configurations.  Beyond flat faces and ends the spheres still reach 1–3 cm past
+    the surface (a ball cannot follow a flat face); along the tubes, under 1 cm.
 
 Self-collision pairs
     Three pairs of links of the fitted models are tested on their meshes, not their
@@ -28,11 +30,12 @@ Self-collision pairs
     joints 4 and 5 again).  ``python -m tests.pair_tables`` tabulates the exact distance of
     each pair over its two joints, one node per degree (:class:`MeshPair`; between nodes a
     lower bound from the nearest four).  Their spheres, which reach 1–3 cm beyond the
-    surface, overlap where the links are clear: of random configurations, the spheres leave
-    34 % of the UR5's free of self-collision, the forearm and wrist 2's table 45 % (UR10: 61
-    and 76 %; UR3: 56 % either way), and they put the start or goal of 138 of VAMP's 700
-    MotionBenchMaker UR5 problems in collision, and 8 more whose base and upper arm, or
-    forearm and wrist 3, are 1–22 mm apart.  The
+    surface at the housings' flat faces, overlap where the links are clear: of random
+    configurations, the spheres leave 60 % of the UR5's free of self-collision, the tables
+    70 % (UR10: 79 and 82 %; UR3: 59 and 66 %); of VAMP's 700 MotionBenchMaker UR5 problems
+    (VAMP's gripper spheres on the flange), the spheres put the start or goal of 49 in
+    collision, the tables and spheres together 6 (four by a tabled pair whose meshes are
+    0.1–5 mm apart, two by a sphere against a box).  The
     other pairs of the fitted models are witnessed by the meshes: in 2,000 seeded random
     configurations, wherever two links that are not the same or adjacent came within 5 mm of
     each other, the two spheres holding the nearby points form a pair to test; pairs that
