@@ -112,13 +112,15 @@ print(f"seed 001's model: {len(joint_spheres)} spheres; urkin's model of the UR3
 # `planning.sphere_model(ur3)` is different in kind: its spheres were **fitted to the
 # collision meshes** of the UR3 that ROS-Industrial publishes (the meshes a ROS planner
 # checks) — each link's surface cut into small pieces, the pieces grouped, each group enclosed
-# by a ball. urkin's tests place the meshes with the URDF's own chain and the spheres with
-# `fk_frames`, at random configurations, and sample 4,000 fresh points on every link's surface:
-# at least 99.5 % of them must lie inside a sphere of that link or a neighbour, and none more
-# than 5 mm outside. Measured the same way (outside this notebook: the meshes live with urkin's
-# tests), the six joint spheres above hold about a third of the surface of the moving links
-# (36 % of the points fall inside one of them) and hardly any of the forearm (6 %), and some
-# of the surface lies 10 cm from every one of them.
+# by a ball, a group halved for as long as that makes its ball reach markedly less far past
+# the surface (so a tube becomes a row of slices hardly wider than the tube). urkin's tests
+# place the meshes with the URDF's own chain and the spheres with `fk_frames`, at random
+# configurations, and sample 4,000 fresh points on every link's surface: at least 99.5 % of
+# them must lie inside a sphere of that link or a neighbour, and none more than 5 mm outside.
+# Measured the same way (outside this notebook: the meshes live with urkin's tests), the six
+# joint spheres above hold about a third of the surface of the moving links (36 % of the
+# points fall inside one of them) and hardly any of the forearm (6 %), and some of the surface
+# lies 10 cm from every one of them.
 #
 # A thin bar across the middle of the upper arm shows what that means. (A scene holds the
 # obstacles; section 2 says more. `is_free` asks whether any sphere touches one.)
