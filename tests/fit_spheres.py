@@ -1,6 +1,7 @@
 """Fit the sphere models of ``urkin.planning`` to the ROS-Industrial collision meshes.
 
-    python -m tests.fit_spheres          # prints urkin/planning/_sphere_tables.py (needs scipy)
+    python -m tests.fit_spheres > urkin/planning/_sphere_tables.py   # needs scipy; ~30 min
+    ruff format urkin/planning/_sphere_tables.py
 
 Each link's mesh is put in the DH frame it moves with (URDF chain against ``Rz(π)·fk_frames``).
 Its triangles are split until no edge is longer than 12 mm, and the pieces are split into groups
