@@ -463,7 +463,7 @@ def clearance(model: SphereModel, scene: Scene, q: ArrayLike) -> Clearance:
     >>> table = planning.Scene(boxes=[planning.Box([0, 0, -0.06], [2, 2, 0.1], name="table")])
     >>> c = planning.clearance(model, table, [0, -1.57, 0, -1.57, 0, 0])
     >>> bool(c.distance > 0), model.names[c.sphere], table.names[c.obstacle]
-    (True, 'shoulder sphere 0', 'table')
+    (True, 'shoulder sphere 1', 'table')
     """
     _check(model, scene)
     Q, lead, _ = _joints(q, "q")
