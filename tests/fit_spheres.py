@@ -39,7 +39,7 @@ import urkin
 from urkin.planning.spheres import SphereModel
 from urkin.robots import random_configurations
 
-from .robot_models import posed_meshes, sample_surface
+from .robot_models import posed_meshes, sample_surface, sample_surface_picks
 
 MAX_EDGE = 0.012
 MARGIN = 0.0005
@@ -91,15 +91,10 @@ class Excess:
         from scipy.spatial import cKDTree  # a developer tool: the tests never run the fit
 
         rng = np.random.default_rng(seed)
-        a, b, c = triangles[:, 0], triangles[:, 1], triangles[:, 2]
+        self.points, pick = sample_surface_picks(triangles, SURFACE_SAMPLES, rng)
+        a, b, c = triangles[pick, 0], triangles[pick, 1], triangles[pick, 2]
         normal = np.cross(b - a, c - a)
-        area = np.linalg.norm(normal, axis=1)
-        pick = rng.choice(len(triangles), size=SURFACE_SAMPLES, p=area / area.sum())
-        u, v = rng.random((2, SURFACE_SAMPLES))
-        flip = u + v > 1
-        u[flip], v[flip] = 1 - u[flip], 1 - v[flip]
-        self.points = a[pick] + u[:, None] * (b - a)[pick] + v[:, None] * (c - a)[pick]
-        self.normals = normal[pick] / np.maximum(area[pick], 1e-30)[:, None]
+        self.normals = normal / np.maximum(np.linalg.norm(normal, axis=1), 1e-30)[:, None]
         if np.mean(np.sum((self.points - self.points.mean(axis=0)) * self.normals, axis=1)) < 0:
             self.normals = -self.normals  # outward
         self.tree = cKDTree(self.points)

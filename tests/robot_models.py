@@ -125,10 +125,17 @@ def posed_meshes(name: str, q) -> list[np.ndarray]:
 
 def sample_surface(triangles: np.ndarray, n: int, rng: np.random.Generator) -> np.ndarray:
     """``n`` points uniformly distributed (by area) on a triangle mesh (M, 3, 3)."""
+    return sample_surface_picks(triangles, n, rng)[0]
+
+
+def sample_surface_picks(
+    triangles: np.ndarray, n: int, rng: np.random.Generator
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`sample_surface`'s points (n, 3) and the triangle each lies on (n,)."""
     a, b, c = triangles[:, 0], triangles[:, 1], triangles[:, 2]
     area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
     pick = rng.choice(len(triangles), size=n, p=area / area.sum())
     u, v = rng.random((2, n))
     flip = u + v > 1
     u[flip], v[flip] = 1 - u[flip], 1 - v[flip]
-    return a[pick] + u[:, None] * (b - a)[pick] + v[:, None] * (c - a)[pick]
+    return a[pick] + u[:, None] * (b - a)[pick] + v[:, None] * (c - a)[pick], pick
