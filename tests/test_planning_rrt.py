@@ -148,26 +148,40 @@ def test_a_shortcut_that_fails_the_finer_recheck_gives_its_waypoints_back(monkey
     np.testing.assert_array_equal(back, np.vstack([raw.path[[0]], raw.path[2:]]))
 
 
+def test_the_final_recheck_gives_the_verdicts_of_both_checks():
+    """The final re-check certifies every edge and samples only those it cannot prove free:
+    its verdicts are certify_edges' and edges_free's at a quarter of the resolution, edge by
+    edge, whether free, blocked or grazing."""
+    rng = np.random.default_rng(5)
+    path = np.vstack([START, START + rng.normal(0, 0.4, (30, 6)), GOAL])
+    fine, proven = planning.rrt._rechecked(MODEL, WALL, path, 0.01)
+    A, B = path[:-1], path[1:]
+    np.testing.assert_array_equal(proven, planning.certify_edges(MODEL, WALL, A, B))
+    np.testing.assert_array_equal(fine, planning.edges_free(MODEL, WALL, A, B, resolution=0.0025))
+    assert proven.any() and not fine.all()
+
+
 def test_an_edge_of_the_trees_that_fails_the_finer_recheck_is_planned_again(monkeypatch):
     """Where an edge of the trees passed at the resolution but fails the re-check at a quarter
     of it, the way between its ends is planned again at half the resolution (here the
     re-check is made to refuse the first edge once)."""
-    real_fine, calls = planning.rrt._fine, []
+    real, calls = planning.rrt._rechecked, []
 
-    def fine(model, scene, path, resolution):
+    def rechecked(model, scene, path, resolution):
         calls.append(resolution)
-        verdicts = real_fine(model, scene, path, resolution)
+        fine, proven = real(model, scene, path, resolution)
         if len(calls) == 1:
-            verdicts[0] = False
-        return verdicts
+            fine[0] = proven[0] = False
+        return fine, proven
 
-    monkeypatch.setattr(planning.rrt, "_fine", fine)
+    monkeypatch.setattr(planning.rrt, "_rechecked", rechecked)
     plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
     assert plan.success
     assert calls[:2] == [0.01, 0.005]  # the path at 1 cm, then the edge's new plan at 5 mm
     assert planning.edges_free(MODEL, WALL, plan.path[:-1], plan.path[1:], resolution=0.002).all()
     # when the new plan fails too, the planner says so
-    monkeypatch.setattr(planning.rrt, "_fine", lambda *a: np.zeros(len(a[2]) - 1, bool))
+    refused = np.zeros(1, bool)
+    monkeypatch.setattr(planning.rrt, "_rechecked", lambda *a: (refused.repeat(len(a[2]) - 1),) * 2)
     plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
     assert not plan.success and "re-checked at 2.5 mm" in plan.reason
 
@@ -178,21 +192,17 @@ def test_an_edge_free_at_the_samples_but_not_proven_is_replaced(monkeypatch):
     two edges are proven free; without a detour, it is planned again at half the resolution;
     if that fails too, the edge stays (it is free at every sample)."""
     resolutions = []
-    real_fine, real_proven = planning.rrt._fine, planning.rrt._proven
+    real = planning.rrt._rechecked
     base = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
 
-    def fine(model, scene, path, resolution):
+    def doubt_first(model, scene, path, resolution):
         resolutions.append(resolution)
-        return real_fine(model, scene, path, resolution)
+        fine, proven = real(model, scene, path, resolution)
+        if len(resolutions) == 1 and np.array_equal(path[0], base.path[0]):
+            proven[0] = False  # the first edge of the first path is in doubt
+        return fine, proven
 
-    def doubt_first(model, scene, A, B, speeds, finest):
-        verdicts = real_proven(model, scene, A, B, speeds, finest)
-        if len(resolutions) == 1 and np.array_equal(A[0], base.path[0]):
-            verdicts[0] = False  # the first edge of the first path is in doubt
-        return verdicts
-
-    monkeypatch.setattr(planning.rrt, "_fine", fine)
-    monkeypatch.setattr(planning.rrt, "_proven", doubt_first)
+    monkeypatch.setattr(planning.rrt, "_rechecked", doubt_first)
     plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
     assert plan.success and resolutions == [0.01]  # no new plan: a detour
     assert len(plan.path) == len(base.path) + 1

@@ -233,24 +233,15 @@ def rrt_connect(
     raw = path
     if simplify and len(path) > 2:
         path = shortcut(model, scene, path, seed=seed, resolution=resolution)
-    fine = _fine(model, scene, path, resolution)
+    fine, proven = _rechecked(model, scene, path, resolution)
     if not fine.all() and len(path) < len(raw):
         # a shortcut that passed at the resolution but not at a quarter: the waypoints it
         # skipped come back, and the edges between them are re-checked
         path = _restored(path, raw, ~fine)
-        fine = _fine(model, scene, path, resolution)
+        fine, proven = _rechecked(model, scene, path, resolution)
     # edges free at the samples but not proven free between them (certify_edges) are in
     # doubt: they may graze an obstacle between samples
-    doubt = fine.copy()
-    if fine.any():
-        doubt[fine] = ~_proven(
-            model,
-            scene,
-            path[:-1][fine],
-            path[1:][fine],
-            _travels(model, path[:-1][fine], path[1:][fine], resolution),
-            FINEST,
-        )
+    doubt = fine & ~proven
     for k in np.flatnonzero(doubt)[::-1]:  # the last first: earlier indices stay
         # an edge in doubt: around it through a waypoint near its middle, both halves proven
         waypoint = _detour(model, scene, path[k], path[k + 1], rng, lower, upper)
@@ -322,11 +313,24 @@ def _detour(model, scene, a, b, rng, lower, upper) -> np.ndarray | None:
     return M[int(np.argmax(both))] if both.any() else None
 
 
-def _fine(model, scene, path: np.ndarray, resolution: float) -> np.ndarray:
-    """Whether each edge of ``path`` is free at the resolution of the final re-check."""
-    finer = resolution / _RECHECK
-    travel = _travels(model, path[:-1], path[1:], finer)
-    return _edges_free(model, scene, path[:-1], path[1:], travel, finer, known=2)
+def _rechecked(model, scene, path: np.ndarray, resolution: float):
+    """Two verdicts on each edge of ``path``: whether it is free at the samples of the final
+    re-check, at a quarter of the resolution, and whether it is proven free between them too
+    (:func:`~urkin.planning.certify_edges`).  An edge proven free is free at any samples:
+    only the others are re-checked."""
+    A, B = path[:-1], path[1:]
+    travel = _travels(model, A, B, resolution)
+    proven = _proven(model, scene, A, B, travel, FINEST)
+    fine = proven.copy()
+    if not proven.all():
+        fine[~proven] = _fine(model, scene, A[~proven], B[~proven], travel[~proven], resolution)
+    return fine, proven
+
+
+def _fine(model, scene, A, B, travel, resolution: float) -> np.ndarray:
+    """Whether each edge ``A`` → ``B`` (with its :func:`~urkin.planning.checks._travel`) is
+    free at the resolution of the final re-check."""
+    return _edges_free(model, scene, A, B, travel, resolution / _RECHECK, known=2)
 
 
 def _restored(path: np.ndarray, raw: np.ndarray, blocked: np.ndarray) -> np.ndarray:
