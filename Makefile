@@ -7,8 +7,10 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.urkin-installed
 # JupyterLab refuses to run as root unless told; containers often run as root
 JUPYTER_FLAGS := $(if $(filter 0,$(shell id -u 2>/dev/null)),--allow-root,)
+# Two pytest workers (pytest-xdist), as many as the 2-core machine the budgets are set on has;
+# nbval's cells stay with their notebook's worker (--dist loadscope), in order, in one kernel.
 NBVAL := $(PY) -m pytest -o addopts="" -p no:cacheprovider --nbval-current-env \
-         --nbval-sanitize-with tests/nbval_sanitize.cfg
+         --nbval-sanitize-with tests/nbval_sanitize.cfg -n 2 --dist loadscope
 
 .PHONY: course test lint unit notebooks docs lessons grade-demo bench clean
 
@@ -32,7 +34,7 @@ lint: $(STAMP)
 	$(PY) -m ruff format --check urkin tests bench docs/conf.py docs/check_offline.py
 
 unit: $(STAMP)
-	$(PY) -m pytest
+	$(PY) -m pytest -n 2
 
 # The stored outputs of solutions/ must not depend on the CPU: nbval compares them once as
 # they come, and once more with another OpenBLAS kernel, numpy's baseline (SSE) loops instead
