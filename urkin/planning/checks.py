@@ -42,7 +42,13 @@ from numpy.typing import ArrayLike
 
 from urkin.kinematics import _joints
 from urkin.planning.scene import Scene
-from urkin.planning.spheres import FRAME_NAMES, SphereModel, _frames, _tables
+from urkin.planning.spheres import (
+    FRAME_NAMES,
+    SphereModel,
+    _frames,
+    _placing_matrix,
+    _tables,
+)
 
 __all__ = [
     "Clearance",
@@ -246,18 +252,6 @@ def _place(F: np.ndarray, M: np.ndarray) -> np.ndarray:
     """Centres fixed in frames, placed by the frames ``F`` (N, 8, 4, 4), with their placing
     matrix ``M`` (128, 3k) (:func:`_placing_matrix`): (N, k, 3), one matrix product."""
     return (F.reshape(len(F), 128) @ M).reshape(len(F), -1, 3)
-
-
-def _placing_matrix(frames: np.ndarray, centres: np.ndarray) -> np.ndarray:
-    """(128, 3k): row ``16 f + 4 i + j`` of column ``3 m + i`` is the homogeneous centre's
-    ``j``-th coordinate for a centre ``m`` fixed in frame ``f``, so that the flattened frames
-    times it are the centres' coordinates ``i``."""
-    k = len(frames)
-    M = np.zeros((8, 4, 4, k, 3))  # frame, row i, column j, centre, coordinate
-    homogeneous = np.column_stack([centres, np.ones(k)])
-    for i in range(3):
-        M[frames, i, :, np.arange(k), i] = homogeneous
-    return M.reshape(128, 3 * k)
 
 
 def _repeated(radii: np.ndarray, n: int) -> np.ndarray:
