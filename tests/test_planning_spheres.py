@@ -190,6 +190,38 @@ def test_tool_spheres_join_the_model_with_derived_pairs():
     assert np.all(np.minimum(gripper.frames[new.min(axis=1)], 6) <= 4)  # never wrist 2/3
 
 
+def test_derived_pairs_do_not_depend_on_where_the_arm_stands():
+    """The rule's distances are the same wherever the base is: an arm moved and turned gets the
+    pairs it gets at the origin, whether derived afresh or found again (the same spheres on
+    the same arm and tool)."""
+    fitted = planning.sphere_model(urkin.robot("ur3"))
+    rows = np.column_stack([fitted.frames, fitted.centres, fitted.radii])
+    turn = urkin.transforms.rot_z(2.0) @ urkin.transforms.rot_x(0.1)
+    T = urkin.transforms.make_transform(turn, [0.4, -0.3, 0.8])
+    here = planning.SphereModel.from_rows(fitted.robot, rows)
+    there = planning.SphereModel.from_rows(fitted.robot.with_base(T), rows)
+    np.testing.assert_array_equal(here.pairs, there.pairs)
+    block = [[0, 0, 0.03], [0, 0.02, 0.05]]
+    again = planning.SphereModel(
+        fitted.robot.with_base(T),
+        *(getattr(fitted, k) for k in ("frames", "centres", "radii")),
+        fitted.pairs,
+        fitted.names,
+        fitted.source,
+        fitted.meshes,
+    ).with_tool_spheres(block, 0.02)
+    np.testing.assert_array_equal(again.pairs, fitted.with_tool_spheres(block, 0.02).pairs)
+    assert len(again.pairs) > len(fitted.pairs)
+    # the tool is part of the arm: a longer one gives its spheres other pairs
+    long = urkin.transforms.make_transform(None, [0, 0, 0.25])
+    tooled = planning.SphereModel(
+        fitted.robot.with_tool(long),
+        *(getattr(fitted, k) for k in ("frames", "centres", "radii", "pairs", "names", "source")),
+        fitted.meshes,
+    ).with_tool_spheres(block, 0.02)
+    assert not np.array_equal(tooled.pairs, again.pairs)
+
+
 def test_hand_built_models_check_their_rows():
     ur5 = urkin.robot("ur5")
     with pytest.raises(ValueError, match=r"rows must have shape \(S, 5\)"):

@@ -555,28 +555,66 @@ def self_pairs(model: SphereModel, only: ArrayLike | None = None) -> np.ndarray:
 
 def _contacts(model: SphereModel, i: np.ndarray, j: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Over the rule's random configurations: whether each pair ever came within the margin,
-    and whether it was ever apart.  Only the spheres of the pairs are placed, one matrix
-    product per block of configurations, and a pair found both near and apart is settled:
-    the later blocks test only the others."""
-    rng = np.random.default_rng(_PAIR_SEED)
-    near = np.zeros(len(i), dtype=bool)
-    apart = np.zeros(len(i), dtype=bool)
-    reach = model.radii[i] + model.radii[j]
-    within2, touch2 = (reach + _PAIR_MARGIN) ** 2, reach**2
+    and whether it was ever apart.  Found in the arm's base frame (where it stands does not
+    change the distances), and kept for the same pairs of the same spheres on the same arm
+    and tool (a world rebuilt, a block carried again)."""
+    robot = model.robot
     used, index = np.unique(np.concatenate([i, j]), return_inverse=True)
-    first, second = index[: len(i)], index[len(i) :]
-    place = _placing_matrix(model.frames[used], model.centres[used])
-    open_ = np.arange(len(i))
+    arm = _Arm(
+        (robot.dh_table().tobytes(), robot.tool.tobytes(), robot.joint_limits),
+        robot.with_base(np.eye(4)),
+    )
+    near, apart = _pair_contacts(
+        arm,
+        model.frames[used].astype(np.intp).tobytes(),
+        model.centres[used].tobytes(),
+        model.radii[used].tobytes(),
+        index.astype(np.intp).tobytes(),
+    )
+    return near.copy(), apart.copy()
+
+
+@dataclass(frozen=True)
+class _Arm:
+    """An arm standing at the origin, equal to another with the same DH table, tool and
+    joint limits (``key``): :func:`_pair_contacts`' cache key."""
+
+    key: tuple
+    robot: Robot = field(compare=False)
+
+
+@functools.lru_cache(maxsize=64)
+def _pair_contacts(
+    arm: _Arm, frames: bytes, centres: bytes, radii: bytes, ends: bytes
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_contacts` of the spheres ``frames``, ``centres`` and ``radii`` (as bytes) and the
+    pairs ``ends`` (their indices among them, all firsts then all seconds).  Only these
+    spheres are placed, one matrix product per block of configurations, and a pair found both
+    near and apart is settled: the later blocks test only the others."""
+    frame = np.frombuffer(frames, dtype=np.intp)
+    centre = np.frombuffer(centres).reshape(-1, 3)
+    radius = np.frombuffer(radii)
+    first, second = np.frombuffer(ends, dtype=np.intp).reshape(2, -1)
+    robot = arm.robot
+    rng = np.random.default_rng(_PAIR_SEED)
+    near = np.zeros(len(first), dtype=bool)
+    apart = np.zeros(len(first), dtype=bool)
+    reach = radius[first] + radius[second]
+    within2, touch2 = (reach + _PAIR_MARGIN) ** 2, reach**2
+    place = _placing_matrix(frame, centre)
+    open_ = np.arange(len(first))
     for _ in range(_PAIR_SAMPLES // 2000):
-        Q = random_configurations(model.robot, 2000, rng)
+        Q = random_configurations(robot, 2000, rng)
         if not len(open_):
             continue  # the same draws either way
-        W = (_chain(model.robot, Q).reshape(len(Q), 128) @ place).reshape(len(Q), -1, 3)
+        W = (_chain(robot, Q).reshape(len(Q), 128) @ place).reshape(len(Q), -1, 3)
         d = W[:, first[open_]] - W[:, second[open_]]
         d2 = np.einsum("nki,nki->nk", d, d)
         near[open_] |= np.any(d2 <= within2[open_], axis=0)
         apart[open_] |= np.any(d2 > touch2[open_], axis=0)
         open_ = open_[~(near[open_] & apart[open_])]
+    near.setflags(write=False)
+    apart.setflags(write=False)
     return near, apart
 
 
