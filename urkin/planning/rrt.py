@@ -356,9 +356,13 @@ def _within(q: np.ndarray, lower: np.ndarray, upper: np.ndarray, name: str) -> N
 
 
 def _towards(q_from: np.ndarray, q_to: np.ndarray, step: float) -> np.ndarray:
+    """``q_to``, or the configuration ``step`` from ``q_from`` towards it in the joint that
+    moves most: (6,), or (K, 6) for rows of starts and targets."""
     delta = q_to - q_from
-    largest = float(np.max(np.abs(delta)))
-    return q_to.copy() if largest <= step else q_from + delta * (step / largest)
+    largest = np.max(np.abs(delta), axis=-1, keepdims=True)
+    far = largest > step
+    scale = np.divide(step, largest, out=np.zeros_like(largest), where=far)
+    return np.where(far, q_from + delta * scale, q_to)
 
 
 def _edge(model, scene, qa, qb, resolution, speeds=None) -> bool:
@@ -394,16 +398,24 @@ class _Draws:
         size = min(self.size, left)
         self.size = min(2 * self.size, _DRAWS)
         targets = self.rng.uniform(self.lower, self.upper, (size, 6))
-        entries = []
-        last = self.last
-        for target in targets:
-            tree = last = _extending(trees, last)
-            near = tree.nearest(target)
-            entries.append(
-                (tree, tree.count, target, near, _towards(tree.nodes[near], target, self.step))
-            )
-        starts = np.array([e[0].nodes[e[3]] for e in entries])
-        free = ~_ends_blocked(self.model, self.scene, starts, np.array([e[4] for e in entries]))
+        extends, last = [], self.last  # which tree each draw extends, from the trees now
+        for _ in range(size):
+            last = _extending(trees, last)
+            extends.append(last)
+        near = np.empty(size, dtype=np.intp)
+        starts = np.empty((size, 6))
+        for tree in trees:  # each tree's nearest nodes to its targets, in one batch
+            mine = np.array([t is tree for t in extends])
+            if mine.any():
+                d = tree.nodes[None, : tree.count] - targets[mine, None]
+                near[mine] = np.argmin(np.einsum("kij,kij->ki", d, d), axis=1)
+                starts[mine] = tree.nodes[near[mine]]
+        new = _towards(starts, targets, self.step)
+        entries = [
+            (tree, tree.count, target, int(k), q)
+            for tree, target, k, q in zip(extends, targets, near, new)
+        ]
+        free = ~_ends_blocked(self.model, self.scene, starts, new)
         speeds: list[np.ndarray | None] = [None] * len(entries)
         if free.any():  # the speed bounds of the free ones' edges, in one batch too
             ends = [e for e, f in zip(entries, free) if f]
