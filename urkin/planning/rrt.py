@@ -407,8 +407,7 @@ class _Draws:
         for tree in trees:  # each tree's nearest nodes to its targets, in one batch
             mine = np.array([t is tree for t in extends])
             if mine.any():
-                d = tree.nodes[None, : tree.count] - targets[mine, None]
-                near[mine] = np.argmin(np.einsum("kij,kij->ki", d, d), axis=1)
+                near[mine] = tree.nearest(targets[mine])
                 starts[mine] = tree.nodes[near[mine]]
         new = _towards(starts, targets, self.step)
         entries = [
@@ -488,9 +487,11 @@ class _Tree:
         self.goal_of_root = goal_of_root
         self.root_goal = None if goal_of_root[0] < 0 else goal_of_root
 
-    def nearest(self, q: np.ndarray) -> int:
-        d = self.nodes[: self.count] - q
-        return int(np.argmin(np.einsum("ij,ij->i", d, d)))
+    def nearest(self, q: np.ndarray) -> int | np.ndarray:
+        """The index of the node nearest ``q`` (6,), or of each row of ``q`` (K, 6): (K,)."""
+        d = self.nodes[None, : self.count] - np.atleast_2d(q)[:, None]
+        near = np.argmin(np.einsum("kij,kij->ki", d, d), axis=1)
+        return int(near[0]) if np.ndim(q) == 1 else near
 
     def add(self, q: np.ndarray, parent: int) -> int:
         if self.count == len(self.nodes):
