@@ -91,30 +91,35 @@ def test_trees_grow_past_their_first_capacity():
     assert plan.nodes > 2 * 2 + 3
 
 
-def test_drawing_targets_a_block_at_a_time_gives_the_plan_of_one_at_a_time(monkeypatch):
-    """rrt_connect draws its random targets and checks their new nodes a block at a time; a
-    tree that grows within the block is searched again for nearer nodes, and the tree that
-    extends is chosen again from the trees' sizes, so the iterations are those of drawing one
-    target at a time (blocks of 8 against blocks of one)."""
-    foreseen = []  # whether the tree foreseen at the draw was the one that extended
+def test_drawing_targets_a_block_at_a_time_extends_from_the_nearest_node(monkeypatch):
+    """rrt_connect draws its random targets and checks their new nodes a block at a time;
+    which tree extends towards each is decided at the draw, and a tree that grows within the
+    block is searched again: every extension starts from the node of its tree nearest its
+    target when it runs, and the verdict on its new node is that node's own."""
+    runs = []
     original = planning.rrt._Draws.next
 
     def next_(self, trees, left):
-        drawn = self.queue[-1][0] if self.queue else None
+        if not self.queue:
+            self._fill(trees, left)
+        tree, drawn, target = self.queue[-1][:3]  # drawn: the tree's size at the draw
         result = original(self, trees, left)
-        if drawn is not None:
-            foreseen.append(drawn is result[0])
+        runs.append((tree, drawn, target, tree.nodes[: tree.count].copy(), result))
         return result
 
     monkeypatch.setattr(planning.rrt._Draws, "next", next_)
-    plans = []
-    for block in (8, 1):  # blocks of 8 (the default is larger than this problem needs)
-        monkeypatch.setattr(planning.rrt, "_DRAWS", block)
-        plans.append(planning.rrt_connect(MODEL, WALL, START, GOAL, seed=3, simplify=False))
-    assert plans[0].iterations > 8 * 4  # the trees grew while blocks were pending
-    assert not all(foreseen)  # and the balance of the trees changed which one extends
-    assert plans[0].iterations == plans[1].iterations and plans[0].nodes == plans[1].nodes
-    np.testing.assert_array_equal(plans[0].path, plans[1].path)
+    monkeypatch.setattr(planning.rrt, "_DRAWS", 8)
+    plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=3, simplify=False)
+    assert plan.success and plan.iterations > 8 * 4  # the trees grew while blocks were pending
+    grown = 0
+    for tree, drawn, target, nodes, (extends, near, q_new, free, _) in runs:
+        assert extends is tree  # the tree decided at the draw
+        gaps = np.linalg.norm(nodes - target, axis=1)
+        assert gaps[near] == gaps.min()
+        np.testing.assert_array_equal(q_new, planning.rrt._towards(nodes[near], target, 0.5))
+        assert free == planning.is_free(MODEL, WALL, [q_new, (nodes[near] + q_new) / 2]).all()
+        grown += near >= drawn  # a node added since the block was drawn
+    assert grown
 
 
 def test_the_smaller_tree_extends_while_the_other_is_twice_its_size():

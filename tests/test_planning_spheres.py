@@ -248,3 +248,24 @@ def test_mesh_pairs_refuse_tables_they_cannot_use():
         planning.spheres.MeshPair((3, 5), np.zeros((4, 3)), np.zeros(2))
     with pytest.raises(ValueError, match="must be finite"):
         planning.spheres.MeshPair((3, 5), np.full((4, 4), np.nan), np.zeros(2))
+    # 1 cm between neighbouring nodes of joint 5, where a reach of 0.01 m/rad allows 1.6 cm
+    # per step (of π/2) in joint 4 but nothing in joint 5
+    steep = np.array([[0.0, 0.01, 0.0, 0.01]] * 4)
+    planning.spheres.MeshPair((3, 5), steep.T, np.array([0.01, 0.0]))
+    with pytest.raises(ValueError, match="neighbouring nodes of joint 5, more than its reach"):
+        planning.spheres.MeshPair((3, 5), steep, np.array([0.01, 0.0]))
+
+
+@pytest.mark.parametrize("name", ["ur3", "ur5", "ur10"])
+def test_table_lower_bounds_fall_no_faster_than_their_reach(rng, name):
+    """Between any two configurations, across cells too, a table's lower bound changes by at
+    most ``Σ |Δq| · reach``: what lets a grown check stand for every sample near it."""
+    for pair in planning.sphere_model(urkin.robot(name)).meshes:
+        j = pair.joints[0]
+        n = len(pair.distance)
+        near = np.argwhere(pair.distance < 0.02)  # where the bound is small and varies most
+        Q = rng.uniform(-np.pi, np.pi, (4000, 6))
+        Q[:2000, j : j + 2] = -np.pi + 2 * np.pi * near[rng.choice(len(near), 2000)] / n
+        step = rng.normal(size=Q.shape) * rng.choice([1e-4, 1e-2, 0.1], (len(Q), 1))
+        change = np.abs(pair.lower_bound(Q + step) - pair.lower_bound(Q))
+        assert np.all(change <= np.abs(step[:, j : j + 2]) @ pair.reach + 1e-12)

@@ -607,14 +607,20 @@ def _travels(model, A, B, resolution) -> np.ndarray:
 def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -> np.ndarray:
     """Bounds on the speeds along each edge ``A`` → ``B`` (K, 6), in metres per edge: of each
     sphere centre (the most it can move along the edge; module notes), then of each
-    tabulated mesh pair (the most its second link's mesh moves relative to the first's):
-    (K, S + P); the largest of a row bounds every centre's and every mesh's move.
+    tabulated mesh pair (the most its lower bound can fall along the edge): (K, S + P); the
+    largest of a row bounds every centre's move.
 
     The distance ``r_j`` of a centre from joint ``j``'s axis depends only on the joints after
     ``j``, so along the edge it changes at most at the rate ``T_j = Σ_{m>j} |Δq_m| R_m`` where
     ``R_m`` bounds ``r_m``; from its values at the two ends, ``r_j ≤ (r_j(0) + r_j(1) + T_j) / 2``
     everywhere on the edge (and ``≤ ρ_j``).  Taken from the last joint back, each ``R_j``
-    bounds the next ``T``; the speed is at most ``Σ_j |Δq_j| R_j``."""
+    bounds the next ``T``; the speed is at most ``Σ_j |Δq_j| R_j``.
+
+    A mesh pair's column is ``Σ |Δq_j| reach_j`` over its two joints: the most its table's
+    lower bound (:meth:`~urkin.planning.spheres.MeshPair.lower_bound`, which the checks
+    test) can fall along the edge, so that a check grown by it proves what checking every
+    sample would find (the meshes' true distance may fall less: a tighter bound on it would
+    prove pieces whose samples the table still calls in contact)."""
     K = len(A)
     F4 = _frames(model.robot, np.concatenate([A, B]))  # (2K, 8, 4, 4)
     # r_j: the centres' x and y in frame j − 1, whose z axis is joint j's axis
@@ -625,61 +631,32 @@ def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -
     r = np.sqrt(xy[..., 0::2] + xy[..., 1::2]).transpose(2, 0, 1)  # (6, 2K, S)
     mid = r[:, :K] + r[:, K:]
     mid *= 0.5  # (6, K, S)
-    dq = np.abs(B - A).T[..., None]  # (6, K, 1)
-    half = dq * 0.5
+    dq = np.abs(B - A)
+    half = dq.T[..., None] * 0.5  # (6, K, 1)
     S = len(model)
     out = np.zeros((K, S + len(model.meshes)))
     H = out[:, :S]  # T / 2 (halving is exact: the same bounds, in fewer operations)
-    R = np.empty((6, K, S))  # R_j, kept for the meshes
+    R = np.empty((K, S))  # R_j
     for j in range(5, -1, -1):  # T = Σ_{m>j} |Δq_m| R_m
-        np.add(mid[j], H, out=R[j])
-        np.minimum(R[j], rho[:, j], out=R[j])
-        H += R[j] * half[j]
+        np.add(mid[j], H, out=R)
+        np.minimum(R, rho[:, j], out=R)
+        R *= half[j]
+        H += R
     H *= 2.0
-    # how far one tabulated mesh moves relative to the other: its points are within a known
-    # distance of its link's sphere centres, whose distances from the two joints' axes are
-    # bounded by R (and by the table's own reach)
     if model.meshes:
-        joints, spheres, pad, reach = _mesh_reach(model)
-        far = R[joints[:, :, None], :, spheres[:, None, :]]  # (P, 2, m, K)
-        far += pad
-        reach = np.minimum(far.max(axis=2), reach)  # (P, 2, K)
-        reach *= dq[joints, :, 0]
-        out[:, S:] = reach.sum(axis=1).T
+        joints, reach = _mesh_lipschitz(model)
+        out[:, S:] = np.einsum("kpj,pj->kp", dq[:, joints], reach)
     return out
 
 
-#: How far a point of a link's mesh may lie beyond its spheres (m; they cover it by
-#: construction, and the coverage test allows 5 mm), and a solid of revolution (a
-#: :class:`~urkin.planning.spheres.MeshPair` three frames apart) beyond the turned mesh.
-_COVER, _SOLID = 0.005, 0.005
-
-
-def _mesh_reach(model: SphereModel) -> tuple[np.ndarray, ...]:
-    """For the tabulated pairs (P): their two joints (P, 2); the spheres on each one's second
-    link (P, m, padded by repeating one); how far from each centre a point of that link's
-    mesh — or of the solid it sweeps turning about the last joint: each centre's circle
-    about that axis, ``2 ρ`` across — can lie (P, 1, m, 1; infinite for a link without
-    spheres, which then keeps the table's reach); and the tables' reach (P, 2, 1) (cached)."""
-    found = model.__dict__.get("_mesh_reach")
+def _mesh_lipschitz(model: SphereModel) -> tuple[np.ndarray, np.ndarray]:
+    """The tabulated pairs' two joints (P, 2) and reaches (P, 2): how fast, in metres per
+    radian of each joint, their lower bounds can fall (cached on the model)."""
+    found = model.__dict__.get("_mesh_lipschitz")
     if found is None:
-        width = max(1, max(np.sum(model.frames == p.frames[1]) for p in model.meshes))
-        spheres = np.zeros((len(model.meshes), width), dtype=np.intp)
-        pad = np.full((len(model.meshes), width), np.inf)
-        for p, pair in enumerate(model.meshes):
-            first, second = pair.frames
-            on = np.flatnonzero(model.frames == second)
-            if not len(on):
-                continue
-            far = model.radii[on] + _COVER
-            if second - first == 3:  # turned about joint `second`'s axis, z of its frame
-                far = far + 2 * np.hypot(*model.centres[on, :2].T) + _SOLID
-            spheres[p] = np.resize(on, width)
-            pad[p] = np.resize(far, width)
-        joints = np.array([[p.joints[0], p.joints[0] + 1] for p in model.meshes])
-        reach = np.array([p.reach for p in model.meshes])[..., None]
-        found = (joints, spheres, pad[:, None, :, None], reach)
-        object.__setattr__(model, "_mesh_reach", found)
+        joints = np.array([pair.joints for pair in model.meshes], dtype=np.intp)
+        found = (joints, np.array([pair.reach for pair in model.meshes]))
+        object.__setattr__(model, "_mesh_lipschitz", found)
     return found
 
 

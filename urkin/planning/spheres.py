@@ -102,7 +102,9 @@ class MeshPair:
     ``q = −π + 2π k / n`` of those joints;
     ``reach`` (2,) bounds the distance of the second link's mesh from each joint's axis, so
     between nodes the distance falls at most by ``Σ |Δq| · reach``: :meth:`lower_bound` takes
-    the best of the four surrounding nodes.
+    the best of the four surrounding nodes.  Neighbouring nodes must not differ by more than
+    that allows (checked): the lower bound is then continuous from cell to cell and falls at
+    most at the rate ``reach`` along any edge, which the edge checks' grown samples rely on.
 
     Attributes
     ----------
@@ -132,6 +134,14 @@ class MeshPair:
             )
         if not (np.isfinite(self.distance).all() and np.all(self.reach >= 0)):
             raise ValueError("distance must be finite and reach non-negative (metres)")
+        for axis, step in enumerate(self._slope()):
+            jump = float(np.abs(self.distance - np.roll(self.distance, 1, axis)).max())
+            if jump > step * (1 + 1e-9):
+                raise ValueError(
+                    f"distance changes by {jump * 1000:.3g} mm between neighbouring nodes of "
+                    f"joint {self.joints[axis] + 1}, more than its reach allows "
+                    f"({step * 1000:.3g} mm per step): reach must bound how fast it can change"
+                )
         self.distance.setflags(write=False)
         self.reach.setflags(write=False)
         # a lower bound over each cell between four nodes: at its point farthest from every
