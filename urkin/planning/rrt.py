@@ -386,8 +386,9 @@ class _Draws:
     at most.  (Deciding again at each iteration, as the trees grew, changed a third of the
     draws of MotionBenchMaker's cage problems, hemmed-in trees whose sizes keep crossing the
     balance rule's threshold; each was then placed and checked alone, and the problems took
-    1.6 times as long.)  A tree that grew since the draw is searched again among its new
-    nodes only; if one is closer, that iteration's new node is placed and checked again."""
+    1.6 times as long.)  When a draw comes up whose tree grew since it was drawn, all that
+    tree's queued draws are searched again among its new nodes only, and those with a
+    nearer node have their new nodes placed and checked again, in one batch."""
 
     def __init__(self, model, scene, rng, lower, upper, step, resolution) -> None:
         self.model, self.scene, self.rng = model, scene, rng
@@ -413,36 +414,65 @@ class _Draws:
             if mine.any():
                 near[mine] = tree.nearest(targets[mine])
                 starts[mine] = tree.nodes[near[mine]]
+        new, free, speeds = self._placed(starts, targets)
+        self.queue = [
+            (tree, tree.count, target, int(k), q, bool(f), v)
+            for tree, target, k, q, f, v in zip(extends, targets, near, new, free, speeds)
+        ][::-1]
+
+    def _placed(self, starts: np.ndarray, targets: np.ndarray) -> tuple:
+        """The new nodes ``step`` from ``starts`` towards ``targets`` (K, 6), whether each is
+        free (:func:`_ends_blocked`) and the speed bounds of the free ones' edges (None for
+        the others), each found in one batch."""
         new = _towards(starts, targets, self.step)
-        entries = [
-            (tree, tree.count, target, int(k), q)
-            for tree, target, k, q in zip(extends, targets, near, new)
-        ]
         free = ~_ends_blocked(self.model, self.scene, starts, new)
-        speeds: list[np.ndarray | None] = [None] * len(entries)
-        if free.any():  # the speed bounds of the free ones' edges, in one batch too
-            ends = [e for e, f in zip(entries, free) if f]
-            A = np.array([e[0].nodes[e[3]] for e in ends])
-            found = _travels(self.model, A, np.array([e[4] for e in ends]), self.resolution)
+        speeds: list[np.ndarray | None] = [None] * len(new)
+        if free.any():
+            found = _travels(self.model, starts[free], new[free], self.resolution)
             for k, row in zip(np.flatnonzero(free), found):
                 speeds[k] = row
-        self.queue = [(*e, bool(f), v) for e, f, v in zip(entries, free, speeds)][::-1]
+        return new, free, speeds
+
+    def _refresh(self, tree: _Tree) -> None:
+        """Search ``tree``'s queued draws, drawn before it grew, again among its new nodes;
+        those with a nearer node get their new node placed and checked again, in one batch
+        (a connect adds many nodes at once, nearer to many of them)."""
+        mine = [k for k, entry in enumerate(self.queue) if entry[0] is tree]
+        entries = [self.queue[k] for k in mine]
+        first = min(entry[1] for entry in entries)
+        targets = np.array([entry[2] for entry in entries])
+        near = np.array([entry[3] for entry in entries])
+        d = tree.nodes[None, first : tree.count] - targets[:, None]
+        d2 = np.einsum("kij,kij->ki", d, d)
+        best = np.argmin(d2, axis=1)
+        gap = tree.nodes[near] - targets
+        nearer = d2[np.arange(len(mine)), best] < np.einsum("ki,ki->k", gap, gap)
+        for k, entry in zip(mine, entries):  # searched up to the tree's size now
+            self.queue[k] = (tree, tree.count, *entry[2:])
+        if nearer.any():
+            near[nearer] = first + best[nearer]
+            new, free, speeds = self._placed(tree.nodes[near[nearer]], targets[nearer])
+            for n, k in enumerate(np.flatnonzero(nearer)):
+                t = mine[k]
+                self.queue[t] = (
+                    tree,
+                    tree.count,
+                    targets[k],
+                    int(near[k]),
+                    new[n],
+                    bool(free[n]),
+                    speeds[n],
+                )
 
     def next(self, trees: list[_Tree], left: int) -> tuple:
         """The tree that extends, its node nearest the target, the new node, whether it is
         free and the speed bounds of the edge between them (None if not known)."""
         if not self.queue:
             self._fill(trees, left)
-        tree, count, target, near, q_new, free, speeds = self.queue.pop()
-        if tree.count > count:  # grown since drawn: is a new node nearer?
-            d = tree.nodes[count : tree.count] - target
-            d2 = np.einsum("ij,ij->i", d, d)
-            k = int(np.argmin(d2))
-            gap = tree.nodes[near] - target
-            if d2[k] < gap @ gap:
-                near, speeds = count + k, None
-                q_new = _towards(tree.nodes[near], target, self.step)
-                free = not _ends_blocked(self.model, self.scene, tree.nodes[near], q_new)
+        tree, count = self.queue[-1][:2]
+        if tree.count > count:  # grown since drawn: are new nodes nearer?
+            self._refresh(tree)
+        tree, _, _, near, q_new, free, speeds = self.queue.pop()
         return tree, near, q_new, free, speeds
 
 
