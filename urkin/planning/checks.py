@@ -243,6 +243,8 @@ def _mesh_hits(model, Q, grow, grown, hit) -> None:
         return
     margin = None if grow is None else grow[:, len(model) :]
     rows, pairs, bound = _tables(model.meshes).bounds(Q, margin)
+    if not len(rows):
+        return
     hit[rows[bound <= 0.0]] = True
     if grow is not None:
         grown[rows[bound <= margin[rows, pairs]]] = True

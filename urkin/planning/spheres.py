@@ -213,19 +213,25 @@ class _Tables:
         does not rule out coming within ``margin`` (N, P) (None: touching), and
         :meth:`MeshPair.lower_bound` at each."""
         n, P = len(Q), len(self.steps)
-        x = Q[:, self.columns].reshape(n, P, 2) + math.pi
+        x = Q[:, self.columns].reshape(n, P, 2)
+        x += math.pi
         np.mod(x, 2 * math.pi, out=x)
-        x *= self.steps
-        low = np.floor(x)
-        x -= low
-        i = low.astype(np.intp)
+        x *= self.steps  # grid units, 0 … n
+        i = x.astype(np.intp)  # the cell's lower node (x ≥ 0: truncation is the floor)
         cell = i[..., 0] * self.stride
         cell += i[..., 1]
         cell += self.offset  # (N, P)
-        rows, pairs = np.nonzero(self.floor[cell] <= (0.0 if margin is None else margin))
-        cell, after = cell[rows, pairs], x[rows, pairs]
+        near = self.floor[cell] <= (0.0 if margin is None else margin)
+        if not near.any():  # most configurations: every pair's cell rules out contact
+            return _NONE, _NONE, np.zeros(0)
+        rows, pairs = np.nonzero(near)
+        cell, after = cell[rows, pairs], np.modf(x[rows, pairs])[0]  # x − i
         fall = (np.abs(_STEPS - after[:, None, :]) * self.slope[pairs]).sum(axis=2)  # (H, 4)
         return rows, pairs, (self.flat[cell[:, None] + self.nodes[pairs]] - fall).max(axis=1)
+
+
+_NONE = np.zeros(0, dtype=np.intp)
+_NONE.setflags(write=False)
 
 
 @functools.lru_cache(maxsize=64)
