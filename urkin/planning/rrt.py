@@ -110,7 +110,7 @@ def rrt_connect(
     goals: ArrayLike,
     *,
     seed: int = 0,
-    max_iterations: int = 10_000,
+    max_iterations: int = 100_000,
     time_limit: float | None = None,
     step: float = 0.5,
     resolution: float = RESOLUTION,
@@ -128,6 +128,8 @@ def rrt_connect(
     seed : int
         Seed of the random draws: a seed reproduces a plan exactly.
     max_iterations : int
+        Draws of a random configuration before giving up (VAMP's default too: the hardest
+        of MotionBenchMaker's UR5 cage problems take over 15,000).
     time_limit : float, optional
         Seconds before giving up (checked once per iteration).
     step : float
