@@ -424,9 +424,10 @@ def test_mesh_speeds_bound_how_far_each_tabulated_link_moves(rng, name):
 def test_edges_certified_near_a_tabulated_contact_are_free_at_every_sample():
     """Short edges of the UR5 where its upper arm passes within a few millimetres of its base
     (their tabulated pair): every edge ``certify_edges`` proves free is free at 101 samples,
-    however the table's lower bound varies between its nodes.  (Grown by how far the meshes
-    truly move, which near the base is less than how fast the bound can fall, 15 of 311
-    proven edges had samples in contact.)"""
+    however the table's lower bound varies between its nodes, and ``edges_free``, which
+    proves blocks free the same way, gives the verdicts of checking every sample.  (Grown by
+    how far the meshes truly move, which near the base is less than how fast the bound can
+    fall, 15 of 311 proven edges had samples in contact.)"""
     D = MODEL.meshes[0].distance  # base and upper arm, over joints 1 and 2
     rng = np.random.default_rng(0)
     near = np.argwhere((D > 0.002) & (D < 0.01))
@@ -445,3 +446,10 @@ def test_edges_certified_near_a_tabulated_contact_are_free_at_every_sample():
     t = np.linspace(0, 1, 101)[:, None]
     samples = A[proven][:, None] + t * (B[proven] - A[proven])[:, None]
     assert planning.is_free(MODEL, empty, samples).all()
+    every = [
+        planning.is_free(MODEL, empty, a + np.linspace(0, 1, n + 1)[:, None] * (b - a)).all()
+        for a, b, n in zip(A, B, planning.edge_samples(MODEL, A, B))
+    ]
+    verdicts = planning.edges_free(MODEL, empty, A, B)
+    np.testing.assert_array_equal(verdicts, every)
+    assert 0.3 < verdicts.mean() < 0.95
