@@ -7,7 +7,7 @@ grouped under bounding balls of at most 10 cm, the balls are tested first, and o
 of a ball that touches something are placed and tested (the verdicts are exactly those of
 testing every sphere).  The base's spheres are left out of the scene tests: they never move,
 so an obstacle that overlaps the base is a property of the scene, not of a configuration.
-A stack of at most 64 configurations of a small model in a small scene skips the broad
+A stack of at most 40 configurations of a small model in a small scene skips the broad
 phase: there, testing every sphere against every obstacle takes fewer array operations than
 culling (the same verdicts).
 
@@ -165,28 +165,28 @@ def _hits(
 #: ``_DENSE_WORK`` (a bare UR5 with 136 pairs and 41 moving spheres among 10 boxes: 546; with
 #: VAMP's gripper among MotionBenchMaker's 15 obstacles, 1,410, where culling pays even for
 #: one).
-_DENSE, _DENSE_WORK = 64, 700
+_DENSE, _DENSE_WORK = 40, 700
 
 
 def _dense_hits(
     model: SphereModel, scene: Scene, Q: np.ndarray, grow: np.ndarray | None
 ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_hits` of a few configurations (N ≤ ``_DENSE``), with no broad phase: every
-    moving sphere against every obstacle (:meth:`Scene._gaps2`), every self-collision pair
-    from one matrix product.  The same tests, in a third of the array operations where
-    there are few configurations to cull."""
+    sphere placed by one matrix product, every moving sphere against every obstacle
+    (:meth:`Scene._gaps2`), every self-collision pair from the placed centres.  The same
+    tests, in a third of the array operations where there are few configurations to cull."""
     n = len(Q)
     hit = np.zeros(n, dtype=bool)
     grown = hit if grow is None else np.zeros(n, dtype=bool)
     if not len(model) or not n:
         return grown, hit
     dense = _dense(model)
-    X = _frames(model.robot, Q).reshape(n, 128) @ dense.place  # centres, then pair differences
-    m = len(dense.moving)
+    X = _frames(model.robot, Q).reshape(n, 128) @ _placing(model)  # (N, 3 S) centres
     npair = len(model.pairs)
     if npair:
-        d = X[:, 3 * m :]
-        d = d * d
+        d = X[:, dense.first]
+        d -= X[:, dense.second]  # the pairs' x, then y, then z differences
+        d *= d
         d2 = d[:, :npair] + d[:, npair : 2 * npair]
         d2 += d[:, 2 * npair :]
         hit |= (d2 <= dense.reach2).any(axis=1)
@@ -195,8 +195,9 @@ def _dense_hits(
             reach += grow[:, model.pairs[:, 1]]
             grown |= (d2 <= reach * reach).any(axis=1)
     _mesh_hits(model, Q, grow, grown, hit)
+    m = len(dense.moving)
     if len(scene) and m:
-        gaps2 = scene._gaps2(X[:, : 3 * m].reshape(n * m, 3)).reshape(n, m)
+        gaps2 = scene._gaps2(X[:, dense.placed].reshape(n * m, 3)).reshape(n, m)
         hit |= (gaps2 <= dense.radii2).any(axis=1)
         if grow is not None:
             reach = dense.radii + grow[:, dense.moving]
@@ -207,14 +208,17 @@ def _dense_hits(
 @dataclass(frozen=True)
 class _Dense:
     """The arrays of :func:`_dense_hits`: ``moving``, the spheres not on the base, with their
-    ``radii`` and ``radii2``; ``place`` (128, 3 moving + 3 P), the placing matrix of their
-    centres, then of the self-collision pairs' differences (x, then y, then z); ``reach``,
-    ``reach2``: the pairs' sums of radii and their squares."""
+    ``radii`` and ``radii2``; ``placed``, the columns of their centres among all the placed
+    ones (x, y, z of each); ``first`` and ``second``, the columns of the self-collision pairs'
+    two centres (the pairs' x, then their y, then their z); ``reach``, ``reach2``: the pairs'
+    sums of radii and their squares."""
 
     moving: np.ndarray
     radii: np.ndarray
     radii2: np.ndarray
-    place: np.ndarray
+    placed: np.ndarray
+    first: np.ndarray
+    second: np.ndarray
     reach: np.ndarray
     reach2: np.ndarray
 
@@ -225,12 +229,19 @@ def _dense(model: SphereModel) -> _Dense:
     if found is None:
         moving = np.flatnonzero(model.frames > 0)
         i, j = model.pairs[:, 0], model.pairs[:, 1]
-        every = _placing(model).reshape(128, -1, 3)
-        apart = (every[:, i] - every[:, j]).transpose(0, 2, 1).reshape(128, -1)
-        place = np.hstack([every[:, moving].reshape(128, -1), apart])
+        axes = np.arange(3)
         reach = model.radii[i] + model.radii[j]
         radii = model.radii[moving]
-        found = _Dense(moving, radii, radii**2, np.ascontiguousarray(place), reach, reach**2)
+        found = _Dense(
+            moving,
+            radii,
+            radii**2,
+            (3 * moving[:, None] + axes).reshape(-1),
+            (3 * i[None, :] + axes[:, None]).reshape(-1),
+            (3 * j[None, :] + axes[:, None]).reshape(-1),
+            reach,
+            reach**2,
+        )
         object.__setattr__(model, "_dense", found)
     return found
 
