@@ -123,8 +123,13 @@ def _hits(
             reach = groups.reach + grow_groups[:, groups.pairs[:, 0]]
             reach += grow_groups[:, groups.pairs[:, 1]]
             near = d2 <= reach * reach
-        if near.any():
-            rows, k = np.nonzero(near[:, groups.pair_group])
+        if near.any():  # the sphere pairs of the near group pairs, listed by group pair
+            rows, k = np.nonzero(near)
+            counts = groups.pair_count[k]
+            offsets = np.repeat(groups.pair_start[k] - np.cumsum(counts) + counts, counts)
+            rows = np.repeat(rows, counts)
+            offsets += np.arange(len(rows))
+            k = groups.pair_order[offsets]
             i, j = model.pairs[k, 0], model.pairs[k, 1]
             d = points(rows, i) - points(rows, j)
             d2 = np.einsum("ki,ki->k", d, d)
@@ -313,7 +318,9 @@ class _Groups:
     (g, m): the spheres of each group, padded with −1 (``filled``: padded with the group's
     first sphere); ``moving``: the groups not on the base;
     ``pairs`` (gp, 2): group pairs holding at least one self-collision pair of spheres;
-    ``pair_group`` (P,): the group pair of each sphere pair; ``place``: the balls' placing
+    ``pair_order`` (P,): the sphere pairs listed group pair by group pair, ``pair_start`` and
+    ``pair_count`` (gp,): where each group pair's list starts and its length; ``place``: the
+    balls' placing
     matrix (:func:`_placing_matrix`); ``apart`` (128, 3 gp): the placing matrix of the
     differences of the group pairs' centres, coordinate by coordinate; ``reach``: the sums
     of their radii, ``reach2`` their squares."""
@@ -325,7 +332,9 @@ class _Groups:
     filled: np.ndarray
     moving: np.ndarray
     pairs: np.ndarray
-    pair_group: np.ndarray
+    pair_order: np.ndarray
+    pair_start: np.ndarray
+    pair_count: np.ndarray
     place: np.ndarray
     apart: np.ndarray
     reach: np.ndarray
@@ -372,6 +381,8 @@ def _build_groups(model: SphereModel) -> _Groups:
     radii = np.array([r for _, r in bounds])
     place = _placing_matrix(frames, centres)
     pairs = pairs.reshape(-1, 2)
+    pair_group = pair_group.reshape(-1)
+    count = np.bincount(pair_group, minlength=len(pairs))
     by_ball = place.reshape(128, -1, 3)
     apart = (by_ball[:, pairs[:, 0]] - by_ball[:, pairs[:, 1]]).transpose(0, 2, 1)
     return _Groups(
@@ -382,7 +393,9 @@ def _build_groups(model: SphereModel) -> _Groups:
         np.where(members >= 0, members, members[:, :1]),
         np.flatnonzero(frames > 0),
         pairs,
-        pair_group.reshape(-1),
+        np.argsort(pair_group, kind="stable"),
+        np.cumsum(count) - count,
+        count,
         place,
         np.ascontiguousarray(apart.reshape(128, -1)),
         radii[pairs[:, 0]] + radii[pairs[:, 1]],
