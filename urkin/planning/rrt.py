@@ -388,7 +388,7 @@ class _Draws:
     at most.  (Deciding again at each iteration, as the trees grew, changed a third of the
     draws of MotionBenchMaker's cage problems, hemmed-in trees whose sizes keep crossing the
     balance rule's threshold; each was then placed and checked alone, and the problems took
-    1.6 times as long.)  When a draw comes up whose tree grew since it was drawn, all that
+    1.2–1.6 times as long.)  When a draw comes up whose tree grew since it was drawn, all that
     tree's queued draws are searched again among its new nodes only, and those with a
     nearer node have their new nodes placed and checked again, in one batch."""
 
