@@ -159,7 +159,8 @@ def _setup(model, scene, start, goal, joints, lower, upper, max_iterations):
     hi = limits[:, 1] if upper is None else np.asarray(upper, dtype=float)
     for name, q in (("start", start), ("goal", goal)):
         if not planning.is_free(model, scene, q):
-            raise ValueError(f"{name} is in collision: {planning.explain(model, scene, q)}")
+            why = planning.explain(model, scene, q).removeprefix("in collision: ")
+            raise ValueError(f"{name} is in collision: {why}")
     return start, goal, joints, lo, hi
 
 

@@ -565,6 +565,12 @@ def explain(model: SphereModel, scene: Scene, q: ArrayLike) -> str:
     return f"free: the closest pair is {a} and {b}, {depth:.0f} mm apart"
 
 
+def _offence(model: SphereModel, scene: Scene, q: np.ndarray) -> str:
+    """:func:`explain` of a configuration in collision without its "in collision: ": the
+    offending pair and the depth, for error messages that already say it collides."""
+    return explain(model, scene, q).removeprefix("in collision: ")
+
+
 def _kind(scene: Scene, index: int) -> str:
     for attribute, label in (("boxes", "box"), ("cylinders", "cylinder"), ("spheres", "sphere")):
         count = len(getattr(scene, attribute))

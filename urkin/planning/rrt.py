@@ -39,9 +39,9 @@ from urkin.planning.checks import (
     _check,
     _collides,
     _edges_free,
+    _offence,
     _proven,
     _travels,
-    explain,
 )
 from urkin.planning.scene import Scene
 from urkin.planning.spheres import SphereModel
@@ -171,7 +171,7 @@ def rrt_connect(
     q_start = q_start[0].copy()
     _within(q_start, lower, upper, "start")
     if _collides(model, scene, q_start[None])[0]:
-        raise ValueError(f"start is in collision: {explain(model, scene, q_start)}")
+        raise ValueError(f"start is in collision: {_offence(model, scene, q_start)}")
     G = _goal_configurations(model, goals)
     inside = np.all((G >= lower) & (G <= upper), axis=1)
     if not inside.any():
@@ -181,7 +181,7 @@ def rrt_connect(
         first = int(np.flatnonzero(inside)[0])
         raise ValueError(
             f"every goal is in collision ({len(G)} given); goal {first}: "
-            f"{explain(model, scene, G[first])}"
+            f"{_offence(model, scene, G[first])}"
         )
     for name, value in (("max_iterations", max_iterations), ("step", step)):
         if not value > 0:

@@ -32,7 +32,14 @@ from numpy.typing import ArrayLike
 from urkin.analytic_ik import ik_analytic
 from urkin.kinematics import _joints, fk
 from urkin.planning.blocks import Block, _grasp_at, box_separation, grasp_yaws, tool_yaw
-from urkin.planning.checks import RESOLUTION, _intervals, clearance, explain, is_free
+from urkin.planning.checks import (
+    RESOLUTION,
+    _intervals,
+    _offence,
+    clearance,
+    explain,
+    is_free,
+)
 from urkin.planning.rrt import Plan, rrt_connect
 from urkin.planning.scene import Scene
 from urkin.planning.spheres import SphereModel
@@ -481,7 +488,7 @@ def pick_and_place(
     phases: list[Phase] = []
     goals: list[Block] = []
     if not is_free(world.model, world.scene(), q):
-        raise ValueError(f"q_start is in collision: {explain(world.model, world.scene(), q)}")
+        raise ValueError(f"q_start is in collision: {_offence(world.model, world.scene(), q)}")
 
     def fail(name: str, block: str, why: str, began: float) -> Task:
         phases.append(
