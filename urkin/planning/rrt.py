@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from numbers import Real
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -164,6 +165,7 @@ def rrt_connect(
     """
     t0 = time.perf_counter()
     _check(model, scene)
+    _check_options(seed, max_iterations, time_limit, step)
     lower, upper = _limits(model)
     q_start, lead, _ = _joints(start, "start")
     if lead != ():
@@ -183,9 +185,6 @@ def rrt_connect(
             f"every goal is in collision ({len(G)} given); goal {first}: "
             f"{_offence(model, scene, G[first])}"
         )
-    for name, value in (("max_iterations", max_iterations), ("step", step)):
-        if not value > 0:
-            raise ValueError(f"{name} must be positive; got {value}")
     rng = np.random.default_rng(seed)
     capacity = min(2 * max_iterations, 4096) + len(G) + 2  # doubled when full
     trees = [
@@ -346,6 +345,18 @@ def _restored(path: np.ndarray, raw: np.ndarray, blocked: np.ndarray) -> np.ndar
     for k in np.flatnonzero(blocked):
         keep[index[k] : index[k + 1]] = True
     return raw[keep]
+
+
+def _check_options(seed, max_iterations, time_limit, step) -> None:
+    for name, value in (("seed", seed), ("max_iterations", max_iterations)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+            raise TypeError(f"{name} must be an integer; got {type(value).__name__} {value!r}")
+    if max_iterations < 1:
+        raise ValueError(f"max_iterations must be at least 1; got {max_iterations}")
+    if time_limit is not None and not (isinstance(time_limit, Real) and time_limit >= 0):
+        raise ValueError(f"time_limit must be seconds (0 or more) or None; got {time_limit!r}")
+    if not (isinstance(step, Real) and step > 0):
+        raise ValueError(f"step must be a positive angle (rad); got {step!r}")
 
 
 def _within(q: np.ndarray, lower: np.ndarray, upper: np.ndarray, name: str) -> None:
@@ -608,6 +619,11 @@ def shortcut(
     P, lead, _ = _joints(path, "path")
     if len(lead) != 1 or len(P) < 2:
         raise ValueError(f"path must have shape (M, 6) with M ≥ 2; got {np.shape(path)}")
+    for name, value, least in (("seed", seed, None), ("rounds", rounds, 0), ("batch", batch, 1)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+            raise TypeError(f"{name} must be an integer; got {type(value).__name__} {value!r}")
+        if least is not None and value < least:
+            raise ValueError(f"{name} must be at least {least}; got {value}")
     P = _straightened(P)
     rng = np.random.default_rng(seed)
     blocked: set[bytes] = set()  # edges found in collision, by their end configurations

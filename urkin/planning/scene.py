@@ -12,7 +12,7 @@ metres; sizes are full lengths (a box's edges, a cylinder's length), as a catalo
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -158,6 +158,11 @@ class Scene:
                 given = ()
             if isinstance(given, (kind, dict)):
                 given = (given,)
+            if isinstance(given, (str, bytes)) or not isinstance(given, Iterable):
+                raise TypeError(
+                    f"{attribute} must be a sequence of planning.{kind.__name__} (or of dicts "
+                    f"of its arguments); got {type(given).__name__}"
+                )
             items = []
             for k, item in enumerate(given):
                 if isinstance(item, dict):
