@@ -236,6 +236,15 @@ def test_hand_built_models_check_their_rows():
         planning.SphereModel.from_rows(ur5, [[1, 0, 0, 0, 0.1], [4, 0, 0, 0, 0.1]], [[0, 5]])
     with pytest.raises(TypeError, match="robot must be a urkin Robot"):
         planning.SphereModel.from_rows("ur5", [[1, 0, 0, 0, 0.1]])
+    model = planning.sphere_model(ur5)
+    with pytest.raises(ValueError, match=r"centres must have shape \(K, 3\); got shape \(2, 6\)"):
+        model.with_tool_spheres(np.zeros((2, 6)), 0.01)  # not silently four centres
+    with pytest.raises(ValueError, match=r"radii must be one radius or one per centre \(1\)"):
+        model.with_tool_spheres([[0, 0, 0.1]], [0.01, 0.02])
+    with pytest.raises(ValueError, match=r"radii\[1\] must be positive \(metres\); got -0.01"):
+        model.with_tool_spheres([[0, 0, 0.1], [0, 0, 0.2]], [0.01, -0.01])
+    with pytest.raises(TypeError, match=r"boxes\[0\]: .*unexpected keyword argument 'center'"):
+        planning.Scene(boxes=[{"center": [0, 0, 0], "size": [1, 1, 1]}])
 
 
 def test_mesh_pairs_refuse_tables_they_cannot_use():

@@ -166,7 +166,10 @@ class Scene:
             items = []
             for k, item in enumerate(given):
                 if isinstance(item, dict):
-                    item = kind(**item)
+                    try:
+                        item = kind(**item)
+                    except TypeError as error:
+                        raise TypeError(f"{attribute}[{k}]: {error}") from None
                 elif not isinstance(item, kind):
                     raise TypeError(
                         f"{attribute}[{k}] must be a planning.{kind.__name__} (or a dict of its "

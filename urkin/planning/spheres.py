@@ -421,10 +421,19 @@ class SphereModel:
         -------
         SphereModel
         """
-        c = real(centres, "centres").reshape(-1, 3) if np.size(centres) % 3 == 0 else None
-        if c is None or len(c) == 0:
+        c = real(centres, "centres")
+        c = c[None] if c.ndim == 1 else c
+        if c.ndim != 2 or c.shape[1] != 3 or len(c) == 0:
             raise ValueError(f"centres must have shape (K, 3); got shape {np.shape(centres)}")
-        r = np.broadcast_to(real(radii, "radii"), (len(c),)).astype(float)
+        r = real(radii, "radii")
+        if r.ndim > 1 or (r.ndim == 1 and len(r) not in (1, len(c))):
+            raise ValueError(
+                f"radii must be one radius or one per centre ({len(c)}); got shape {r.shape}"
+            )
+        r = np.broadcast_to(r, (len(c),)).astype(float)
+        bad = np.flatnonzero(~(r > 0))
+        if len(bad):
+            raise ValueError(f"radii[{bad[0]}] must be positive (metres); got {r[bad[0]]:g}")
         rows = np.column_stack([np.full(len(c), TOOL_FRAME), c, r])
         extra = SphereModel.from_rows(self.robot, rows, pairs=np.zeros((0, 2), dtype=np.intp))
         names = self.names + tuple(f"{name} sphere {k}" for k in range(len(c)))
