@@ -278,3 +278,14 @@ def test_table_lower_bounds_fall_no_faster_than_their_reach(rng, name):
         step = rng.normal(size=Q.shape) * rng.choice([1e-4, 1e-2, 0.1], (len(Q), 1))
         change = np.abs(pair.lower_bound(Q + step) - pair.lower_bound(Q))
         assert np.all(change <= np.abs(step[:, j : j + 2]) @ pair.reach + 1e-12)
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 4, 100, 512, 513, 1500])
+def test_check_frames_match_the_frames_of_the_kinematics_at_every_stack_size(rng, n):
+    """The collision checks' frames (link products for mid-sized stacks, the generated code
+    otherwise) are urkin's frames with the tool, to round-off, whatever the stack size."""
+    arm = urkin.robot("ur5")
+    Q = rng.uniform(-np.pi, np.pi, (n, 6))
+    np.testing.assert_allclose(
+        planning.spheres._frames(arm, Q), planning.spheres.frames_with_tool(arm, Q), atol=1e-14
+    )
