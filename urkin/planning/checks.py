@@ -676,20 +676,10 @@ def _travel(model: SphereModel, rho: np.ndarray, A: np.ndarray, B: np.ndarray) -
         H += R
     H *= 2.0
     if model.meshes:
-        joints, reach = _mesh_lipschitz(model)
-        out[:, S:] = np.einsum("kpj,pj->kp", dq[:, joints], reach)
+        tables = _tables(model.meshes)
+        joints = tables.columns.reshape(-1, 2)
+        out[:, S:] = np.einsum("kpj,pj->kp", dq[:, joints], tables.reach)
     return out
-
-
-def _mesh_lipschitz(model: SphereModel) -> tuple[np.ndarray, np.ndarray]:
-    """The tabulated pairs' two joints (P, 2) and reaches (P, 2): how fast, in metres per
-    radian of each joint, their lower bounds can fall (cached on the model)."""
-    found = model.__dict__.get("_mesh_lipschitz")
-    if found is None:
-        joints = np.array([pair.joints for pair in model.meshes], dtype=np.intp)
-        found = (joints, np.array([pair.reach for pair in model.meshes]))
-        object.__setattr__(model, "_mesh_lipschitz", found)
-    return found
 
 
 def edges_free(

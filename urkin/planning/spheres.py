@@ -195,7 +195,8 @@ class _Tables:
     ``columns`` (2P,), the two joints of each pair; ``steps`` (P, 1), grid steps per radian;
     ``stride`` and ``offset`` (P,), each pair's row length and first entry in ``floor`` and
     ``flat`` (the pairs' flat tables, one after the other); ``nodes`` (P, 4), the four nodes
-    around a cell; ``slope`` (P, 1, 2)."""
+    around a cell; ``slope`` (P, 1, 2); ``reach`` (P, 2), how fast each pair's lower bound can
+    fall per radian of its two joints."""
 
     columns: np.ndarray
     steps: np.ndarray
@@ -205,6 +206,7 @@ class _Tables:
     flat: np.ndarray
     nodes: np.ndarray
     slope: np.ndarray
+    reach: np.ndarray
 
     def bounds(
         self, Q: np.ndarray, margin: np.ndarray | None
@@ -248,6 +250,7 @@ def _tables(meshes: tuple[MeshPair, ...]) -> _Tables:
         np.concatenate([m._flat for m in meshes]),
         np.array([m._nodes for m in meshes]),
         np.array([m._slope()[None] for m in meshes]),
+        np.array([m.reach for m in meshes]),
     )
 
 
@@ -631,9 +634,9 @@ def _pair_contacts(
     place = _placing_matrix(frame, centre)
     open_ = np.arange(len(first))
     for _ in range(_PAIR_SAMPLES // 2000):
-        Q = random_configurations(robot, 2000, rng)
         if not len(open_):
-            continue  # the same draws either way
+            break  # every pair settled
+        Q = random_configurations(robot, 2000, rng)
         W = (_chain(robot, Q).reshape(len(Q), 128) @ place).reshape(len(Q), -1, 3)
         d = W[:, first[open_]] - W[:, second[open_]]
         d2 = np.einsum("nki,nki->nk", d, d)
