@@ -291,3 +291,21 @@ def test_check_frames_match_the_frames_of_the_kinematics_at_every_stack_size(rng
     generated = planning.spheres.frames_with_tool(arm, Q)
     np.testing.assert_allclose(planning.spheres._chain(arm, Q), generated, atol=1e-14)
     np.testing.assert_allclose(planning.spheres._frames(arm, Q), generated, atol=1e-14)
+
+
+@pytest.mark.parametrize("n", [1, 31, 32, 600])
+def test_every_sphere_placed_at_once_is_where_place_puts_it(rng, n):
+    """The checks place every sphere of many configurations frame by frame (one small product
+    per frame), of few with the placing matrix: both are ``SphereModel.place``, also for a
+    hand-built model whose frames are not in order, with tool spheres."""
+    from urkin.planning.checks import _place_all
+
+    arm = urkin.robot("ur3").with_tool(urkin.transforms.make_transform(np.eye(3), [0, 0, 0.1]))
+    rows = [(f, *rng.normal(0, 0.1, 3), 0.05) for f in (3, 0, 6, 3, 2, 2, 5, 1, 4)]
+    models = [planning.sphere_model(arm), planning.SphereModel.from_rows(arm, rows)]
+    models.append(models[1].with_tool_spheres([[0, 0, 0.05], [0.02, 0, 0.1]], [0.03, 0.02]))
+    Q = rng.uniform(-np.pi, np.pi, (n, 6))
+    for model in models:
+        placed = _place_all(model, planning.spheres._frames(arm, Q))  # (n, 3, S)
+        expected = model.place(Q)  # (n, S, 3)
+        np.testing.assert_allclose(placed.transpose(0, 2, 1), expected, atol=1e-14)
