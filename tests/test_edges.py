@@ -15,7 +15,14 @@ import urkin
 from tests.reference import OFFICIAL_DH, dh_fk
 from urkin import poe
 from urkin.analytic_ik import ik_analytic, ik_closest
-from urkin.kinematics import dh_chain, dh_transform
+from urkin.kinematics import (
+    condition_number,
+    dh_chain,
+    dh_transform,
+    flange_pose,
+    manipulability,
+    singularities,
+)
 from urkin.robots import random_configurations
 from urkin.transforms import (
     adjoint,
@@ -144,6 +151,10 @@ def test_complex_step_through_fk_and_jacobian():
         (lambda: ik_analytic(urkin.robot("ur5"), np.eye(4) * (1 + 1e-3j)), "T is complex"),
         (lambda: rotation_angle(np.eye(3) * (1 + 1j)), "R1 is complex"),
         (lambda: poe.fk_space(np.eye(4), np.zeros((6, 1)), [1j]), "q is complex"),
+        (lambda: manipulability(urkin.robot("ur5"), np.zeros(6) + 1e-20j), "q is complex"),
+        (lambda: condition_number(urkin.robot("ur5"), np.zeros(6) + 1e-20j), "q is complex"),
+        (lambda: urkin.robot("ur5").with_base(np.eye(4) * (1 + 1e-9j)), "T_world_base is comp"),
+        (lambda: urkin.robot("ur5").with_tool(np.eye(4) * (1 + 1e-9j)), "T_flange_tool is comp"),
     ],
 )
 def test_complex_input_is_refused_unless_documented(call, message):
@@ -179,6 +190,19 @@ def test_complex_input_is_refused_unless_documented(call, message):
         (lambda: wrap_angles([0.0, np.inf]), ValueError, "q contains infinity"),
         (lambda: rotation_angle(None), TypeError, "R1 must be numbers; got None"),
         (lambda: urkin.fk(urkin.robot("ur5"), [0, None, 0, 0, 0, 0]), TypeError, "q must be num"),
+        (lambda: flange_pose("ur5", np.eye(4)), TypeError, "robot must be a urkin"),
+        (lambda: flange_pose(urkin.robot("ur5"), np.ones((4, 4))), ValueError, "T_world_tool"),
+        (lambda: flange_pose(urkin.robot("ur5"), "T"), TypeError, "T_world_tool must be num"),
+        (lambda: poe.space_screws("ur5"), TypeError, "robot must be a urkin Robot or a DH"),
+        (lambda: poe.body_screws([[0, 0, "x"]]), TypeError, "robot must be a urkin Robot or a"),
+        (lambda: poe.fk_space(None, np.zeros((6, 1)), [0.0]), TypeError, "M must be the home"),
+        (lambda: poe.fk_body(None, np.zeros((6, 1)), [0.0]), TypeError, "M must be the home"),
+        (lambda: urkin.robot("ur5").with_base("T"), TypeError, "T_world_base must be numbers"),
+        (lambda: urkin.robot("ur5").with_tool(np.eye(3)), ValueError, "T_flange_tool"),
+        (lambda: urkin.robot("ur5").with_tool(np.stack([np.eye(4)] * 2)), ValueError, "one 4×4"),
+        (lambda: urkin.robot(None), TypeError, "name must be an arm's name"),
+        (lambda: urkin.robot("ur6"), ValueError, "unknown robot 'ur6'; urkin knows UR3"),
+        (lambda: urkin.robot("ur6"), KeyError, "unknown robot 'ur6'; urkin knows UR3"),
     ],
 )
 def test_bad_input_names_the_argument(call, error, message):
@@ -260,3 +284,23 @@ def test_wrap_angles_in_place_without_the_check():
     out = wrap_angles(q, check=False, out=q)
     assert out is q
     np.testing.assert_array_equal(q, [np.pi, np.pi, 0.25])
+
+
+def test_empty_stacks_give_empty_results():
+    """A stack of no poses is a stack: empty results with its leading axes, not an
+    IndexError."""
+    ur5 = urkin.robot("ur5")
+    assert urkin.ik(ur5, np.zeros((0, 4, 4))).q.shape == (0, 6)
+    assert urkin.ik(ur5, np.zeros((0, 3))).success.shape == (0,)
+    assert ik_analytic(ur5, np.zeros((0, 4, 4))).shape == (0, 8, 6)
+    assert ik_analytic(ur5, np.zeros((2, 0, 4, 4))).shape == (2, 0, 8, 6)
+    assert ik_closest(ur5, np.zeros((0, 4, 4)), np.zeros(6)).q.shape == (0, 6)
+
+
+def test_singularities_of_a_grid_keep_its_leading_axes():
+    ur5 = urkin.robot("ur5")
+    home = [0, -np.pi / 2, 0, -np.pi / 2, 0, 0]
+    regular = [0.1, -1.0, 1.2, -0.3, 0.5, 0.7]
+    found = singularities(ur5, np.array([[home, regular, home], [regular, regular, home]]))
+    assert found[0][0] == ("shoulder", "elbow", "wrist") and found[1][1] == ()
+    assert [len(row) for row in found] == [3, 3]

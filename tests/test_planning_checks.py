@@ -384,6 +384,9 @@ def test_checks_refuse_bad_arguments():
         planning.edges_free(MODEL, TABLE, UP, np.zeros((2, 6)))
     with pytest.raises(ValueError, match="resolution must be a positive distance"):
         planning.edges_free(MODEL, TABLE, UP, UP, resolution=0.0)
+    for call in (lambda: planning.edge_samples(UR5, UP, UP), lambda: planning.self_pairs("x")):
+        with pytest.raises(TypeError, match=r"model must be a planning\.SphereModel"):
+            call()
 
 
 @pytest.mark.parametrize("name", ["UR3", "UR5"])

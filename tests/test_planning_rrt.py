@@ -69,6 +69,17 @@ def test_failures_are_sentences_and_bad_input_is_refused():
     ):
         with pytest.raises(kind, match=message):
             planning.rrt_connect(MODEL, WALL, START, GOAL, **options)
+    for goals, kind, message in (
+        ("abc", TypeError, "goals must be numbers; got str"),
+        ([[0, 1, 2, 3, 4, 5], [0, 1]], TypeError, "goals must be numbers"),
+        (
+            np.zeros((0, 6)),
+            ValueError,
+            r"goals: no goal given \(an empty array of shape \(0, 6\)\)",
+        ),
+    ):
+        with pytest.raises(kind, match=message):
+            planning.rrt_connect(MODEL, WALL, START, goals)
     with pytest.raises(TypeError, match=r"boxes must be a sequence of planning\.Box"):
         planning.Scene(boxes=5)
     path = [START, GOAL]

@@ -336,6 +336,8 @@ def _solve(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.nd
     """:func:`_solve_stack` block by block, without floating-point warnings (out-of-reach
     poses are expected)."""
     n = len(T)
+    if n == 0:
+        return np.empty((0, 8, 6)), np.empty((0, 8), dtype=bool)
     if n <= _FEW:  # a few poses: the one-pose code, pose by pose, beats the stack's fixed cost
         nan = [math.nan] * 6
         q = np.array(
@@ -359,7 +361,7 @@ def _flange_poses(robot: Robot, poses: np.ndarray) -> tuple[np.ndarray, tuple[in
     lead = poses.shape[:-2]
     poses = poses.reshape(-1, 4, 4)
     if not robot._plain:
-        poses = flange_pose(robot, poses)
+        poses = flange_pose(robot, poses, check=False)
     return poses, lead
 
 

@@ -95,7 +95,7 @@ class IKResult:
 
 
 def _wrist_points(robot: Robot, T_world_tool: np.ndarray) -> np.ndarray:
-    T_base_flange = flange_pose(robot, T_world_tool)
+    T_base_flange = flange_pose(robot, T_world_tool, check=False)
     return T_base_flange[..., :3, 3] - robot.d6 * T_base_flange[..., :3, 2]
 
 

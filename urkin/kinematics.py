@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 from urkin._generated import ur_kinematics as _gen
 from urkin._inputs import real, unstack
 from urkin.robots import Robot, check_robot
-from urkin.transforms import inv_transform, skew
+from urkin.transforms import check_transform, inv_transform, skew
 
 __all__ = [
     "MAX_JOINT_ANGLE",
@@ -279,10 +279,11 @@ def fk_frames(robot: Robot, q: ArrayLike) -> np.ndarray:
     return robot.base @ frames
 
 
-def flange_pose(robot: Robot, T_world_tool: np.ndarray) -> np.ndarray:
+def flange_pose(robot: Robot, T_world_tool: ArrayLike, *, check: bool = True) -> np.ndarray:
     """The flange pose in DH frame 0 that puts the robot's tool at ``T_world_tool``:
-    ``base⁻¹ · T_world_tool · tool⁻¹``, for checked poses (..., 4, 4); the inverse of what
-    :func:`fk` applies.
+    ``base⁻¹ · T_world_tool · tool⁻¹``, for poses (4, 4) or (..., 4, 4); the inverse of what
+    :func:`fk` applies.  ``check=False`` skips validating the robot and the poses (callers
+    that have checked them).
 
     Examples
     --------
@@ -293,6 +294,9 @@ def flange_pose(robot: Robot, T_world_tool: np.ndarray) -> np.ndarray:
     >>> bool(np.allclose(flange_pose(arm, fk(arm, q)), fk(urkin.robot("ur5"), q)))
     True
     """
+    if check:
+        robot = check_robot(robot)
+        T_world_tool = check_transform(T_world_tool, name="T_world_tool")
     if robot._plain:
         return T_world_tool
     return inv_transform(robot.base) @ T_world_tool @ inv_transform(robot.tool)
@@ -543,8 +547,9 @@ def singularities(
 
     Returns
     -------
-    tuple of str, or list of tuples for a batch
-        A subset of ``("shoulder", "elbow", "wrist")``, empty when ``q`` is regular.
+    tuple of str, or (nested) lists of tuples for a stack
+        A subset of ``("shoulder", "elbow", "wrist")``, empty when ``q`` is regular; for ``q``
+        (..., 6), lists nested as its leading axes.
 
     Examples
     --------
@@ -554,10 +559,15 @@ def singularities(
     >>> singularities(urkin.robot("ur5"), [0.1, -1.0, 1.2, -0.3, 0.5, 0.7])
     ()
     """
-    flags = singular_families(robot, q, tol)
+    return _named(singular_families(robot, q, tol))
+
+
+def _named(flags: np.ndarray) -> tuple[str, ...] | list:
+    """The names of the flagged families of ``flags`` (..., 3): a tuple for one, nested lists
+    of tuples with the leading shape for a stack."""
     if flags.ndim == 1:
         return tuple(name for name, flag in zip(SINGULARITIES, flags) if flag)
-    return [tuple(n for n, flag in zip(SINGULARITIES, row) if flag) for row in flags]
+    return [_named(row) for row in flags]
 
 
 def manipulability(robot: Robot, q: ArrayLike, part: str = "full") -> np.ndarray | float:
@@ -582,7 +592,7 @@ def manipulability(robot: Robot, q: ArrayLike, part: str = "full") -> np.ndarray
     >>> float(manipulability(ur5, [0, -np.pi / 2, 0, -np.pi / 2, 0, 0]))
     0.0
     """
-    J = jacobian(robot, q)
+    J = jacobian(robot, check_joints(q))  # real angles only: complex ones are refused here
     if part == "full":
         return np.abs(np.linalg.det(J)) + 0.0
     if part == "position":
@@ -606,6 +616,6 @@ def condition_number(robot: Robot, q: ArrayLike) -> np.ndarray | float:
     >>> round(float(condition_number(ur5, [0.1, -1.0, 1.2, -0.3, 0.5, 0.7])), 1)
     12.2
     """
-    sigma = np.linalg.svd(jacobian(robot, q), compute_uv=False)
+    sigma = np.linalg.svd(jacobian(robot, check_joints(q)), compute_uv=False)
     with np.errstate(divide="ignore"):
         return sigma[..., 0] / sigma[..., -1]

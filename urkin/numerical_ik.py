@@ -140,8 +140,8 @@ class _Problem:
         self.lower, self.upper, self.wide_limits = _limits(robot.joint_limits)
         # the first target as floats, for the single-target path
         self.target_one = (
-            positions[0].tolist(),
-            None if rotations is None else rotations[0].tolist(),
+            positions[0].tolist() if len(positions) else None,
+            None if rotations is None or not len(rotations) else rotations[0].tolist(),
         )
 
     def row(self, i: int) -> _Problem:
@@ -821,7 +821,7 @@ def ik(
             rigid = goal.copy()
             rigid[:, :3, :3] = orthonormalize(goal[:, :3, :3])
             skew_angle = rotation_angle(goal[:, :3, :3], rigid[:, :3, :3])
-        flange = flange_pose(robot, rigid)
+        flange = flange_pose(robot, rigid, check=False)
         problem = _Problem(
             plain, flange[:, :3, 3], flange[:, :3, :3], orientation, tol_position, tol_orientation
         )

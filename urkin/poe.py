@@ -115,7 +115,12 @@ def space_screws(
         frames = fk_frames(robot, np.zeros(6))
         axes, M = frames[:-1], fk(robot, np.zeros(6))
     else:
-        table = np.asarray(robot, dtype=float)
+        try:
+            table = real(robot, "robot")
+        except (TypeError, ValueError) as error:
+            raise type(error)(
+                f"robot must be a urkin Robot or a DH table of rows (d, a, alpha); {error}"
+            ) from None
         if table.ndim != 2 or table.shape[1] != 3:
             raise ValueError(f"a DH table has rows (d, a, alpha): shape (n, 3); got {table.shape}")
         frames = _frames_at_zero(table, convention)
@@ -192,6 +197,15 @@ def _check(M: ArrayLike | None, screws: ArrayLike, q: ArrayLike, name: str):
     return _checked_home(home.tobytes()), axes, angles
 
 
+def _home(M: ArrayLike) -> ArrayLike:
+    """``M``, unless it is None (which :func:`_check` takes for "no home pose")."""
+    if M is None:
+        raise TypeError(
+            "M must be the home pose, a (4, 4) transform (space_screws gives it); got None"
+        )
+    return M
+
+
 def _moved_screw(T: np.ndarray, screw: np.ndarray) -> np.ndarray:
     """``Ad_T @ screw`` for a batch of transforms: ``(R ω, p × R ω + R v)``."""
     R, p = T[..., :3, :3], T[..., :3, 3]
@@ -237,7 +251,7 @@ def fk_space(M: ArrayLike, S: ArrayLike, q: ArrayLike) -> np.ndarray:
     >>> np.allclose(fk_space(M, S, q), urkin.fk(ur5, q))
     True
     """
-    home, axes, angles = _check(M, S, q, "S")
+    home, axes, angles = _check(_home(M), S, q, "S")
     E = _exponentials(axes, angles)
     T = E[..., 0, :, :]
     for i in range(1, axes.shape[1]):
@@ -268,7 +282,7 @@ def fk_body(M: ArrayLike, B: ArrayLike, q: ArrayLike) -> np.ndarray:
     >>> fk_body(M, B, np.zeros((5, 6))).shape
     (5, 4, 4)
     """
-    home, axes, angles = _check(M, B, q, "B")
+    home, axes, angles = _check(_home(M), B, q, "B")
     E = _exponentials(axes, angles)
     T = np.broadcast_to(home, (*angles.shape[:-1], 4, 4))
     for i in range(axes.shape[1]):

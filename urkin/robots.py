@@ -33,6 +33,7 @@ __all__ = [
     "ROBOTS",
     "T_BASE_LINK_BASE",
     "Robot",
+    "UnknownRobotError",
     "check_robot",
     "random_configurations",
     "robot",
@@ -53,16 +54,27 @@ T_BASE_LINK_BASE: np.ndarray = np.array(
 T_BASE_LINK_BASE.setflags(write=False)
 
 
-def _frozen(matrix: np.ndarray | None) -> np.ndarray:
-    array = np.eye(4) if matrix is None else np.array(matrix, dtype=float)
-    if array.shape != (4, 4):
-        raise ValueError(f"a base or tool transform must be 4×4; got shape {array.shape}")
-    # imported here so that robots stays importable on its own in docs builds
-    from urkin.transforms import check_transform
+def _frozen(matrix: np.ndarray | None, name: str) -> np.ndarray:
+    """A read-only copy of the base or tool transform ``matrix`` (None: the identity)."""
+    if matrix is None:
+        array = np.eye(4)
+    else:
+        # imported here so that robots stays importable on its own in docs builds
+        from urkin.transforms import check_transform
 
-    check_transform(array, name="transform")
+        array = np.array(check_transform(matrix, name=name), dtype=float)
+        if array.shape != (4, 4):
+            raise ValueError(f"{name} must be one 4×4 transform; got shape {array.shape}")
     array.setflags(write=False)
     return array
+
+
+class UnknownRobotError(KeyError, ValueError):
+    """An arm name :func:`robot` does not know (a KeyError, as a failed lookup, and a
+    ValueError, as a bad argument); the message lists the known names."""
+
+    def __str__(self) -> str:
+        return str(self.args[0]) if self.args else ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -134,8 +146,8 @@ class Robot:
         if len(limits) != 6 or any(lo >= hi for lo, hi in limits):
             raise ValueError(f"{self.name}: need six (lower, upper) limits with lower < upper")
         object.__setattr__(self, "joint_limits", limits)
-        object.__setattr__(self, "base", _frozen(self.base))
-        object.__setattr__(self, "tool", _frozen(self.tool))
+        object.__setattr__(self, "base", _frozen(self.base, "T_world_base"))
+        object.__setattr__(self, "tool", _frozen(self.tool, "T_flange_tool"))
         plain = np.array_equal(self.base, np.eye(4)) and np.array_equal(self.tool, np.eye(4))
         object.__setattr__(self, "_plain", bool(plain))
         object.__setattr__(self, "lengths", tuple(float(x) for x in lengths))
@@ -231,18 +243,26 @@ def robot(name: str) -> Robot:
 
     Raises
     ------
-    KeyError
-        If the name is unknown; the message lists the known names.
+    UnknownRobotError
+        If the name is unknown (a KeyError and a ValueError); the message lists the known
+        names.
+    TypeError
+        If ``name`` is not a string.
 
     Examples
     --------
     >>> robot("Ur3e").d6
     0.0921
     """
+    if not isinstance(name, str):
+        raise TypeError(
+            f"name must be an arm's name such as 'ur5' (one of {', '.join(ROBOTS)}); got the "
+            f"{type(name).__name__} {name!r:.40}"
+        )
     try:
-        return _TABLE[str(name).strip().lower()]
+        return _TABLE[name.strip().lower()]
     except KeyError:
-        raise KeyError(
+        raise UnknownRobotError(
             f"unknown robot {name!r}; urkin knows {', '.join(ROBOTS)} (case does not matter)"
         ) from None
 

@@ -45,6 +45,7 @@ from urkin.planning.scene import Scene
 from urkin.planning.spheres import (
     FRAME_NAMES,
     SphereModel,
+    _check_model,
     _frames,
     _placing_matrix,
     _tables,
@@ -67,11 +68,7 @@ FINEST = 1e-4
 
 
 def _check(model: SphereModel, scene: Scene) -> None:
-    if not isinstance(model, SphereModel):
-        raise TypeError(
-            "model must be a planning.SphereModel, e.g. planning.sphere_model(urkin.robot('ur5')); "
-            f"got {type(model).__name__}"
-        )
+    _check_model(model)
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a planning.Scene; got {type(scene).__name__}")
 
@@ -656,6 +653,7 @@ def edge_samples(
 ) -> np.ndarray | int:
     """The number of intervals each edge is cut into so that no sphere centre moves more than
     ``resolution`` metres between samples (see the module notes)."""
+    _check_model(model)
     A, B, lead = _edge_ends(qa, qb)
     counts = _intervals(model, A, B, resolution)
     return int(counts[0]) if lead == () else counts.reshape(lead)

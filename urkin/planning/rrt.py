@@ -32,6 +32,7 @@ from numbers import Real
 import numpy as np
 from numpy.typing import ArrayLike
 
+from urkin._inputs import real
 from urkin.analytic_ik import ik_analytic
 from urkin.kinematics import _joints
 from urkin.planning.checks import (
@@ -90,7 +91,9 @@ def _limits(model: SphereModel) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _goal_configurations(model: SphereModel, goals: ArrayLike) -> np.ndarray:
-    array = np.asarray(goals, dtype=float) if not isinstance(goals, np.ndarray) else goals
+    array = real(goals, "goals")
+    if array.size == 0:
+        raise ValueError(f"goals: no goal given (an empty array of shape {array.shape})")
     if array.shape[-2:] == (4, 4):
         if array.ndim != 2:
             raise ValueError(f"goals: give one pose (4, 4); got shape {array.shape}")

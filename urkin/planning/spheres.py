@@ -554,6 +554,15 @@ def _default_names(frames: Iterable[int]) -> tuple[str, ...]:
     return tuple(names)
 
 
+def _check_model(model: SphereModel) -> None:
+    """A TypeError unless ``model`` is a :class:`SphereModel`."""
+    if not isinstance(model, SphereModel):
+        raise TypeError(
+            "model must be a planning.SphereModel, e.g. planning.sphere_model(urkin.robot('ur5')); "
+            f"got {type(model).__name__}"
+        )
+
+
 def self_pairs(model: SphereModel, only: ArrayLike | None = None) -> np.ndarray:
     """The self-collision pairs of ``model`` by the stated rule (module notes).
 
@@ -568,6 +577,7 @@ def self_pairs(model: SphereModel, only: ArrayLike | None = None) -> np.ndarray:
     ndarray, shape (P, 2)
         Sphere indices ``(i, j)``, ``i < j``.
     """
+    _check_model(model)
     link = np.minimum(model.frames, 6)  # the tool frame moves with link 6
     i, j = np.triu_indices(len(model), k=1)
     keep = np.abs(link[i] - link[j]) >= 2
