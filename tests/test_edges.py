@@ -173,6 +173,8 @@ def test_complex_input_is_refused_unless_documented(call, message):
         (lambda: dh_chain(np.zeros((6, 3)), [0, 0, np.nan, 0, 0, 0]), ValueError, "q contains"),
         (lambda: dh_chain(np.zeros((6, 2)), np.zeros(6)), ValueError, "table must be"),
         (lambda: poe.screw_axis([0, 0, np.nan], [0, 0, 0]), ValueError, "NaN"),
+        (lambda: poe.screw_axis([0, 0, 2], [0, 0, 0]), ValueError, "omega must be a unit dir"),
+        (lambda: poe.screw_axis([0, 0, 0], [0, 0, 0]), ValueError, "omega must be a unit dir"),
         (lambda: inv_transform(np.ones((4, 4))), ValueError, "T must end in the row"),
         (lambda: inv_transform(np.diag([2.0, 1, 1, 1])), ValueError, "not a rotation"),
         (lambda: adjoint(np.eye(3)), ValueError, r"T must have shape \(4, 4\)"),
@@ -304,3 +306,27 @@ def test_singularities_of_a_grid_keep_its_leading_axes():
     found = singularities(ur5, np.array([[home, regular, home], [regular, regular, home]]))
     assert found[0][0] == ("shoulder", "elbow", "wrist") and found[1][1] == ()
     assert [len(row) for row in found] == [3, 3]
+
+
+_UR5 = urkin.robot("ur5")
+_POSE = urkin.fk(_UR5, [0.3, -1.2, 1.4, -0.6, 1.1, 0.2])
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        (lambda: urkin.ik(_UR5, _POSE, damping=float("nan")), ValueError, "damping must be"),
+        (lambda: urkin.ik(_UR5, _POSE, method="dls", damping="x"), TypeError, "damping must be"),
+        (lambda: urkin.ik(_UR5, _POSE, seed="x"), TypeError, "seed must be an integer ≥ 0"),
+        (lambda: urkin.ik(_UR5, _POSE, seed=1.5), ValueError, "seed must be an integer ≥ 0"),
+        (lambda: ik_closest(_UR5, _POSE, np.zeros(6), tol=float("nan")), ValueError, "tol must"),
+        (lambda: singularities(_UR5, np.zeros(6), tol="x"), TypeError, "tol must be a number"),
+        (lambda: singularities(_UR5, np.zeros(6), tol=-1.0), ValueError, "tol must be a number"),
+    ],
+)
+def test_bad_options_name_the_option(call, error, message):
+    """A keyword option that is not a number, or NaN, or of the wrong sign, is refused by
+    name, also where the option would not have been used (a seed before any restart, the
+    damping of another method)."""
+    with pytest.raises(error, match=message):
+        call()

@@ -83,6 +83,10 @@ def test_scene_keeps_leading_axes_and_refuses_bad_obstacles():
         planning.Scene(boxes=[planning.Sphere([0, 0, 0], 1.0)])
     with pytest.raises(ValueError, match="points must have shape"):
         scene.signed_distances([1.0, 2.0])
+    with pytest.raises(TypeError, match="box name must be a str or None; got int 5"):
+        planning.Box([0, 0, 0], [1, 1, 1], name=5)
+    with pytest.raises(ValueError, match=r"sphere radius must be one number \(metres\)"):
+        planning.Sphere([0, 0, 0], [0.1, 0.2])
 
 
 def test_is_free_matches_the_sign_of_the_clearance(rng):
@@ -384,6 +388,14 @@ def test_checks_refuse_bad_arguments():
         planning.edges_free(MODEL, TABLE, UP, np.zeros((2, 6)))
     with pytest.raises(ValueError, match="resolution must be a positive distance"):
         planning.edges_free(MODEL, TABLE, UP, UP, resolution=0.0)
+    for call, error in (
+        (lambda: planning.edges_free(MODEL, TABLE, UP, UP, resolution="x"), TypeError),
+        (lambda: planning.edges_free(MODEL, TABLE, UP, UP, resolution=float("nan")), ValueError),
+        (lambda: planning.certify_edges(MODEL, TABLE, UP, UP, finest="x"), TypeError),
+        (lambda: planning.shortcut(MODEL, TABLE, [UP, UP], resolution=np.inf), ValueError),
+    ):
+        with pytest.raises(error, match="must be a positive distance"):
+            call()
     for call in (lambda: planning.edge_samples(UR5, UP, UP), lambda: planning.self_pairs("x")):
         with pytest.raises(TypeError, match=r"model must be a planning\.SphereModel"):
             call()

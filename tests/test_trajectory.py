@@ -261,6 +261,9 @@ def test_joint_trajectory_moves_from_start_to_end_with_consistent_rates():
     np.testing.assert_allclose(np.gradient(traj.qd, dt, axis=0)[1:-1], traj.qdd[1:-1], atol=1e-4)
     with pytest.raises(ValueError, match="samples"):
         tj.joint_trajectory(q0, q1, profile, samples=1)
+    for samples, error in ((np.nan, ValueError), (np.inf, ValueError), ("x", TypeError)):
+        with pytest.raises(error, match="samples must be an integer ≥ 2"):
+            tj.joint_trajectory(q0, q1, profile, samples=samples)
     with pytest.raises(TypeError, match="TimeScaling"):
         tj.joint_trajectory(q0, q1, 2.0)
 
@@ -408,6 +411,8 @@ def test_via_trajectory_sampling_by_count_or_step():
         ({"qd_via": [[0.0, 0.0], [np.inf, 0.0], [0.0, 0.0]]}, "qd_via contains NaN or inf"),
         ({"samples": 1}, "samples must be an integer ≥ 2"),
         ({"samples": 2.5}, "samples must be an integer ≥ 2"),
+        ({"samples": np.nan}, "samples must be an integer ≥ 2; got nan"),
+        ({"samples": np.inf}, "samples must be an integer ≥ 2; got inf"),
         ({"samples": 10, "dt": 0.1}, "samples or dt, not both"),
         ({"dt": 0.0}, "dt must be one number > 0"),
         ({"dt": np.nan}, "dt"),

@@ -111,6 +111,23 @@ def test_rotation_angle_is_accurate_for_tiny_angles():
     assert tf.rotation_angle(tf.rot_x(np.pi)) == pytest.approx(np.pi, rel=1e-12)
 
 
+@pytest.mark.parametrize("distance", [0.0, 1e-12, 1e-9, 1e-6, 1e-3, 0.5, np.pi / 2])
+def test_rotation_angle_is_accurate_up_to_a_half_turn(rng, distance):
+    """Near π the arcsine of ‖R1 − R2‖ / 2√2 loses half the digits (6e-8 rad at π about a
+    generic axis): the angle stays exact to round-off at every distance from π, for one
+    rotation, a stack, a pair of stacks and pose_error, about random axes."""
+    axis = rng.normal(size=(200, 3))
+    axis /= np.linalg.norm(axis, axis=1, keepdims=True)
+    angle = np.pi - distance
+    R = tf.so3_exp(axis * angle)
+    np.testing.assert_allclose(tf.rotation_angle(R), angle, rtol=0, atol=2e-15)
+    assert abs(tf.rotation_angle(R[0]) - angle) < 2e-15
+    base = random_rotations(rng, 200)
+    np.testing.assert_allclose(tf.rotation_angle(base, base @ R), angle, rtol=0, atol=4e-15)
+    T1, T2 = tf.make_transform(base, np.zeros(3)), tf.make_transform(base @ R, np.zeros(3))
+    np.testing.assert_allclose(tf.pose_error(T1, T2)[1], angle, rtol=0, atol=4e-15)
+
+
 @pytest.mark.parametrize(
     ("matrix", "message"),
     [
@@ -135,3 +152,22 @@ def test_check_transform_names_the_problem():
         tf.check_transform(np.diag([1.0, 1.0, -1.0, 1.0]))
     with pytest.raises(TypeError, match="numbers"):
         tf.check_transform("eye")
+
+
+def test_orthonormalize_refuses_matrices_without_one_nearest_rotation(rng):
+    """Zero and rank-1 matrices are equally near a whole family of rotations: refused, not
+    turned into the identity.  Of rank 2 (det 0) the nearest rotation is unique whatever sign
+    the SVD gives the null direction: no sampled rotation is nearer."""
+    for M in (np.zeros((3, 3)), np.ones((3, 3)), np.outer([1.0, 2, 3], [0.0, 1, 0])):
+        with pytest.raises(ValueError, match="R has no nearest rotation"):
+            tf.orthonormalize(M)
+    with pytest.raises(ValueError, match="closer to a reflection"):
+        tf.orthonormalize(np.diag([1.0, 1.0, -1.0]))
+    samples = tf.so3_exp(rng.normal(size=(100_000, 3)))
+    for _ in range(5):
+        U, S, Vt = np.linalg.svd(rng.normal(size=(3, 3)))
+        M = U @ np.diag([S[0], S[1], 0.0]) @ Vt
+        R = tf.orthonormalize(M)
+        assert tf.check_rotation(R, tol=1e-12) is not None
+        nearest = np.sum((samples - M) ** 2, axis=(1, 2)).min()
+        assert np.sum((R - M) ** 2) <= nearest + 1e-12

@@ -15,11 +15,44 @@ Batching rule (DESIGN §2)
 
 from __future__ import annotations
 
+import math
+from numbers import Integral, Real
 from typing import Any
 
 import numpy as np
 
-__all__ = ["real", "shape_text", "unstack"]
+__all__ = ["positive", "real", "shape_text", "unstack"]
+
+
+def positive(
+    value: Any, name: str, *, integer: bool = False, zero_ok: bool = False, what: str = ""
+) -> float | int:
+    """``value`` if it is a finite number above 0 (or at least 0 with ``zero_ok``; an integer
+    with ``integer``); otherwise an error naming ``name`` and saying what it must be
+    (``what``, by default "a number > 0" or the like): a TypeError for what is not a number (a
+    string, None, a bool, an array), a ValueError for NaN, infinity, a fraction or the sign.
+
+    Examples
+    --------
+    >>> positive(0.5, "step")
+    0.5
+    >>> positive(float("nan"), "tol")
+    Traceback (most recent call last):
+    ...
+    ValueError: tol must be a number > 0; got nan
+    """
+    kinds = Integral if integer else Real
+    if not what:
+        what = f"{'an integer' if integer else 'a number'} {'≥' if zero_ok else '>'} 0"
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise TypeError(f"{name} must be {what}; got {type(value).__name__} {value!r:.40}")
+    if (
+        not (isinstance(value, kinds) and math.isfinite(value))
+        or value < 0
+        or (value == 0 and not zero_ok)
+    ):
+        raise ValueError(f"{name} must be {what}; got {value!r}")
+    return value
 
 
 def shape_text(core: tuple[int, ...]) -> str:

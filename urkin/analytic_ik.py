@@ -41,7 +41,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import real, unstack
+from urkin._inputs import positive, real, unstack
 from urkin.ik_result import IKResult, no_solution_reason, verified
 from urkin.kinematics import flange_pose
 from urkin.robots import Robot, check_robot
@@ -456,6 +456,7 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
     """
     robot = check_robot(robot)
     _check_lengths(robot)
+    positive(tol, "tol")
     goal = check_transform(T, name="T")
     poses, lead = _flange_poses(robot, goal)
     current = real(q_current, "q_current")

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._generated import ur_kinematics as _gen
-from urkin._inputs import real, unstack
+from urkin._inputs import positive, real, unstack
 from urkin.robots import Robot, check_robot
 from urkin.transforms import check_transform, inv_transform, skew
 
@@ -529,6 +529,7 @@ def singular_families(robot: Robot, q: ArrayLike, tol: float = SINGULARITY_TOLER
     -------
     ndarray of bool, shape (3,) or (N, 3)
     """
+    positive(tol, "tol", zero_ok=True)
     return np.abs(singularity_factors(robot, q)) <= tol
 
 

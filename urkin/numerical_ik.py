@@ -54,7 +54,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._generated import ur_kinematics as _gen
-from urkin._inputs import real
+from urkin._inputs import positive, real
 from urkin.ik_result import IKResult, stacked, unreachable, verified
 from urkin.kinematics import _joints, fk, flange_pose, jacobian
 from urkin.robots import Robot, check_robot, random_configurations
@@ -361,9 +361,7 @@ class DampedLeastSquares(StepRule):
     name = "dls"
 
     def __init__(self, damping: float = 0.01) -> None:
-        if not (isinstance(damping, (int, float)) and math.isfinite(damping) and damping >= 0):
-            raise ValueError(f"damping must be a finite number ≥ 0; got {damping!r}")
-        self.damping = float(damping)
+        self.damping = float(positive(damping, "damping", zero_ok=True))
 
     def step(self, problem, rows, T, J, e):
         Jt = np.swapaxes(J, -1, -2)
@@ -691,14 +689,6 @@ def _targets(target: ArrayLike) -> tuple[np.ndarray, bool, tuple[int, ...]]:
     )
 
 
-def _positive(value: float, name: str, *, integer: bool = False, zero_ok: bool = False) -> None:
-    kinds = (int,) if integer else (int, float)
-    ok = isinstance(value, kinds) and not isinstance(value, bool) and math.isfinite(value)
-    if not ok or value < 0 or (value == 0 and not zero_ok):
-        what = "an integer" if integer else "a number"
-        raise ValueError(f"{name} must be {what} {'≥' if zero_ok else '>'} 0; got {value!r}")
-
-
 def ik(
     robot: Robot,
     target: ArrayLike,
@@ -769,15 +759,17 @@ def ik(
     "unreachable: the target is 0.9977 m beyond the UR5's reach (it is 2.0418 m from the shoulder; at most 1.0440 m is reachable)"
     """  # noqa: E501
     robot = check_robot(robot)
+    positive(damping, "damping", zero_ok=True)
     rule = _rule(method, damping)
     if orientation not in ("log", "cross"):
         raise ValueError(f"orientation must be 'log' or 'cross'; got {orientation!r}")
-    _positive(tol_position, "tol_position")
-    _positive(tol_orientation, "tol_orientation")
-    _positive(max_iterations, "max_iterations", integer=True, zero_ok=True)
-    _positive(max_restarts, "max_restarts", integer=True, zero_ok=True)
+    positive(tol_position, "tol_position")
+    positive(tol_orientation, "tol_orientation")
+    positive(max_iterations, "max_iterations", integer=True, zero_ok=True)
+    positive(max_restarts, "max_restarts", integer=True, zero_ok=True)
+    positive(seed, "seed", integer=True, zero_ok=True, what="an integer ≥ 0 (a random seed)")
     if max_step is not None and max_step != math.inf:
-        _positive(max_step, "max_step")
+        positive(max_step, "max_step")
     goal, pose, lead = _targets(target)
     n = len(goal)
     if isinstance(rule, MatrixLog) and not pose:

@@ -41,6 +41,10 @@ __all__ = [
 ]
 
 
+#: How far from 1 the norm of a revolute joint's axis may be (rotation matrices' tolerance).
+_UNIT_TOLERANCE = 1e-6
+
+
 def screw_axis(omega: ArrayLike, point: ArrayLike) -> np.ndarray:
     """Screw axis ``(ω, −ω × q)`` of a revolute joint turning about unit axis ``ω`` through ``q``.
 
@@ -62,6 +66,13 @@ def screw_axis(omega: ArrayLike, point: ArrayLike) -> np.ndarray:
     """
     w = _core(omega, (3,), "omega")
     q = _core(point, (3,), "point")
+    length = np.linalg.norm(w, axis=-1)
+    if np.any(np.abs(length - 1.0) > _UNIT_TOLERANCE):
+        worst = float(np.max(np.abs(length - 1.0)))
+        raise ValueError(
+            "omega must be a unit direction (a revolute joint's axis; divide it by its norm): "
+            f"|‖omega‖ − 1| = {worst:.3g} > {_UNIT_TOLERANCE:g}"
+        )
     try:
         w, q = np.broadcast_arrays(w, q)
     except ValueError:

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import real
+from urkin._inputs import positive, real
 from urkin.tracking import Tracking, track
 from urkin.transforms import check_rotation, so3_exp, so3_log
 
@@ -503,11 +503,9 @@ def minimum_time(
         raise ValueError("distance must be a vector (n,) of joint motions, not all zero")
     limits = []
     for value, name in ((max_velocity, "max_velocity"), (max_acceleration, "max_acceleration")):
-        limit = (
-            np.broadcast_to(real(value, name), d.shape)
-            if np.ndim(value) == 0
-            else real(value, name)
-        )
+        limit = real(value, name)
+        if limit.ndim == 0:
+            limit = np.broadcast_to(limit, d.shape)
         if limit.shape != d.shape or not np.all(limit > 0):
             raise ValueError(f"{name} must be > 0, one number or one per joint {d.shape}")
         limits.append(limit)
@@ -568,7 +566,8 @@ def joint_trajectory(
         )
     if not isinstance(scaling, TimeScaling):
         raise TypeError("scaling must be a TimeScaling (from time_scaling or minimum_time)")
-    if int(samples) != samples or samples < 2:
+    positive(samples, "samples", integer=True, what="an integer ≥ 2")
+    if samples < 2:
         raise ValueError(f"samples must be an integer ≥ 2; got {samples!r}")
     t = np.linspace(0.0, scaling.T, int(samples))
     s, sd, sdd = scaling(t)
@@ -592,7 +591,8 @@ def _sample_times(t_first: float, t_last: float, samples: int | None, dt: float 
         raise ValueError("give samples or dt, not both")
     if dt is None:
         count = 100 if samples is None else samples
-        if isinstance(count, bool) or int(count) != count or count < 2:
+        positive(count, "samples", integer=True, what="an integer ≥ 2")
+        if count < 2:
             raise ValueError(f"samples must be an integer ≥ 2; got {samples!r}")
         return np.linspace(t_first, t_last, int(count))
     step = _positive(dt, "dt")

@@ -239,6 +239,10 @@ def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "
     return array
 
 
+#: Singular values below this fraction of the largest count as zero in :func:`orthonormalize`.
+_RANK_TOLERANCE = 1e-12
+
+
 def orthonormalize(R: ArrayLike) -> np.ndarray:
     """The rotation nearest to ``R`` (Frobenius norm): ``U Vᵀ`` of the SVD ``R = U Σ Vᵀ``.
 
@@ -248,7 +252,9 @@ def orthonormalize(R: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     R : array_like, shape (..., 3, 3)
-        Matrices close to rotations (a reflection is refused).
+        Matrices close to rotations.  A reflection (det < 0) is refused, and so is a matrix of
+        rank 0 or 1, which many rotations are equally near; of rank 2, the nearest rotation is
+        unique.
 
     Returns
     -------
@@ -263,9 +269,20 @@ def orthonormalize(R: ArrayLike) -> np.ndarray:
     (3, 3)
     """
     M = _core(R, (3, 3), "R")
-    U, _, Vt = np.linalg.svd(M)
-    if np.any(np.linalg.det(U) * np.linalg.det(Vt) < 0):
+    U, S, Vt = np.linalg.svd(M)
+    tiny = _RANK_TOLERANCE * S[..., 0]
+    if np.any(S[..., 1] + S[..., 2] <= tiny):  # zero or rank 1: every rotation about an axis ties
+        raise ValueError(
+            "R has no nearest rotation: it is zero or of rank 1 (its second and third singular "
+            "values are 0), so many rotations are equally near"
+        )
+    sign = np.linalg.det(U) * np.linalg.det(Vt)  # of det R, unless its third singular value is 0
+    if np.any((sign < 0) & (S[..., 2] > tiny)):
         raise ValueError("R is closer to a reflection than to a rotation (det R < 0)")
+    # rank 2 (det R = 0): the nearest rotation turns the null direction whichever way makes
+    # det = +1 (the SVD's sign for it is arbitrary)
+    U = U.copy()
+    U[..., :, 2] *= sign[..., None]
     return U @ Vt
 
 
@@ -565,9 +582,34 @@ def rotation_angle(R1: ArrayLike, R2: ArrayLike | None = None) -> np.ndarray | f
 
 
 def _angle_between(A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """``2·asin(‖A − B‖_F / (2√2))`` for checked rotations (stacks broadcast)."""
-    frob = np.sqrt(np.sum((A - B) ** 2, axis=(-2, -1)))
-    return 2.0 * np.arcsin(np.minimum(frob / (2.0 * np.sqrt(2.0)), 1.0))
+    """The angle of ``Aᵀ B`` for checked rotations (stacks broadcast): ``2·asin(‖A − B‖_F /
+    (2√2))`` up to π/2, exact to round-off for tiny angles; beyond, where the arcsine's slope
+    grows without bound (6e-8 rad of error at π), ``atan2(sin θ, cos θ)`` of the relative
+    rotation, its sine from the antisymmetric part and its cosine from the trace."""
+    half_sine = np.sqrt(np.sum((A - B) ** 2, axis=(-2, -1))) / (2.0 * np.sqrt(2.0))  # sin(θ/2)
+    angle = 2.0 * np.arcsin(np.minimum(half_sine, 1.0))
+    wide = half_sine > _SIN_QUARTER_TURN
+    if np.any(wide):
+        C = np.swapaxes(A, -1, -2) @ B
+        if np.ndim(angle) == 0:
+            return _wide_angle(C)
+        wide_angle = _wide_angle(np.broadcast_to(C, (*angle.shape, 3, 3))[wide])
+        angle[wide] = wide_angle
+    return angle
+
+
+#: sin(π/4): above it, :func:`_angle_between` measures the angle with atan2.
+_SIN_QUARTER_TURN = math.sin(math.pi / 4)
+
+
+def _wide_angle(C: np.ndarray) -> np.ndarray:
+    """The angle of rotations ``C`` (..., 3, 3) as ``atan2(sin θ, cos θ)``."""
+    x = C[..., 2, 1] - C[..., 1, 2]
+    y = C[..., 0, 2] - C[..., 2, 0]
+    z = C[..., 1, 0] - C[..., 0, 1]
+    sine = 0.5 * np.sqrt(x * x + y * y + z * z)
+    cosine = 0.5 * (C[..., 0, 0] + C[..., 1, 1] + C[..., 2, 2] - 1.0)
+    return np.arctan2(sine, cosine)
 
 
 def pose_error(

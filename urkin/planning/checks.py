@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from urkin._inputs import positive
 from urkin.kinematics import _joints
 from urkin.planning.scene import Scene
 from urkin.planning.spheres import (
@@ -677,8 +678,7 @@ def _intervals(model, A, B, resolution) -> np.ndarray:
 
 def _travels(model, A, B, resolution) -> np.ndarray:
     """:func:`_travel` of the edges ``A`` → ``B`` (K, S + P), after checking ``resolution``."""
-    if not resolution > 0:
-        raise ValueError(f"resolution must be a positive distance (m); got {resolution}")
+    positive(resolution, "resolution", what="a positive distance (m)")
     if not len(model):
         return np.zeros((len(A), len(model.meshes)))
     rho = model.__dict__.get("_rho")
@@ -821,8 +821,7 @@ def certify_edges(
     """
     _check(model, scene)
     A, B, lead = _edge_ends(qa, qb)
-    if not finest > 0:
-        raise ValueError(f"finest must be a positive distance (m); got {finest}")
+    positive(finest, "finest", what="a positive distance (m)")
     proven = _proven(model, scene, A, B, _travels(model, A, B, finest), finest)
     return bool(proven[0]) if lead == () else proven.reshape(lead)
 

@@ -32,7 +32,7 @@ from numbers import Real
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import real
+from urkin._inputs import positive, real
 from urkin.analytic_ik import ik_analytic
 from urkin.kinematics import _joints
 from urkin.planning.checks import (
@@ -619,6 +619,7 @@ def shortcut(
         Starts and ends where ``path`` does.
     """
     _check(model, scene)
+    positive(resolution, "resolution", what="a positive distance (m)")
     P, lead, _ = _joints(path, "path")
     if len(lead) != 1 or len(P) < 2:
         raise ValueError(f"path must have shape (M, 6) with M ≥ 2; got {np.shape(path)}")

@@ -35,10 +35,20 @@ def _vector(x: ArrayLike, name: str) -> np.ndarray:
 
 
 def _length(x: float, name: str, *, zero_ok: bool = False) -> float:
-    value = float(real(x, name))
+    array = real(x, name)
+    if array.ndim != 0:
+        raise ValueError(f"{name} must be one number (metres); got shape {array.shape}")
+    value = float(array)
     if value < 0 or (value == 0 and not zero_ok):
         raise ValueError(f"{name} must be positive (metres); got {value:g}")
     return value
+
+
+def _name(name: object, kind: str) -> None:
+    if name is not None and not isinstance(name, str):
+        raise TypeError(
+            f"{kind} name must be a str or None; got {type(name).__name__} {name!r:.40}"
+        )
 
 
 @dataclass(frozen=True)
@@ -52,6 +62,7 @@ class Box:
     name: str | None = None
 
     def __post_init__(self) -> None:
+        _name(self.name, "box")
         object.__setattr__(self, "centre", _vector(self.centre, "box centre"))
         size = _vector(self.size, "box size")
         if np.any(size <= 0):
@@ -73,6 +84,7 @@ class Cylinder:
     name: str | None = None
 
     def __post_init__(self) -> None:
+        _name(self.name, "cylinder")
         object.__setattr__(self, "centre", _vector(self.centre, "cylinder centre"))
         axis = _vector(self.axis, "cylinder axis")
         norm = float(np.linalg.norm(axis))
@@ -92,6 +104,7 @@ class Sphere:
     name: str | None = None
 
     def __post_init__(self) -> None:
+        _name(self.name, "sphere")
         object.__setattr__(self, "centre", _vector(self.centre, "sphere centre"))
         object.__setattr__(self, "radius", _length(self.radius, "sphere radius"))
 
@@ -106,6 +119,7 @@ class Capsule:
     name: str | None = None
 
     def __post_init__(self) -> None:
+        _name(self.name, "capsule")
         object.__setattr__(self, "a", _vector(self.a, "capsule a"))
         object.__setattr__(self, "b", _vector(self.b, "capsule b"))
         object.__setattr__(self, "radius", _length(self.radius, "capsule radius"))

@@ -12,12 +12,10 @@ in speed and ``6 Δq / T²`` in acceleration.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import real
+from urkin._inputs import positive, real
 from urkin.planning.rrt import Plan
 from urkin.trajectory import Trajectory, via_trajectory
 
@@ -82,8 +80,7 @@ def time_parametrize(
     n = Q.shape[1]
     v = _limit(max_velocity, "max_velocity", n)
     a = _limit(max_acceleration, "max_acceleration", n)
-    if not (math.isfinite(dt) and dt > 0):
-        raise ValueError(f"dt must be a positive number of seconds; got {dt}")
+    positive(dt, "dt", what="a positive number of seconds")
     keep = np.concatenate([[True], np.any(np.diff(Q, axis=0) != 0, axis=1)])
     Q = Q[keep]
     if len(Q) == 1:
