@@ -383,3 +383,27 @@ def test_the_solutions_score_full_marks_through_the_command(tmp_path):
     for row in book.values():
         assert row["total"] == row["max"], row
     assert "isolation:" in run.stdout
+
+
+@pytest.mark.parametrize(
+    ("option", "message"),
+    [
+        (["--lesson", "99"], "no lesson '99': the course's lessons are 00, 01"),
+        (["--lesson", "nine"], "no lesson 'nine'"),
+        (["--time-limit", "-5"], "argument --time-limit: must be above 0; got -5"),
+        (["--time-limit", "nan"], "argument --time-limit: must be above 0; got nan"),
+        (["--memory-limit", "0"], "argument --memory-limit: must be above 0; got 0"),
+        (["--jobs", "two"], "argument --jobs: not a number: 'two'"),
+        (["--setup-limit", "inf"], "argument --setup-limit: must be above 0; got inf"),
+    ],
+)
+def test_grade_options_are_checked_before_any_grading(tmp_path, capsys, option, message):
+    """A limit of no time or an unknown lesson would otherwise grade a whole class into
+    rows of errors."""
+    from urkin.cli import main
+
+    with pytest.raises(SystemExit) as stop:
+        main(["grade", str(tmp_path), "--out", str(tmp_path / "out"), *option])
+    assert stop.value.code == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()

@@ -16,11 +16,43 @@
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
 from pathlib import Path
 
 __all__ = ["main"]
+
+
+def _positive(kind: type) -> object:
+    """An argparse type: a finite number of ``kind`` above 0."""
+
+    def parse(text: str) -> int | float:
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+        if not (math.isfinite(value) and value > 0):
+            raise argparse.ArgumentTypeError(f"must be above 0; got {text}")
+        return value
+
+    return parse
+
+
+def _lesson(text: str) -> str:
+    """An argparse type: the number of one of the course's lessons."""
+    from urkin.course.lessons import lessons
+
+    known = sorted(lessons())
+    try:
+        key = f"{int(text):02d}"
+    except ValueError:
+        key = None
+    if key not in known:
+        raise argparse.ArgumentTypeError(
+            f"no lesson {text!r}: the course's lessons are {', '.join(known)}"
+        )
+    return text
 
 
 def _grade(args: argparse.Namespace) -> int:
@@ -206,26 +238,28 @@ def main(argv: list[str] | None = None) -> int:
     grade.add_argument("submissions", nargs="+", type=Path, help="notebooks or folders of them")
     grade.add_argument("--out", type=Path, required=True, help="folder for the reports")
     grade.add_argument("--seed", type=int, help="seed of the test inputs (fresh by default)")
-    grade.add_argument("--lesson", help="lesson number, if the notebooks do not say")
+    grade.add_argument("--lesson", type=_lesson, help="lesson number, if the notebooks do not say")
     grade.add_argument(
         "--time-limit",
-        type=float,
+        type=_positive(float),
         default=DEFAULT_TIME_LIMIT,
         help=f"seconds per exercise (default {DEFAULT_TIME_LIMIT:g})",
     )
     grade.add_argument(
         "--memory-limit",
-        type=int,
+        type=_positive(int),
         default=DEFAULT_MEMORY_LIMIT_MB,
         help=f"MiB per exercise, all its processes (default {DEFAULT_MEMORY_LIMIT_MB})",
     )
     grade.add_argument(
         "--setup-limit",
-        type=float,
+        type=_positive(float),
         default=DEFAULT_SETUP_LIMIT,
         help=f"seconds for a notebook's top-level definitions (default {DEFAULT_SETUP_LIMIT:g})",
     )
-    grade.add_argument("--jobs", type=int, help="submissions graded at once (default: cores)")
+    grade.add_argument(
+        "--jobs", type=_positive(int), help="submissions graded at once (default: cores)"
+    )
     grade.add_argument("--quiet", action="store_true", help="no progress bar")
     grade.set_defaults(run=_grade)
 
