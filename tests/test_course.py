@@ -155,3 +155,20 @@ def test_stored_solution_notebooks_keep_no_embedded_pictures_in_html():
             for output in cell.get("outputs", []):
                 html = "".join(output.get("data", {}).get("text/html", ""))
                 assert "base64," not in html.replace("base64,DATA", ""), path.name
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["build", "99"], "build works on every lesson at once and takes no lesson names; got 99"),
+        (["check", "02_dh"], "check works on every lesson at once and takes no lesson names"),
+        (["render", "a", "b"], "render takes one folder; got a b"),
+    ],
+)
+def test_course_commands_refuse_arguments_they_would_ignore(capsys, argv, message):
+    from urkin.course import build
+
+    with pytest.raises(SystemExit) as stop:
+        build.main([*argv, "--root", str(ROOT)])
+    assert stop.value.code == 2
+    assert message in capsys.readouterr().err

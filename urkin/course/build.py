@@ -602,6 +602,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--root", type=Path, default=Path("."), help="course root (default .)")
     args = parser.parse_args(argv)
     root = args.root.resolve()
+    if args.action in ("build", "check") and args.lessons:
+        parser.error(
+            f"{args.action} works on every lesson at once and takes no lesson names; "
+            f"got {' '.join(args.lessons)}"
+        )
+    if args.action == "render" and len(args.lessons) > 1:
+        parser.error(f"render takes one folder; got {' '.join(args.lessons)}")
     if args.action == "build":
         for path in build(root):
             print(f"wrote {path.relative_to(root)}")
