@@ -172,3 +172,12 @@ def test_course_commands_refuse_arguments_they_would_ignore(capsys, argv, messag
         build.main([*argv, "--root", str(ROOT)])
     assert stop.value.code == 2
     assert message in capsys.readouterr().err
+
+
+def test_check_wants_the_exercise_as_a_string(capsys):
+    """check(4.10, f) would check exercise 4.1: a number is refused, saying why."""
+    from urkin.course import check
+
+    check(4.10, lambda *args: None)
+    out = capsys.readouterr().out
+    assert "give the exercise as a string such as '2.1'" in out and "4.10 is 4.1" in out

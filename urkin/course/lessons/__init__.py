@@ -46,7 +46,13 @@ def lesson(number: str | int) -> Lesson:
 
 def exercise(exercise_id: str) -> Exercise:
     """The exercise ``"N.k"``, for example ``exercise("2.1")``."""
-    text = str(exercise_id)
+    if not isinstance(exercise_id, str):
+        # a number loses the exercise's trailing zeros: 4.10 is 4.1
+        raise TypeError(
+            "give the exercise as a string such as '2.1' (a number drops trailing zeros: "
+            f"4.10 is 4.1); got the {type(exercise_id).__name__} {exercise_id!r}"
+        )
+    text = exercise_id
     try:
         return lesson(text.split(".")[0]).exercise(text)
     except (KeyError, ValueError):
