@@ -112,6 +112,16 @@ CALLS = {
     "planning.Cylinder": (pl.Cylinder, [[0, 0, 0], [0, 0, 1], 0.1, 0.2]),
     "planning.Sphere": (pl.Sphere, [[0, 0, 0], 0.1]),
     "planning.Capsule": (pl.Capsule, [[0, 0, 0], [0, 0, 1], 0.1]),
+    "planning.box_separation": (
+        pl.box_separation,
+        [[0, 0, 0], np.eye(3), [0.1, 0.1, 0.1], [1, 0, 0], np.eye(3), [0.1, 0.1, 0.1]],
+    ),
+    "planning.tool_yaw": (pl.tool_yaw, [T]),
+    "planning.block_spheres": (pl.block_spheres, [[0.05, 0.05, 0.04]]),
+    "planning.top_down_grasp": (
+        pl.top_down_grasp,
+        [pl.Block.standing("A", [0.05, 0.05, 0.04], x=0.3, y=0.1)],
+    ),
     "SphereModel.place": (MODEL.place, [Q]),
     "SphereModel.with_tool_spheres": (MODEL.with_tool_spheres, [[[0, 0, 0.05]], [0.03]]),
 }
@@ -229,3 +239,12 @@ def test_bad_numeric_options_are_refused_by_name(name):
                 continue
             problems.append(f"{p.name} = {label}: {result or 'accepted silently'}")
     assert not problems, f"{name}:\n" + "\n".join(problems)
+
+
+def test_pick_and_place_names_moves_that_are_not_a_sequence():
+    from urkin.course.tabletop import LAB_HOME, hanoi_world
+
+    world = hanoi_world(2)
+    for moves in (float("nan"), None, "D1 0.3 0.1", pl.Move("D1", 0.3, 0.1)):
+        with pytest.raises(TypeError, match="moves must be a sequence"):
+            pl.pick_and_place(world, moves, LAB_HOME)

@@ -97,7 +97,7 @@ def hanoi_world(n: int = 3) -> World:
     >>> [b.name for b in hanoi_world().blocks]
     ['D1', 'D2', 'D3']
     """
-    if n not in (1, 2, 3, 4):
+    if isinstance(n, bool) or not isinstance(n, int) or n not in (1, 2, 3, 4):
         raise ValueError(f"n must be 1 … 4 blocks; got {n!r}")
     widths = (0.06, 0.05, 0.04, 0.035)[:n]
     x, y = HANOI_PEGS[0]

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import real
+from urkin._inputs import positive, real, shape_text
 from urkin.transforms import check_transform, make_transform, rot_z, wrap_angles
 
 __all__ = [
@@ -219,9 +219,7 @@ def block_spheres(size: ArrayLike, max_protrusion: float = 0.008) -> tuple[np.nd
     s = real(size, "size").astype(float)
     if s.shape != (3,) or np.any(s <= 0):
         raise ValueError(f"size must be three positive edge lengths (m); got {s.tolist()}")
-    p = float(max_protrusion)
-    if not p > 0:
-        raise ValueError(f"max_protrusion must be a positive distance (m); got {max_protrusion}")
+    p = float(positive(max_protrusion, "max_protrusion", what="a positive distance (m)"))
     n = np.maximum(1, np.ceil(s / (p / 0.36))).astype(int)
     while True:
         cell = s / n
@@ -233,6 +231,14 @@ def block_spheres(size: ArrayLike, max_protrusion: float = 0.008) -> tuple[np.nd
     surface = np.any((grid == 0) | (grid == n - 1), axis=1)
     centres = (grid[surface] + 0.5) * cell - s / 2
     return centres, np.full(len(centres), radius)
+
+
+def _stack(x: ArrayLike, name: str, core: tuple[int, ...]) -> np.ndarray:
+    """``x`` as a float array of ``core`` items (one, or a stack), or an error naming it."""
+    array = real(x, name)
+    if array.shape[array.ndim - len(core) :] != core or array.ndim < len(core):
+        raise ValueError(f"{name} must have shape {shape_text(core)}; got {array.shape}")
+    return array
 
 
 def box_separation(
@@ -258,12 +264,21 @@ def box_separation(
     >>> float(box_separation([0, 0, 0], I, [0.1] * 3, [0.15, 0, 0], I, [0.1] * 3)).__round__(6)
     -0.05
     """
-    ca, cb = real(centre_a, "centre_a"), real(centre_b, "centre_b")
-    Ra, Rb = real(R_a, "R_a"), real(R_b, "R_b")
-    ha, hb = real(half_a, "half_a"), real(half_b, "half_b")
-    lead = np.broadcast_shapes(
-        ca.shape[:-1], Ra.shape[:-2], ha.shape[:-1], cb.shape[:-1], Rb.shape[:-2], hb.shape[:-1]
-    )
+    ca, cb = _stack(centre_a, "centre_a", (3,)), _stack(centre_b, "centre_b", (3,))
+    Ra, Rb = _stack(R_a, "R_a", (3, 3)), _stack(R_b, "R_b", (3, 3))
+    ha, hb = _stack(half_a, "half_a", (3,)), _stack(half_b, "half_b", (3,))
+    try:
+        lead = np.broadcast_shapes(
+            ca.shape[:-1], Ra.shape[:-2], ha.shape[:-1], cb.shape[:-1], Rb.shape[:-2], hb.shape[:-1]
+        )
+    except ValueError:
+        shapes = ", ".join(
+            f"{name} {v.shape}"
+            for name, v in zip(
+                ("centre_a", "R_a", "half_a", "centre_b", "R_b", "half_b"), (ca, Ra, ha, cb, Rb, hb)
+            )
+        )
+        raise ValueError(f"the boxes' stacks must broadcast together; got {shapes}") from None
     ca, cb, ha, hb = (np.broadcast_to(v, (*lead, 3)) for v in (ca, cb, ha, hb))
     Ra, Rb = (np.broadcast_to(R, (*lead, 3, 3)) for R in (Ra, Rb))
     t = cb - ca

@@ -482,6 +482,11 @@ def pick_and_place(
     """
     if not isinstance(world, World):
         raise TypeError(f"world must be a planning.World; got {type(world).__name__}")
+    if isinstance(moves, (str, bytes, Move)) or not isinstance(moves, Sequence):
+        raise TypeError(
+            "moves must be a sequence (list or tuple) of moves, each a planning.Move or "
+            f"(block, x, y[, z[, yaw]]); got the {type(moves).__name__} {moves!r:.40}"
+        )
     q, _, _ = _joints(q_start, "q_start")
     q = q.reshape(6).copy()
     start = world
