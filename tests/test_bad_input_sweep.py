@@ -248,3 +248,29 @@ def test_pick_and_place_names_moves_that_are_not_a_sequence():
     for moves in (float("nan"), None, "D1 0.3 0.1", pl.Move("D1", 0.3, 0.1)):
         with pytest.raises(TypeError, match="moves must be a sequence"):
             pl.pick_and_place(world, moves, LAB_HOME)
+
+
+def test_drawing_functions_name_bad_arguments():
+    """The plotting entry points check their robot, angles, pose and scene like the library."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from urkin import plot
+
+    cases = [
+        (lambda: plot.show_robot("ur5", Q), TypeError, "robot must be a urkin Robot"),
+        (lambda: plot.show_robot(UR5, [0, 1, "x", 0, 0, 0]), TypeError, "q must be numbers"),
+        (lambda: plot.show_robot(UR5, Q + 1e-3j), TypeError, "q is complex"),
+        (lambda: plot.show_robot(UR5, np.stack([Q, Q])), ValueError, "one configuration"),
+        (lambda: plot.pose_text(np.stack([T, T])), ValueError, "pose_text shows one pose"),
+        (lambda: plot.animate_plan(UR5, np.stack([Q, Q]), None), TypeError, "scene must be a"),
+        (lambda: plot.animate_plan(UR5, "abc", SCENE), TypeError, "qs must be numbers"),
+    ]
+    try:
+        for call, error, message in cases:
+            with pytest.raises(error, match=message):
+                call()
+    finally:
+        plt.close("all")

@@ -35,8 +35,8 @@ from matplotlib.patches import Arc, Circle, Patch, Wedge
 from matplotlib.ticker import MaxNLocator
 from numpy.typing import ArrayLike
 
-from urkin.kinematics import fk_frames
-from urkin.robots import Robot
+from urkin.kinematics import check_joints, fk_frames
+from urkin.robots import Robot, check_robot
 from urkin.tracking_report import TrackingReport
 from urkin.transforms import check_transform, make_transform, rotation_to_rpy
 
@@ -432,7 +432,7 @@ def draw_robot(
     (1, 'drawn in the base frame {0}, lengths in metres')
     >>> plt.close(ax.figure)
     """
-    poses = fk_frames(robot, q)
+    poses = fk_frames(check_robot(robot), check_joints(q))
     if poses.ndim != 3:
         raise ValueError("draw_robot draws one configuration: q must have shape (6,)")
     points = poses[:, :3, 3]
@@ -512,6 +512,8 @@ def pose_text(T: ArrayLike) -> str:
     True
     """
     pose = check_transform(T)
+    if pose.shape != (4, 4):
+        raise ValueError(f"pose_text shows one pose: T must have shape (4, 4); got {pose.shape}")
     x, y, z = np.round(pose[:3, 3], 3) + 0.0  # + 0.0: no "-0.000"
     angles = np.round(np.degrees(rotation_to_rpy(pose[:3, :3])), 1) + 0.0
     # a half turn prints as 180.0 whichever side of ±π round-off put it (atan2 gives either)
@@ -563,7 +565,12 @@ def show_robot(
     'UR3 at q = [0, 0, 0, 0, 0, 0]°'
     >>> plt.close(ax.figure)
     """
-    q = np.asarray(q, dtype=float)
+    robot = check_robot(robot)
+    q = check_joints(q)
+    if q.shape != (6,):
+        raise ValueError(
+            f"show_robot draws one configuration: q must have shape (6,); got {q.shape}"
+        )
     reach = _reach(robot)
     if title is None:
         degrees = ", ".join(f"{v:.0f}" for v in np.degrees(q) + 0.0)
@@ -3449,7 +3456,12 @@ def animate_plan(
     >>> animate_plan(urkin.robot("UR3"), qs, wall, max_frames=3)
     <Animation: UR3, 3 frames of 3 samples>
     """
-    q = np.asarray(qs, dtype=float).reshape(-1, 6)
+    from urkin.planning import Scene
+
+    robot = check_robot(robot)
+    q = check_joints(qs, "qs").reshape(-1, 6)
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a planning.Scene; got {type(scene).__name__}")
     if center is None or half_width is None:
         joints = fk_frames(robot, q)[..., :3, 3].reshape(-1, 3)
         cube_c, cube_half = _cube_with_obstacles(joints, scene)
