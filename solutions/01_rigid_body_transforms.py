@@ -713,8 +713,9 @@ print(f"log(exp(ω)) = ω for all 1000, within 1e-12 rad: "
 #
 # $$\theta = 2 \arcsin\!\left(\frac{\|R - I\|_F}{2\sqrt2}\right).$$
 #
-# The same works between two orientations: replace I by the second one. This is urkin's
-# `rotation_angle(R1, R2)`, the angle the course uses to decide whether two poses agree.
+# The same works between two orientations: replace I by the second one. urkin's
+# `rotation_angle(R1, R2)`, the angle the course uses to decide whether two poses agree,
+# computes it this way up to a quarter turn (section 8 shows why not beyond).
 
 # %%
 largest_below_one = np.nextafter(1.0, 0.0)
@@ -725,14 +726,14 @@ angles = np.logspace(-12, 0, 97)  # true angles, 1e-12 to 1 rad, 8 per decade
 axis = np.array([1.0, 2.0, 2.0]) / 3.0
 Rs = so3_exp(angles[:, None] * axis)
 by_arccos = np.arccos(np.clip((np.trace(Rs, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0))
-by_arcsin = rotation_angle(Rs)
+by_arcsin = 2 * np.arcsin(np.sqrt(np.sum((Rs - np.eye(3)) ** 2, axis=(1, 2))) / (2 * np.sqrt(2)))
 by_log = np.linalg.norm(so3_log(Rs), axis=1)
 
 floor = 1e-17  # exact answers (error 0) are drawn here, so that they show on a log axis
 fig, ax = plt.subplots(figsize=(8, 5))
 for estimate, name, style in [
     (by_arccos, "arccos((trace R − 1) / 2)", "-"),
-    (by_arcsin, "2·asin(‖R − I‖_F / 2√2)  (rotation_angle)", "o-"),
+    (by_arcsin, "2·asin(‖R − I‖_F / 2√2)", "o-"),
     (by_log, "‖so3_log(R)‖", "x"),
 ]:
     relative = np.maximum(np.abs(estimate - angles) / angles, floor)
@@ -1008,11 +1009,11 @@ except NotImplementedError:
 # two orientations R1 and R2 are: the angle θ of the rotation that turns one into the other,
 # A = R1ᵀR2. Section 5 ("Measuring a small angle: do not trust arccos") showed how *not* to
 # compute it: arccos((tr A − 1)/2) returns 0 below about 1e-8 rad. Its cure,
-# 2·asin(‖R1 − R2‖_F / 2√2) (urkin's `rotation_angle`), keeps tiny angles, but it has the
-# opposite weakness, noted there too: next to a half turn sin(θ/2) is flat, so a round-off of
-# 1e-16 in ‖R1 − R2‖_F costs about √1e-16 = 1e-8 rad, and arccos is no better there. What is
-# accurate at every angle is the atan2 of a sine and a cosine, the log map's formula of
-# section 5, with both read off A:
+# 2·asin(‖R1 − R2‖_F / 2√2), keeps tiny angles, but it has the opposite weakness, noted there
+# too: next to a half turn sin(θ/2) is flat, so a round-off of 1e-16 in ‖R1 − R2‖_F costs
+# about √1e-16 = 1e-8 rad, and arccos is no better there. What is accurate at every angle is
+# the atan2 of a sine and a cosine, the log map's formula of section 5, with both read off A
+# (urkin's `rotation_angle` switches to it beyond a quarter turn):
 #
 # $$\cos\theta = \tfrac12(\operatorname{tr}A - 1),\qquad
 # \sin\theta = \tfrac12\,\big\|(A - A^\mathsf{T})^\vee\big\|,\qquad
@@ -1071,7 +1072,7 @@ check("1.6", rotation_distance)
 
 # %% [markdown]
 # **Verify.** The cell below builds pairs whose angle is known to the last digit and compares
-# three formulas with it: yours, arccos of the trace and 2·asin (`rotation_angle`). For the
+# three formulas with it: yours, arccos of the trace and 2·asin of the difference. For the
 # tiny angles R1 is a quarter turn, so R1ᵀR2 = E exactly, the turn that built the pair; next
 # to π, R1 is a random rotation, and the round-off of the stored matrices (about 1e-16) moves
 # the true angle far less than the 1e-12 printed. Errors are relative for the tiny angles,
@@ -1082,6 +1083,11 @@ check("1.6", rotation_distance)
 def arccos_angle(R1, R2):
     """arccos((tr R1ᵀR2 − 1)/2), clipped into [−1, 1]: the formula to avoid."""
     return float(np.arccos(np.clip((np.trace(R1.T @ R2) - 1.0) / 2.0, -1.0, 1.0)))
+
+
+def asin_angle(R1, R2):
+    """2·asin(‖R1 − R2‖_F / 2√2), clipped: right for tiny angles, not next to π."""
+    return float(2 * np.arcsin(min(np.sqrt(np.sum((R1 - R2) ** 2)) / (2 * np.sqrt(2)), 1.0)))
 
 
 def error_text(error, bound=None):
@@ -1112,7 +1118,7 @@ except NotImplementedError:
 for name, R1, R2, theta in cases:
     tiny = theta < 1e-6
     scale, bound = (theta, None) if tiny else (1.0, 1e-9)
-    formulas = [("arccos", arccos_angle), ("2·asin", rotation_angle)]
+    formulas = [("arccos", arccos_angle), ("2·asin", asin_angle)]
     if yours is not None:
         formulas.insert(0, ("yours", yours))
     texts = [f"{label} {error_text(abs(f(R1, R2) - theta) / scale, bound)}"
