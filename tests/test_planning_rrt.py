@@ -69,6 +69,12 @@ def test_failures_are_sentences_and_bad_input_is_refused():
     ):
         with pytest.raises(kind, match=message):
             planning.rrt_connect(MODEL, WALL, START, GOAL, **options)
+    far = urkin.transforms.make_transform(np.eye(3), [5.0, 0.0, 0.0])
+    with pytest.raises(
+        ValueError,
+        match=r"no inverse kinematics solution: unreachable: the target is 4\.04\d* m beyond",
+    ):
+        planning.rrt_connect(MODEL, WALL, START, far)
     for goals, kind, message in (
         ("abc", TypeError, "goals must be numbers; got str"),
         ([[0, 1, 2, 3, 4, 5], [0, 1]], TypeError, "goals must be numbers"),

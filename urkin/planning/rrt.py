@@ -33,7 +33,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._inputs import positive, real
-from urkin.analytic_ik import ik_analytic
+from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import _joints
 from urkin.planning.checks import (
     FINEST,
@@ -99,9 +99,8 @@ def _goal_configurations(model: SphereModel, goals: ArrayLike) -> np.ndarray:
             raise ValueError(f"goals: give one pose (4, 4); got shape {array.shape}")
         solutions = ik_analytic(model.robot, array)
         if len(solutions) == 0:
-            raise ValueError(
-                "goals: the pose has no inverse kinematics solution (urkin.ik_closest says why)"
-            )
+            why = ik_closest(model.robot, array, np.zeros(6)).reason
+            raise ValueError(f"goals: the pose has no inverse kinematics solution: {why}")
         return np.asarray(solutions, dtype=float).reshape(-1, 6)
     Q, _, _ = _joints(goals, "goals")
     return Q.reshape(-1, 6).copy()
