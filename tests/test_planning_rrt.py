@@ -60,11 +60,12 @@ def test_failures_are_sentences_and_bad_input_is_refused():
     with pytest.raises(ValueError, match="every goal is in collision"):
         planning.rrt_connect(MODEL, WALL, START, [0, 0.5, 0, 0, 0, 0])
     for options, kind, message in (
-        ({"seed": "x"}, TypeError, "seed must be an integer; got str 'x'"),
-        ({"max_iterations": 2.5}, TypeError, "max_iterations must be an integer"),
-        ({"max_iterations": 0}, ValueError, "max_iterations must be at least 1; got 0"),
+        ({"seed": "x"}, TypeError, r"seed must be an integer ≥ 0 \(a random seed\); got str 'x'"),
+        ({"seed": -1}, ValueError, "seed must be an integer ≥ 0"),
+        ({"max_iterations": 2.5}, ValueError, "max_iterations must be an integer ≥ 1; got 2.5"),
+        ({"max_iterations": 0}, ValueError, "max_iterations must be an integer ≥ 1; got 0"),
         ({"time_limit": -1}, ValueError, r"time_limit must be seconds \(0 or more\) or None"),
-        ({"time_limit": "1"}, ValueError, "time_limit must be seconds"),
+        ({"time_limit": "1"}, TypeError, "time_limit must be seconds"),
         ({"step": float("nan")}, ValueError, r"step must be a positive angle \(rad\); got nan"),
     ):
         with pytest.raises(kind, match=message):
@@ -89,11 +90,13 @@ def test_failures_are_sentences_and_bad_input_is_refused():
     with pytest.raises(TypeError, match=r"boxes must be a sequence of planning\.Box"):
         planning.Scene(boxes=5)
     path = [START, GOAL]
-    with pytest.raises(ValueError, match="rounds must be at least 0; got -1"):
+    with pytest.raises(ValueError, match="rounds must be an integer ≥ 0; got -1"):
         planning.shortcut(MODEL, WALL, path, rounds=-1)
-    with pytest.raises(ValueError, match="batch must be at least 1; got 0"):
+    with pytest.raises(ValueError, match="batch must be an integer ≥ 1; got 0"):
         planning.shortcut(MODEL, WALL, path, batch=0)
-    with pytest.raises(TypeError, match="seed must be an integer; got NoneType"):
+    with pytest.raises(
+        TypeError, match=r"seed must be an integer ≥ 0 \(a random seed\); got NoneType"
+    ):
         planning.shortcut(MODEL, WALL, path, seed=None)
     with pytest.raises(ValueError, match="start is outside the joint limits: joint 1 is 7"):
         planning.rrt_connect(MODEL, WALL, [7, 0, 0, 0, 0, 0], GOAL)

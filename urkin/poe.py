@@ -26,7 +26,15 @@ from numpy.typing import ArrayLike
 from urkin._inputs import real
 from urkin.kinematics import dh_transform, fk, fk_frames
 from urkin.robots import Robot
-from urkin.transforms import _core, adjoint, check_transform, inv_transform, se3_exp, skew
+from urkin.transforms import (
+    ROTATION_TOLERANCE,
+    _core,
+    adjoint,
+    check_transform,
+    inv_transform,
+    se3_exp,
+    skew,
+)
 
 __all__ = [
     "body_screws",
@@ -39,10 +47,6 @@ __all__ = [
     "space_from_geometric",
     "space_screws",
 ]
-
-
-#: How far from 1 the norm of a revolute joint's axis may be (rotation matrices' tolerance).
-_UNIT_TOLERANCE = 1e-6
 
 
 def screw_axis(omega: ArrayLike, point: ArrayLike) -> np.ndarray:
@@ -67,11 +71,11 @@ def screw_axis(omega: ArrayLike, point: ArrayLike) -> np.ndarray:
     w = _core(omega, (3,), "omega")
     q = _core(point, (3,), "point")
     length = np.linalg.norm(w, axis=-1)
-    if np.any(np.abs(length - 1.0) > _UNIT_TOLERANCE):
+    if np.any(np.abs(length - 1.0) > ROTATION_TOLERANCE):
         worst = float(np.max(np.abs(length - 1.0)))
         raise ValueError(
             "omega must be a unit direction (a revolute joint's axis; divide it by its norm): "
-            f"|‖omega‖ − 1| = {worst:.3g} > {_UNIT_TOLERANCE:g}"
+            f"|‖omega‖ − 1| = {worst:.3g} > {ROTATION_TOLERANCE:g}"
         )
     try:
         w, q = np.broadcast_arrays(w, q)

@@ -27,7 +27,6 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from numbers import Real
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -350,15 +349,15 @@ def _restored(path: np.ndarray, raw: np.ndarray, blocked: np.ndarray) -> np.ndar
 
 
 def _check_options(seed, max_iterations, time_limit, step) -> None:
-    for name, value in (("seed", seed), ("max_iterations", max_iterations)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-            raise TypeError(f"{name} must be an integer; got {type(value).__name__} {value!r}")
-    if max_iterations < 1:
-        raise ValueError(f"max_iterations must be at least 1; got {max_iterations}")
-    if time_limit is not None and not (isinstance(time_limit, Real) and time_limit >= 0):
-        raise ValueError(f"time_limit must be seconds (0 or more) or None; got {time_limit!r}")
-    if not (isinstance(step, Real) and step > 0):
-        raise ValueError(f"step must be a positive angle (rad); got {step!r}")
+    positive(seed, "seed", integer=True, zero_ok=True, what=_SEED)
+    positive(max_iterations, "max_iterations", integer=True, what="an integer ≥ 1")
+    if time_limit is not None:
+        positive(time_limit, "time_limit", zero_ok=True, what="seconds (0 or more) or None")
+    positive(step, "step", what="a positive angle (rad)")
+
+
+#: What a seed must be (the messages of the option checks).
+_SEED = "an integer ≥ 0 (a random seed)"
 
 
 def _within(q: np.ndarray, lower: np.ndarray, upper: np.ndarray, name: str) -> None:
@@ -622,11 +621,9 @@ def shortcut(
     P, lead, _ = _joints(path, "path")
     if len(lead) != 1 or len(P) < 2:
         raise ValueError(f"path must have shape (M, 6) with M ≥ 2; got {np.shape(path)}")
-    for name, value, least in (("seed", seed, None), ("rounds", rounds, 0), ("batch", batch, 1)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-            raise TypeError(f"{name} must be an integer; got {type(value).__name__} {value!r}")
-        if least is not None and value < least:
-            raise ValueError(f"{name} must be at least {least}; got {value}")
+    positive(seed, "seed", integer=True, zero_ok=True, what=_SEED)
+    positive(rounds, "rounds", integer=True, zero_ok=True)
+    positive(batch, "batch", integer=True, what="an integer ≥ 1")
     P = _straightened(P)
     rng = np.random.default_rng(seed)
     blocked: set[bytes] = set()  # edges found in collision, by their end configurations
