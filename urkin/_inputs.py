@@ -41,6 +41,11 @@ def positive(
     ...
     ValueError: tol must be a number > 0; got nan
     """
+    kind = type(value)
+    if (kind is int or (kind is float and not integer)) and (
+        0 < value < math.inf or (zero_ok and value == 0)
+    ):  # the common case, without the abstract-class checks below
+        return value
     kinds = Integral if integer else Real
     if not what:
         what = f"{'an integer' if integer else 'a number'} {'≥' if zero_ok else '>'} 0"

@@ -49,6 +49,7 @@ from __future__ import annotations
 import copy
 import functools
 import math
+from operator import add as _add
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -138,6 +139,7 @@ class _Problem:
         self.tol_position = tol_position
         self.tol_orientation = tol_orientation
         self.lower, self.upper, self.wide_limits = _limits(robot.joint_limits)
+        self.lower_one, self.upper_one = self.lower.tolist(), self.upper.tolist()
         # the first target as floats, for the single-target path
         self.target_one = (
             positions[0].tolist() if len(positions) else None,
@@ -169,24 +171,26 @@ class _Problem:
         e_o = omega if self.form == "log" else sin_axis
         return T, np.concatenate([e_p, e_o], axis=-1), position_error, theta
 
-    def evaluate_one(self, q: np.ndarray):
-        """:meth:`evaluate` for one configuration (6,) against the only target, with its
-        Jacobian: the pose as a tuple of its 16 entries (row by row), ``e`` (m,), the two
-        errors as floats and ``J`` (m, 6).  The plain kinematics give the pose and the
-        Jacobian from one generated function (they share every cosine and sine)."""
+    def evaluate_one(self, q: list[float]):
+        """:meth:`evaluate` for one configuration (six floats) against the only target, with
+        its Jacobian: the pose as a tuple of its 16 entries (row by row), ``e`` (m,), the two
+        errors as floats, ``J`` (m, 6) and ``|e|²`` as a float.  The plain kinematics give the
+        pose and the Jacobian from one generated function (they share every cosine and sine)."""
         robot = self.robot
         if robot._plain:
             J = np.empty((6, 6))
-            pose = _gen.pose_jacobian_one(q.tolist(), robot.lengths, J)
+            pose = _gen.pose_jacobian_one(q, robot.lengths, J)
         else:
-            pose = tuple(fk(robot, q).ravel().tolist())
-            J = jacobian(robot, q)
+            array = np.array(q)
+            pose = tuple(fk(robot, array).ravel().tolist())
+            J = jacobian(robot, array)
         a, b, c, x, d, e, f, y, g, h, i, z, *_ = pose
         tx, ty, tz = self.target_one[0]
         x, y, z = tx - x, ty - y, tz - z
-        position_error = math.sqrt(x * x + y * y + z * z)
+        squares = x * x + y * y + z * z
+        position_error = math.sqrt(squares)
         if self.R is None:
-            return pose, np.array((x, y, z)), position_error, 0.0, J[:3]
+            return pose, np.array((x, y, z)), position_error, 0.0, J[:3], squares
         (t0, t1, t2), (t3, t4, t5), (t6, t7, t8) = self.target_one[1]
         sin_axis, theta, omega = _rotation_parts_one(  # of R_target R_currentᵀ
             t0 * a + t1 * b + t2 * c,
@@ -200,20 +204,24 @@ class _Problem:
             t6 * g + t7 * h + t8 * i,
         )
         u, v, w = omega if self.form == "log" else sin_axis
-        return pose, np.array((x, y, z, u, v, w)), position_error, theta, J
+        squares += u * u + v * v + w * w
+        return pose, np.array((x, y, z, u, v, w)), position_error, theta, J, squares
 
     def jacobians(self, Q: np.ndarray) -> np.ndarray:
         J = jacobian(self.robot, Q)
         return J if self.R is not None else J[..., :3, :]
 
     def wrap(self, q: np.ndarray) -> np.ndarray:
-        if q.ndim == 1 and self.wide_limits:  # one configuration: Python floats
-            values = q.tolist()
-            if -math.pi < min(values) and max(values) <= math.pi:
-                return q  # already wrapped: the common case
-            return np.array([_wrap_float(x) for x in values])
         wrapped = wrap_angles(q, check=False)
         return wrapped if self.wide_limits else np.clip(wrapped, self.lower, self.upper)
+
+    def wrap_one(self, q: list[float]) -> list[float]:
+        """:meth:`wrap` of one configuration given as six floats, to the same bits."""
+        if not (-math.pi < min(q) and max(q) <= math.pi):
+            q = [_wrap_float(x) for x in q]
+        if self.wide_limits:
+            return q
+        return [min(max(x, lo), hi) for x, lo, hi in zip(q, self.lower_one, self.upper_one)]
 
 
 def _wrap_float(x: float) -> float:
@@ -307,6 +315,11 @@ class StepRule:
         """Which trial steps to keep (all, by default)."""
         return np.ones(np.shape(rows), dtype=bool)
 
+    def accept_one(self, e, e_trial, J, dq, squares: float, squares_trial: float) -> bool:
+        """:meth:`accept` on the single-target path, given also ``|e|²`` and ``|e_trial|²``
+        as floats (the default asks :meth:`accept`)."""
+        return bool(self.accept(0, e, e_trial, J, dq))
+
     def given_up(self, rows: np.ndarray) -> np.ndarray | bool:
         return False
 
@@ -395,6 +408,8 @@ class LevenbergMarquardt(StepRule):
         self.mu = np.full(n, np.nan)  # NaN: not yet set for this attempt
         self.nu = np.full(n, 2.0)
         self.mu_one, self.nu_one = math.nan, 2.0  # the same, as floats, for one target
+        self.gram = np.empty((6, 6))  # JᵀJ + μI of one target, and a view of its diagonal
+        self.gram_diagonal = self.gram.reshape(36)[::7]
 
     def restart(self, rows):
         self.mu[rows], self.nu[rows] = np.nan, 2.0
@@ -408,11 +423,11 @@ class LevenbergMarquardt(StepRule):
     def step(self, problem, rows, T, J, e):
         if J.ndim == 2:  # one target (rows is its index): the same step, fewer numpy calls
             Jt = J.T
-            A = Jt.dot(J)  # ndarray.dot: half the overhead of the @ operator on 6×6
+            A = Jt.dot(J, out=self.gram)  # ndarray.dot: half the @ operator's overhead on 6×6
             mu = self.mu_one
             if mu != mu:  # NaN: a new attempt
-                mu = self.mu_one = _TAU * max(A.diagonal().tolist())
-            A.ravel()[:: A.shape[0] + 1] += mu
+                mu = self.mu_one = _TAU * max(self.gram_diagonal.tolist())
+            self.gram_diagonal += mu
             g = Jt.dot(e)
             dq = _solve_positive_definite(A, g) if mu > 0 else np.linalg.solve(A, g)
             self.last_step = (dq, g, mu)  # for accept's predicted reduction
@@ -428,24 +443,25 @@ class LevenbergMarquardt(StepRule):
         A[..., _DIAGONAL, _DIAGONAL] += np.asarray(mu)[..., None]
         return np.linalg.solve(A, g[..., None])[..., 0]
 
+    def accept_one(self, e, e_trial, J, dq, squares, squares_trial):
+        # the gain ratio of accept, in floats
+        step, g, mu = self.last_step
+        if dq is step:  # not shortened: (JᵀJ + μI) Δq = g gives |JΔq|² = Δq·g − μ|Δq|²
+            predicted = float(dq.dot(g)) + mu * float(dq.dot(dq))
+        else:
+            Jdq = J.dot(dq)
+            predicted = float(Jdq.dot(e + e - Jdq))
+        rho = (squares - squares_trial) / predicted if predicted > 0 else -1.0
+        if rho > 0:
+            self.mu_one *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
+            self.nu_one = 2.0
+        else:
+            self.mu_one *= self.nu_one
+            self.nu_one *= 2.0
+        return rho > 0
+
     def accept(self, rows, e, e_trial, J, dq):
         # gain ratio: actual reduction of |e|² over the reduction the linear model predicts
-        if J.ndim == 2:  # one target, in floats
-            step, g, mu = self.last_step
-            if dq is step:  # not shortened: (JᵀJ + μI) Δq = g gives |JΔq|² = Δq·g − μ|Δq|²
-                predicted = float(dq.dot(g)) + mu * float(dq.dot(dq))
-            else:
-                Jdq = J.dot(dq)
-                predicted = float(Jdq.dot(e + e - Jdq))
-            actual = float(e.dot(e)) - float(e_trial.dot(e_trial))
-            rho = actual / predicted if predicted > 0 else -1.0
-            if rho > 0:
-                self.mu_one *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
-                self.nu_one = 2.0
-            else:
-                self.mu_one *= self.nu_one
-                self.nu_one *= 2.0
-            return rho > 0
         Jdq = (J @ dq[..., None])[..., 0]
         predicted = np.sum(Jdq * (2.0 * e - Jdq), axis=-1)
         actual = np.sum(e * e, axis=-1) - np.sum(e_trial * e_trial, axis=-1)
@@ -535,7 +551,8 @@ def _iterate_one(
     attempt's best residual)`` with ``rule`` already holding the attempt's state — continues
     an attempt begun in a stack instead of starting one."""
     rng = None  # made at the first restart: most solves need none
-    q, best_q, best = q0.copy(), q0.copy(), math.inf
+    q = best_q = q0.tolist()  # the configuration as six floats; a new list at each change
+    best = math.inf
     iterations = restarts = 0
     if attempt_state is None:
         rule.start(1)
@@ -544,7 +561,7 @@ def _iterate_one(
         attempt, since_progress, attempt_best = attempt_state
     tol_position, tol_orientation = problem.tol_position, problem.tol_orientation
     patience, limit_steps, uses_pose = rule.patience, max_step != math.inf, rule.uses_pose
-    pose, e, pos, rot, J = problem.evaluate_one(q)
+    pose, e, pos, rot, J, squares = problem.evaluate_one(q)
     while True:
         residual = pos if pos > rot else rot
         if residual < best:
@@ -556,26 +573,28 @@ def _iterate_one(
         if residual < attempt_best:
             attempt_best = residual
         if pos <= tol_position and rot <= tol_orientation:
-            return best_q, True, iterations, restarts, best
-        if _stalled(attempt, since_progress, rule.given_up_one(), patience, max_iterations):
+            return np.array(best_q), True, iterations, restarts, best
+        if attempt >= max_iterations or since_progress >= patience or rule.given_up_one():
             if restarts >= max_restarts:
-                return best_q, False, iterations, restarts, best
+                return np.array(best_q), False, iterations, restarts, best
             restarts += 1
             attempt, since_progress, attempt_best = 0, 0, math.inf
             rule.start(1)
             rng = np.random.default_rng(seed) if rng is None else rng
-            q = random_configurations(problem.robot, (), rng)
-            pose, e, pos, rot, J = problem.evaluate_one(q)
+            q = random_configurations(problem.robot, (), rng).tolist()
+            pose, e, pos, rot, J, squares = problem.evaluate_one(q)
             continue
         dq = rule.step(problem, 0, np.reshape(pose, (4, 4)) if uses_pose else None, J, e)
+        steps = dq.tolist()
         if limit_steps:
-            largest = max(map(abs, dq.tolist()))
+            largest = max(max(steps), -min(steps))
             if largest > max_step:
                 dq = dq * (max_step / largest)
-        trial = problem.wrap(q + dq)
-        pose_trial, e_trial, pos_trial, rot_trial, J_trial = problem.evaluate_one(trial)
-        if rule.accept(0, e, e_trial, J, dq):
-            q, pose, e, pos, rot, J = trial, pose_trial, e_trial, pos_trial, rot_trial, J_trial
+                steps = dq.tolist()
+        trial = problem.wrap_one(list(map(_add, q, steps)))
+        evaluated = problem.evaluate_one(trial)
+        if rule.accept_one(e, evaluated[1], J, dq, squares, evaluated[5]):
+            q, (pose, e, pos, rot, J, squares) = trial, evaluated
         iterations += 1
         attempt += 1
 
@@ -677,6 +696,9 @@ def _iterate(problem, rule, Q0, candidates, *, max_iterations, max_restarts, max
 def _targets(target: ArrayLike) -> tuple[np.ndarray, bool, tuple[int, ...]]:
     """Checked targets as (N, 4, 4) poses or (N, 3) positions, whether they are poses, and
     their leading axes."""
+    if type(target) is np.ndarray and target.dtype == np.float64 and target.shape == (4, 4):
+        # one pose: check_transform's scalar test checks finiteness and rigidity at once
+        return check_transform(target, name="target")[None], True, ()
     goal = real(target, "target")
     if goal.shape[-2:] == (4, 4):
         goal = check_transform(goal, name="target")
