@@ -120,6 +120,7 @@ def orientation_error(R_current: ArrayLike, R_target: ArrayLike, form: str = "lo
 
 
 @functools.lru_cache(maxsize=64)
+@functools.lru_cache(maxsize=32)
 def _limits(joint_limits: tuple[tuple[float, float], ...]) -> tuple[np.ndarray, np.ndarray, bool]:
     """Lower and upper joint limits as arrays, and whether they allow every angle of (−π, π]."""
     lower = np.array([lo for lo, _ in joint_limits])
@@ -139,7 +140,6 @@ class _Problem:
         self.tol_position = tol_position
         self.tol_orientation = tol_orientation
         self.lower, self.upper, self.wide_limits = _limits(robot.joint_limits)
-        self.lower_one, self.upper_one = self.lower.tolist(), self.upper.tolist()
         # the first target as floats, for the single-target path
         self.target_one = (
             positions[0].tolist() if len(positions) else None,
@@ -221,7 +221,7 @@ class _Problem:
             q = [_wrap_float(x) for x in q]
         if self.wide_limits:
             return q
-        return [min(max(x, lo), hi) for x, lo, hi in zip(q, self.lower_one, self.upper_one)]
+        return [min(max(x, lo), hi) for (lo, hi), x in zip(self.robot.joint_limits, q)]
 
 
 def _wrap_float(x: float) -> float:
@@ -405,8 +405,10 @@ class LevenbergMarquardt(StepRule):
     name = "lm"
 
     def start(self, n):
-        self.mu = np.full(n, np.nan)  # NaN: not yet set for this attempt
-        self.nu = np.full(n, 2.0)
+        self.mu = np.empty(n)
+        self.mu.fill(np.nan)  # NaN: not yet set for this attempt
+        self.nu = np.empty(n)
+        self.nu.fill(2.0)
         self.mu_one, self.nu_one = math.nan, 2.0  # the same, as floats, for one target
         self.gram = np.empty((6, 6))  # JᵀJ + μI of one target, and a view of its diagonal
         self.gram_diagonal = self.gram.reshape(36)[::7]

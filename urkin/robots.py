@@ -23,6 +23,7 @@ Frames
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -291,6 +292,14 @@ def random_configurations(
     """
     arm = check_robot(robot)
     size = (shape,) if isinstance(shape, int) else tuple(shape)
-    lower = np.maximum([lo for lo, _ in arm.joint_limits], -math.pi)
-    upper = np.minimum([hi for _, hi in arm.joint_limits], math.pi)
+    lower, upper = _draw_limits(arm.joint_limits)
     return np.random.default_rng(seed).uniform(lower, upper, (*size, 6))
+
+
+@functools.lru_cache(maxsize=32)
+def _draw_limits(joint_limits: tuple[tuple[float, float], ...]) -> tuple[np.ndarray, np.ndarray]:
+    """The bounds :func:`random_configurations` draws between: the limits within (−π, π]."""
+    lower = np.maximum([lo for lo, _ in joint_limits], -math.pi)
+    upper = np.minimum([hi for _, hi in joint_limits], math.pi)
+    lower.flags.writeable = upper.flags.writeable = False
+    return lower, upper
