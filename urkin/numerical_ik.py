@@ -140,10 +140,10 @@ class _Problem:
         self.tol_position = tol_position
         self.tol_orientation = tol_orientation
         self.lower, self.upper, self.wide_limits = _limits(robot.joint_limits)
-        # the first target as floats, for the single-target path
-        self.target_one = (
-            positions[0].tolist() if len(positions) else None,
-            None if rotations is None or not len(rotations) else rotations[0].tolist(),
+        # the first target as floats, for the single-target path: position, rotation row by row
+        self.position_one = positions[0].tolist() if len(positions) else None
+        self.rotation_one = (
+            None if rotations is None or not len(rotations) else rotations[0].ravel().tolist()
         )
 
     def row(self, i: int) -> _Problem:
@@ -185,13 +185,13 @@ class _Problem:
             pose = tuple(fk(robot, array).ravel().tolist())
             J = jacobian(robot, array)
         a, b, c, x, d, e, f, y, g, h, i, z, *_ = pose
-        tx, ty, tz = self.target_one[0]
+        tx, ty, tz = self.position_one
         x, y, z = tx - x, ty - y, tz - z
         squares = x * x + y * y + z * z
         position_error = math.sqrt(squares)
         if self.R is None:
             return pose, np.array((x, y, z)), position_error, 0.0, J[:3], squares
-        (t0, t1, t2), (t3, t4, t5), (t6, t7, t8) = self.target_one[1]
+        t0, t1, t2, t3, t4, t5, t6, t7, t8 = self.rotation_one
         sin_axis, theta, omega = _rotation_parts_one(  # of R_target R_currentᵀ
             t0 * a + t1 * b + t2 * c,
             t0 * d + t1 * e + t2 * f,
@@ -240,11 +240,11 @@ def _rotation_parts_one(
     r20: float,
     r21: float,
     r22: float,
-) -> tuple[list[float], float, list[float]]:
+) -> tuple[tuple[float, ...], float, tuple[float, ...]]:
     """:func:`urkin.transforms.rotation_parts` of one rotation given as its nine entries (row
     by row), with Python floats (the hot path of a single solve)."""
-    s = [0.5 * (r21 - r12), 0.5 * (r02 - r20), 0.5 * (r10 - r01)]
-    sin_theta = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
+    s0, s1, s2 = 0.5 * (r21 - r12), 0.5 * (r02 - r20), 0.5 * (r10 - r01)
+    sin_theta = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
     cos_theta = 0.5 * (r00 + r11 + r22 - 1.0)
     theta = math.atan2(sin_theta, cos_theta)
     if cos_theta < -0.9:  # near π: the axis from the symmetric part, as rotation_parts does
@@ -256,10 +256,10 @@ def _rotation_parts_one(
         else:
             k = (0.5 * (r02 + r20), 0.5 * (r12 + r21), b2)
         norm = math.sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2])
-        scale = theta / norm if k[0] * s[0] + k[1] * s[1] + k[2] * s[2] >= 0.0 else -theta / norm
-        return s, theta, [scale * k[0], scale * k[1], scale * k[2]]
+        scale = theta / norm if k[0] * s0 + k[1] * s1 + k[2] * s2 >= 0.0 else -theta / norm
+        return (s0, s1, s2), theta, (scale * k[0], scale * k[1], scale * k[2])
     scale = 1.0 + theta * theta / 6.0 if sin_theta < 1e-8 else theta / sin_theta
-    return s, theta, [scale * s[0], scale * s[1], scale * s[2]]
+    return (s0, s1, s2), theta, (scale * s0, scale * s1, scale * s2)
 
 
 # ----------------------------------------------------------------------------- step rules
