@@ -173,7 +173,7 @@ class _Problem:
 
     def evaluate_one(self, q: list[float]):
         """:meth:`evaluate` for one configuration (six floats) against the only target, with
-        its Jacobian: the pose as a tuple of its 16 entries (row by row), ``e`` (m,), the two
+        its Jacobian: the pose's top three rows as a tuple of 12 floats, ``e`` (m,), the two
         errors as floats, ``J`` (m, 6) and ``|e|²`` as a float.  The plain kinematics give the
         pose and the Jacobian from one generated function (they share every cosine and sine)."""
         robot = self.robot
@@ -182,9 +182,9 @@ class _Problem:
             pose = _gen.pose_jacobian_one(q, robot.lengths, J)
         else:
             array = np.array(q)
-            pose = tuple(fk(robot, array).ravel().tolist())
+            pose = tuple(fk(robot, array)[:3].ravel().tolist())
             J = jacobian(robot, array)
-        a, b, c, x, d, e, f, y, g, h, i, z, *_ = pose
+        a, b, c, x, d, e, f, y, g, h, i, z = pose
         tx, ty, tz = self.position_one
         x, y, z = tx - x, ty - y, tz - z
         squares = x * x + y * y + z * z
@@ -586,7 +586,8 @@ def _iterate_one(
             q = random_configurations(problem.robot, (), rng).tolist()
             pose, e, pos, rot, J, squares = problem.evaluate_one(q)
             continue
-        dq = rule.step(problem, 0, np.reshape(pose, (4, 4)) if uses_pose else None, J, e)
+        T = np.array((*pose, 0.0, 0.0, 0.0, 1.0)).reshape(4, 4) if uses_pose else None
+        dq = rule.step(problem, 0, T, J, e)
         steps = dq.tolist()
         if limit_steps:
             largest = max(max(steps), -min(steps))

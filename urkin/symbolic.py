@@ -370,11 +370,11 @@ def _emit_pose_jacobian(pose: dict, jacobian: dict) -> str:
                 "def pose_jacobian_one(q, lengths, out):",
                 '    """Flange pose T_0_6 and geometric Jacobian [v; ω] of the flange origin for',
                 "    one pose (``q`` six floats, ``lengths`` the six link lengths): writes the",
-                "    Jacobian into ``out`` (6, 6) and returns the pose's 16 entries as a tuple,",
-                '    row by row."""',
+                "    Jacobian into ``out`` (6, 6) and returns the top three rows of the pose (12",
+                '    entries, row by row; the last row is 0, 0, 0, 1) as a tuple."""',
                 *lines,
                 f"    _pack36(out, 0, {', '.join(jacobian_flat)})",
-                f"    return ({', '.join(pose_flat)})",
+                f"    return ({', '.join(pose_flat[:12])})",
             ]
         )
         + "\n"

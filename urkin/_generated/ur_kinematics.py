@@ -905,8 +905,8 @@ position_jacobian_many.work_rows = 47
 def pose_jacobian_one(q, lengths, out):
     """Flange pose T_0_6 and geometric Jacobian [v; ω] of the flange origin for
     one pose (``q`` six floats, ``lengths`` the six link lengths): writes the
-    Jacobian into ``out`` (6, 6) and returns the pose's 16 entries as a tuple,
-    row by row."""
+    Jacobian into ``out`` (6, 6) and returns the top three rows of the pose (12
+    entries, row by row; the last row is 0, 0, 0, 1) as a tuple."""
     q1, q2, q3, q4, q5, q6 = q
     d1, a2, a3, d4, d5, d6 = lengths
     q23 = q2 + q3
@@ -951,4 +951,4 @@ def pose_jacobian_one(q, lengths, out):
     x25 = -x20 + x24
     x26 = -c1
     _pack36(out, 0, x17, -c1*x23, c1*x25, c1*x24, -d6*(c234*x15 + x0), 0.0, x14, -s1*x23, s1*x25, s1*x24, d6*(-c234*c5*s1 + x7), 0.0, 0.0, x13, x12, d5*s234 - x11, -s234*x9, 0.0, 0.0, s1, s1, s1, c1*s234, x8, 0.0, x26, x26, x26, s1*s234, x16, 1.0, 0.0, 0.0, 0.0, -c234, x19)
-    return (c1*x3 + c6*x0, -c1*x6 - s6*x0, x8, x14, -c6*x7 + s1*x3, -s1*x6 + s6*x7, x16, -x17, c5*x4 + x5, -c5*x1 + x2, x19, d1 + x23, 0.0, 0.0, 0.0, 1.0)
+    return (c1*x3 + c6*x0, -c1*x6 - s6*x0, x8, x14, -c6*x7 + s1*x3, -s1*x6 + s6*x7, x16, -x17, c5*x4 + x5, -c5*x1 + x2, x19, d1 + x23)
