@@ -50,6 +50,7 @@ import copy
 import functools
 import math
 from operator import add as _add
+from struct import Struct
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -171,26 +172,27 @@ class _Problem:
         e_o = omega if self.form == "log" else sin_axis
         return T, np.concatenate([e_p, e_o], axis=-1), position_error, theta
 
-    def evaluate_one(self, q: list[float]):
+    def evaluate_one(self, q: list[float], J: np.ndarray, error: np.ndarray):
         """:meth:`evaluate` for one configuration (six floats) against the only target, with
         its Jacobian: the pose's top three rows as a tuple of 12 floats, ``e`` (m,), the two
-        errors as floats, ``J`` (m, 6) and ``|e|²`` as a float.  The plain kinematics give the
+        errors as floats, ``J`` (m, 6) and ``|e|²`` as a float; ``J`` and ``e`` are written
+        into the arrays given, ``J`` (6, 6) and ``error`` (m,).  The plain kinematics give the
         pose and the Jacobian from one generated function (they share every cosine and sine)."""
         robot = self.robot
         if robot._plain:
-            J = np.empty((6, 6))
             pose = _gen.pose_jacobian_one(q, robot.lengths, J)
         else:
             array = np.array(q)
             pose = tuple(fk(robot, array)[:3].ravel().tolist())
-            J = jacobian(robot, array)
+            J[...] = jacobian(robot, array)
         a, b, c, x, d, e, f, y, g, h, i, z = pose
         tx, ty, tz = self.position_one
         x, y, z = tx - x, ty - y, tz - z
         squares = x * x + y * y + z * z
         position_error = math.sqrt(squares)
         if self.R is None:
-            return pose, np.array((x, y, z)), position_error, 0.0, J[:3], squares
+            _pack3(error, 0, x, y, z)
+            return pose, error, position_error, 0.0, J[:3], squares
         t0, t1, t2, t3, t4, t5, t6, t7, t8 = self.rotation_one
         sin_axis, theta, omega = _rotation_parts_one(  # of R_target R_currentᵀ
             t0 * a + t1 * b + t2 * c,
@@ -205,7 +207,8 @@ class _Problem:
         )
         u, v, w = omega if self.form == "log" else sin_axis
         squares += u * u + v * v + w * w
-        return pose, np.array((x, y, z, u, v, w)), position_error, theta, J, squares
+        _pack6(error, 0, x, y, z, u, v, w)
+        return pose, error, position_error, theta, J, squares
 
     def jacobians(self, Q: np.ndarray) -> np.ndarray:
         J = jacobian(self.robot, Q)
@@ -222,6 +225,9 @@ class _Problem:
         if self.wide_limits:
             return q
         return [min(max(x, lo), hi) for (lo, hi), x in zip(self.robot.joint_limits, q)]
+
+
+_pack3, _pack6 = Struct("3d").pack_into, Struct("6d").pack_into
 
 
 def _wrap_float(x: float) -> float:
@@ -272,7 +278,9 @@ class StepRule:
     current poses ``T`` (k, 4, 4), Jacobians ``J`` (k, m, 6) and errors ``e`` (k, m), and
     returns the joint steps (k, 6).  Rules that keep state per target (a damping) allocate it in
     :meth:`start` and reset it in :meth:`restart`; rules that may reject a trial step say so in
-    :meth:`accept`; :meth:`given_up` lets a rule end an attempt early.
+    :meth:`accept`; :meth:`given_up` lets a rule end an attempt early.  On the single-target
+    path ``J`` and ``e`` live in arrays that are written again at later iterations: a rule
+    copies what it keeps.
 
     Attributes
     ----------
@@ -563,7 +571,11 @@ def _iterate_one(
         attempt, since_progress, attempt_best = attempt_state
     tol_position, tol_orientation = problem.tol_position, problem.tol_orientation
     patience, limit_steps, uses_pose = rule.patience, max_step != math.inf, rule.uses_pose
-    pose, e, pos, rot, J, squares = problem.evaluate_one(q)
+    # J and e of the current configuration and of the trial, in two pairs of arrays that
+    # swap roles when a trial is accepted (a rule must not keep them across iterations)
+    m = 3 if problem.R is None else 6
+    current, spare = (np.empty((6, 6)), np.empty(m)), (np.empty((6, 6)), np.empty(m))
+    pose, e, pos, rot, J, squares = problem.evaluate_one(q, *current)
     while True:
         residual = pos if pos > rot else rot
         if residual < best:
@@ -584,7 +596,7 @@ def _iterate_one(
             rule.start(1)
             rng = np.random.default_rng(seed) if rng is None else rng
             q = random_configurations(problem.robot, (), rng).tolist()
-            pose, e, pos, rot, J, squares = problem.evaluate_one(q)
+            pose, e, pos, rot, J, squares = problem.evaluate_one(q, *current)
             continue
         T = np.array((*pose, 0.0, 0.0, 0.0, 1.0)).reshape(4, 4) if uses_pose else None
         dq = rule.step(problem, 0, T, J, e)
@@ -595,9 +607,10 @@ def _iterate_one(
                 dq = dq * (max_step / largest)
                 steps = dq.tolist()
         trial = problem.wrap_one(list(map(_add, q, steps)))
-        evaluated = problem.evaluate_one(trial)
+        evaluated = problem.evaluate_one(trial, *spare)
         if rule.accept_one(e, evaluated[1], J, dq, squares, evaluated[5]):
             q, (pose, e, pos, rot, J, squares) = trial, evaluated
+            current, spare = spare, current
         iterations += 1
         attempt += 1
 
