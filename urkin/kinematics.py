@@ -136,26 +136,33 @@ def _six(q: ArrayLike) -> list[float] | None:
     """The scalar fast path's test: the six floats of ``q`` when it is one configuration, of
     shape (6,) or a stack of one (1, 6), as a float array, finite and within
     ±:data:`MAX_JOINT_ANGLE`; else None (and the general path checks ``q`` and explains what is
-    wrong).
+    wrong)."""
+    if type(q) is np.ndarray:
+        shape = q.shape
+        if shape == _SIX:
+            return _one(q)
+        if shape == _ONE_ROW:
+            return _one(q[0])
+    return None
+
+
+_SIX, _ONE_ROW = (6,), (1, 6)
+
+
+def _one(q: np.ndarray) -> list[float] | None:
+    """:func:`_six` of an array of shape (6,) (the caller has checked its type and shape).
 
     One sum of squares decides (NaN and inf fail it; an overflow gives inf): it is below
     ``MAX_JOINT_ANGLE²`` only when every angle is in range, and the rare configuration with
     every angle in range but a larger sum takes the general path, which checks each angle."""
-    if type(q) is np.ndarray and q.dtype is _FLOAT:
-        shape = q.shape
-        if shape == _SIX:
-            values = q.tolist()
-        elif shape == _ONE_ROW:
-            (values,) = q.tolist()
-        else:
-            return None
+    if q.dtype is _FLOAT:
+        values = q.tolist()
         a, b, c, d, e, f = values
         if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
             return values
     return None
 
 
-_SIX, _ONE_ROW = (6,), (1, 6)
 _MAX_SQUARED = MAX_JOINT_ANGLE**2
 
 
@@ -239,10 +246,10 @@ def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> fk(ur5, np.zeros((10, 6))).shape
     (10, 4, 4)
     """
-    values = _six(q)
-    if values is not None and type(robot) is Robot and robot._plain:  # one pose: no detour
-        out = None if q.ndim == 1 else np.empty((1, 4, 4))  # a stack of one
-        return _gen.t06_one(values, robot.lengths, out)
+    if type(q) is np.ndarray and q.shape == _SIX and type(robot) is Robot and robot._plain:
+        values = _one(q)
+        if values is not None:  # one pose: no detour
+            return _gen.t06_one(values, robot.lengths)
     robot = check_robot(robot)
     T = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))
     if robot._plain:
@@ -338,10 +345,10 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> J[3:, 0]  # joint 1 turns about the base z axis
     array([0., 0., 1.])
     """
-    values = _six(q)
-    if values is not None and type(robot) is Robot and robot._plain:  # one pose: no detour
-        out = None if q.ndim == 1 else np.empty((1, 6, 6))  # a stack of one
-        return _gen.jacobian_one(values, robot.lengths, out)
+    if type(q) is np.ndarray and q.shape == _SIX and type(robot) is Robot and robot._plain:
+        values = _one(q)
+        if values is not None:  # one pose: no detour
+            return _gen.jacobian_one(values, robot.lengths)
     robot = check_robot(robot)
     J = _evaluate(robot, q, _gen.jacobian_one, _gen.jacobian_many, (6, 6))
     if robot._plain:
