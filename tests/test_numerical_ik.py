@@ -188,3 +188,37 @@ def test_results_index_and_print():
     assert "success=True" in repr(batch[0])
     with pytest.raises(TypeError):
         len(batch[0])
+
+
+def test_a_custom_step_rule_runs_on_the_single_and_the_stacked_path():
+    """A rule written against the StepRule API alone (step and accept, no single-path
+    methods): its accept is asked on both paths, and its rejections are honoured."""
+    from urkin.numerical_ik import StepRule
+
+    class CautiousNewton(StepRule):
+        name = "cautious"
+
+        def __init__(self):
+            self.asked = 0
+
+        def step(self, problem, rows, T, J, e):
+            return (
+                np.linalg.lstsq(J, e, rcond=None)[0]
+                if J.ndim == 2
+                else np.stack([np.linalg.lstsq(j, v, rcond=None)[0] for j, v in zip(J, e)])
+            )
+
+        def accept(self, rows, e, e_trial, J, dq):
+            self.asked += 1
+            better = np.sum(e_trial * e_trial, axis=-1) < np.sum(e * e, axis=-1)
+            return better
+
+    ur5 = urkin.robot("ur5")
+    targets = urkin.fk(ur5, np.random.default_rng(8).uniform(-np.pi, np.pi, (40, 6)))
+    rule = CautiousNewton()
+    single = urkin.ik(ur5, targets[0], method=rule)
+    assert rule.asked > 0 and single.success
+    stacked = urkin.ik(ur5, targets, method=rule)
+    assert stacked.success.mean() >= 0.9
+    position = np.linalg.norm(urkin.fk(ur5, stacked.q)[:, :3, 3] - targets[:, :3, 3], axis=1)
+    assert position[stacked.success].max() <= 1e-10
