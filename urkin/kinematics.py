@@ -139,10 +139,8 @@ def _six(q: ArrayLike) -> list[float] | None:
     wrong)."""
     if type(q) is np.ndarray:
         shape = q.shape
-        if shape == _SIX:
+        if shape == _SIX or shape == _ONE_ROW:
             return _one(q)
-        if shape == _ONE_ROW:
-            return _one(q[0])
     return None
 
 
@@ -150,13 +148,16 @@ _SIX, _ONE_ROW = (6,), (1, 6)
 
 
 def _one(q: np.ndarray) -> list[float] | None:
-    """:func:`_six` of an array of shape (6,) (the caller has checked its type and shape).
+    """:func:`_six` of an array of shape (6,) or (1, 6) (the caller has checked its type and
+    shape).
 
     One sum of squares decides (NaN and inf fail it; an overflow gives inf): it is below
     ``MAX_JOINT_ANGLE²`` only when every angle is in range, and the rare configuration with
     every angle in range but a larger sum takes the general path, which checks each angle."""
     if q.dtype is _FLOAT:
         values = q.tolist()
+        if len(values) == 1:  # a stack of one
+            (values,) = values
         a, b, c, d, e, f = values
         if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
             return values
@@ -246,10 +247,13 @@ def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> fk(ur5, np.zeros((10, 6))).shape
     (10, 4, 4)
     """
-    if type(q) is np.ndarray and q.shape == _SIX and type(robot) is Robot and robot._plain:
-        values = _one(q)
-        if values is not None:  # one pose: no detour
-            return _gen.t06_one(values, robot.lengths)
+    if type(q) is np.ndarray and type(robot) is Robot and robot._plain:
+        shape = q.shape
+        if shape == _SIX or shape == _ONE_ROW:
+            values = _one(q)
+            if values is not None:  # one pose, or a stack of one: no detour
+                out = None if shape == _SIX else np.empty((1, 4, 4))
+                return _gen.t06_one(values, robot.lengths, out)
     robot = check_robot(robot)
     T = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))
     if robot._plain:
@@ -345,10 +349,13 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> J[3:, 0]  # joint 1 turns about the base z axis
     array([0., 0., 1.])
     """
-    if type(q) is np.ndarray and q.shape == _SIX and type(robot) is Robot and robot._plain:
-        values = _one(q)
-        if values is not None:  # one pose: no detour
-            return _gen.jacobian_one(values, robot.lengths)
+    if type(q) is np.ndarray and type(robot) is Robot and robot._plain:
+        shape = q.shape
+        if shape == _SIX or shape == _ONE_ROW:
+            values = _one(q)
+            if values is not None:  # one pose, or a stack of one: no detour
+                out = None if shape == _SIX else np.empty((1, 6, 6))
+                return _gen.jacobian_one(values, robot.lengths, out)
     robot = check_robot(robot)
     J = _evaluate(robot, q, _gen.jacobian_one, _gen.jacobian_many, (6, 6))
     if robot._plain:
