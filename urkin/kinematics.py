@@ -167,6 +167,19 @@ def _one(q: np.ndarray) -> list[float] | None:
 _MAX_SQUARED = MAX_JOINT_ANGLE**2
 
 
+def _one_pose(robot: Robot, q: ArrayLike, one, shape: tuple[int, ...]) -> np.ndarray | None:
+    """The generated one-pose function ``one`` at ``q`` when ``q`` is one configuration (6,) or
+    a stack of one (1, 6) passing :func:`_one` and ``robot`` is a plain :class:`Robot` (the
+    fast path of :func:`fk` and :func:`jacobian`); else None."""
+    if type(q) is np.ndarray and type(robot) is Robot and robot._plain:
+        size = q.shape
+        if size == _SIX or size == _ONE_ROW:
+            values = _one(q)
+            if values is not None:
+                return one(values, robot.lengths, None if size == _SIX else np.empty((1, *shape)))
+    return None
+
+
 def _few(q: ArrayLike) -> list[list[float]] | None:
     """The rows of ``q`` when it is a small stack (k ≤ :data:`_FEW`, k, 6) of float angles, all
     finite and in range; else None (the general path checks ``q``)."""
@@ -247,13 +260,9 @@ def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> fk(ur5, np.zeros((10, 6))).shape
     (10, 4, 4)
     """
-    if type(q) is np.ndarray and type(robot) is Robot and robot._plain:
-        shape = q.shape
-        if shape == _SIX or shape == _ONE_ROW:
-            values = _one(q)
-            if values is not None:  # one pose, or a stack of one: no detour
-                out = None if shape == _SIX else np.empty((1, 4, 4))
-                return _gen.t06_one(values, robot.lengths, out)
+    found = _one_pose(robot, q, _gen.t06_one, (4, 4))
+    if found is not None:  # one pose, or a stack of one, of the plain arm: no detour
+        return found
     robot = check_robot(robot)
     T = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))
     if robot._plain:
@@ -349,13 +358,9 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> J[3:, 0]  # joint 1 turns about the base z axis
     array([0., 0., 1.])
     """
-    if type(q) is np.ndarray and type(robot) is Robot and robot._plain:
-        shape = q.shape
-        if shape == _SIX or shape == _ONE_ROW:
-            values = _one(q)
-            if values is not None:  # one pose, or a stack of one: no detour
-                out = None if shape == _SIX else np.empty((1, 6, 6))
-                return _gen.jacobian_one(values, robot.lengths, out)
+    found = _one_pose(robot, q, _gen.jacobian_one, (6, 6))
+    if found is not None:  # one pose, or a stack of one, of the plain arm: no detour
+        return found
     robot = check_robot(robot)
     J = _evaluate(robot, q, _gen.jacobian_one, _gen.jacobian_many, (6, 6))
     if robot._plain:

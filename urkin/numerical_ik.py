@@ -121,7 +121,6 @@ def orientation_error(R_current: ArrayLike, R_target: ArrayLike, form: str = "lo
 
 
 @functools.lru_cache(maxsize=64)
-@functools.lru_cache(maxsize=32)
 def _limits(joint_limits: tuple[tuple[float, float], ...]) -> tuple[np.ndarray, np.ndarray, bool]:
     """Lower and upper joint limits as arrays, and whether they allow every angle of (−π, π]."""
     lower = np.array([lo for lo, _ in joint_limits])
