@@ -306,7 +306,8 @@ def print_left_out(problems: list[mbm.Problem]) -> None:
         "urkin's model (the first offending pair, planning.explain):\n"
     )
     for p in problems:
-        print(f"- {p.name}: {p.reason}")
+        vamp = "" if p.vamp_free else " (VAMP's own spheres refuse it too)"
+        print(f"- {p.name}: {p.reason}{vamp}")
 
 
 # --- collision-check costs --------------------------------------------------------------------
@@ -456,7 +457,9 @@ def main() -> None:
         left_out = [p for p in loaded if p.reason]
         title = (
             f"MotionBenchMaker UR5 problems (VAMP's copy): the first {args.problems} of each "
-            f"family, {len(problems)} of {len(loaded)} with start and goal free under urkin's model"
+            f"family, {len(problems)} of {len(loaded)} with start and goal free under urkin's "
+            f"model ({sum(p.vamp_free for p in problems)} of the "
+            f"{sum(p.vamp_free for p in loaded)} free under VAMP's own spheres)"
         )
     else:
         problems = [p for f in families for p in pp.problems(f, args.problems, args.seed)]

@@ -25,8 +25,20 @@ bound with which :mod:`urkin.planning.spheres` turns node values into a lower bo
 distance anywhere between nodes.  ``tests/test_planning_spheres.py`` holds each table to
 surface samples of the meshes placed by the URDF at fresh configurations.
 
-The solid of revolution around wrist 3: its mesh, split until no edge is longer than ``EDGE``,
-in slabs ``SLAB`` thick along joint 6's axis; each slab's radius is the largest distance from
+The UR5's wrist 3 is round but for a bump 5.6 mm high, 11° wide: revolved, the bump would make a
+ring that touches the forearm where the real wrist is millimetres clear (one of
+MotionBenchMaker's goals, 5 mm apart, was refused so).  So the mesh, split until no edge is
+longer than ``EDGE``, is first cut in two: the pieces with a vertex more than ``BUMP`` farther
+from the axis than the wrist's typical radius at that height (in slabs ``EDGE`` thick, the
+median over ``SECTORS`` sectors of the turn of each sector's largest radius; the largest of that
+in the vertex's slab and its two neighbours) are the bump, when one sphere (made as the fitted
+spheres are) of radius at most ``BUMP_RADIUS`` holds them; the table holds the rest, and the
+sphere is stored with the table (``<arm>_36_spheres``): a fitted model tests it against every
+forearm sphere.  The UR3's wrist has wider irregularities around a third of its turn (no small
+sphere holds them) and the UR10's none: their tables hold the whole wrist.
+
+The solid of revolution around wrist 3: its pieces but for a bump, in slabs ``SLAB`` thick
+along joint 6's axis; each slab's radius is the largest distance from
 the axis of a vertex within ``EDGE`` of the slab, plus ``EDGE`` (every surface point is within
 ``EDGE`` of a vertex), drawn as a prism of ``SIDES`` faces circumscribing that circle, with
 discs closing the steps between slabs and the ends.
@@ -44,7 +56,7 @@ import numpy as np
 import urkin
 from urkin.kinematics import dh_transform
 
-from .fit_spheres import mesh_in_dh_frames, subdivide
+from .fit_spheres import mesh_in_dh_frames, sphere_of, subdivide
 
 N = 360  # grid nodes per joint turn: one per degree
 UNIT = 0.00025  # m: distances are stored as whole multiples of this, rounded down
@@ -53,6 +65,9 @@ CAP = 0.06  # m: distances beyond this are stored as this
 #: about its joint's axis (a solid of revolution).
 LINKS = ((0, 2), (3, 5), (3, 6))
 EDGE, SLAB, SIDES = 0.002, 0.002, 64
+#: A bump on wrist 3 (below): mesh reaching more than ``BUMP`` beyond the typical radius of its
+#: height, split off when one sphere of radius at most ``BUMP_RADIUS`` holds it.
+BUMP, BUMP_RADIUS, SECTORS = 0.002, 0.01, 16
 OUT = Path(__file__).resolve().parents[1] / "urkin" / "planning" / "_pair_tables.py"
 
 
@@ -64,6 +79,31 @@ def bvh(coal, triangles: np.ndarray):
     model.addTriangles(np.arange(len(vertices)).reshape(-1, 3))
     model.endModel()
     return model
+
+
+def split(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Wrist 3's mesh (in its DH frame) split until no edge is longer than ``EDGE``, and which
+    of the pieces are a bump (see the module notes): pieces (M, 3, 3), bump (M,) bool (all
+    False when the mesh has no bump one small sphere holds)."""
+    pieces = subdivide(triangles, EDGE)
+    v = pieces.reshape(-1, 3)
+    r, z = np.hypot(v[:, 0], v[:, 1]), v[:, 2]
+    sector = ((np.arctan2(v[:, 1], v[:, 0]) + np.pi) * (SECTORS / (2 * np.pi))).astype(int)
+    slab = ((z - z.min()) / EDGE).astype(int)
+    outline = np.zeros((slab.max() + 1, SECTORS))  # the largest radius per slab and sector
+    np.maximum.at(outline, (slab, sector % SECTORS), r)
+    typical = np.pad(np.median(outline, axis=1), 1, mode="edge")
+    typical = np.max([typical[slab], typical[slab + 1], typical[slab + 2]], axis=0)
+    bump = np.any((r > typical + BUMP).reshape(-1, 3), axis=1)
+    if bump.any() and bump_sphere(pieces[bump])[3] > BUMP_RADIUS:
+        bump[:] = False  # not a bump but a side of the link: the solid holds it
+    return pieces, bump
+
+
+def bump_sphere(pieces: np.ndarray) -> np.ndarray:
+    """The sphere (x, y, z, radius) holding a bump's pieces (as the fitted spheres are made)."""
+    centre, radius = sphere_of(pieces)
+    return np.array([*centre, radius])
 
 
 def revolved(triangles: np.ndarray) -> np.ndarray:
@@ -100,19 +140,23 @@ def revolved(triangles: np.ndarray) -> np.ndarray:
     return np.array(out)
 
 
-def table(name: str, first: int, second: int) -> tuple[np.ndarray, np.ndarray]:
+def table(name: str, first: int, second: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The distance table of links ``first`` and ``second`` (DH frames) of arm ``name``, over
-    joints ``first + 1`` and ``first + 2``, and the second link's reach from those joints'
-    axes."""
+    joints ``first + 1`` and ``first + 2``, the second link's reach from those joints' axes,
+    and the spheres (k, 4) that hold what the table leaves out (a bump of wrist 3)."""
     import coal
 
     arm = urkin.robot(name)
     dh = arm.dh_table()
     meshes = mesh_in_dh_frames(name)
     near, far = meshes[first], meshes[second]
+    spheres = np.zeros((0, 4))
     if second == first + 3:  # turned about the last joint's axis: in the frame before it
+        pieces, bump = split(far)
+        if bump.any():
+            spheres = bump_sphere(pieces[bump])[None]
         A = dh_transform(0.0, dh[second - 1, 0], dh[second - 1, 1], dh[second - 1, 2])
-        far = revolved(far) @ A[:3, :3].T + A[:3, 3]
+        far = revolved(pieces[~bump]) @ A[:3, :3].T + A[:3, 3]
     a = coal.CollisionObject(bvh(coal, near), coal.Transform3s())
     b = coal.CollisionObject(bvh(coal, far), coal.Transform3s())
     request, result = coal.DistanceRequest(), coal.DistanceResult()
@@ -140,17 +184,18 @@ def table(name: str, first: int, second: int) -> tuple[np.ndarray, np.ndarray]:
     placed = A1[0, :3, :3] @ moved + A1[0, :3, 3:4]  # frame first (the first joint's turn
     reach1 = float(np.hypot(placed[:, 0], placed[:, 1]).max())  # does not change it)
     stored = np.floor(np.minimum(out, CAP) / UNIT).astype(np.uint8)
-    return stored, np.array([reach1, reach2])
+    return stored, np.array([reach1, reach2]), spheres
 
 
 def main() -> None:
     arrays = {}
     for name in ("ur3", "ur5", "ur10"):
         for first, second in LINKS:
-            stored, reach = table(name, first, second)
+            stored, reach, spheres = table(name, first, second)
             key = f"{name}_{first}{second}"
             arrays[f"{key}_distance"] = stored
             arrays[f"{key}_reach"] = reach
+            arrays[f"{key}_spheres"] = spheres
             print(f"{key}: touching at {np.mean(stored == 0):.1%} of the nodes; reach {reach}")
     buffer = io.BytesIO()
     np.savez_compressed(buffer, unit=UNIT, links=np.array(LINKS), **arrays)
@@ -166,8 +211,9 @@ Written by ``python -m tests.pair_tables`` (see it for the method, and
 :class:`urkin.planning.spheres.MeshPair` for the use); do not edit by hand.  ``NPZ`` is a
 compressed numpy archive, base64-encoded (a module, so that every copy of the package has
 it): ``unit`` (m), ``links`` (k, 2) the pairs' DH frames and, per arm and pair,
-``<arm>_<a><b>_distance`` (N, N) in units of ``unit`` and ``<arm>_<a><b>_reach`` (2,) in
-metres.
+``<arm>_<a><b>_distance`` (N, N) in units of ``unit``, ``<arm>_<a><b>_reach`` (2,) in
+metres and ``<arm>_<a><b>_spheres`` (k, 4), spheres ``(x, y, z, radius)`` in frame ``b`` (m)
+holding the part of link ``b`` the table leaves out.
 """
 
 '''

@@ -37,7 +37,7 @@ def test_every_link_has_spheres_and_the_table_is_metres():
     for name in ("UR3", "UR5", "UR10"):
         model = planning.sphere_model(urkin.robot(name))
         assert set(model.frames.tolist()) == set(range(7))
-        assert np.all((model.radii > 0.01) & (model.radii < 0.2))
+        assert np.all((model.radii > 0.004) & (model.radii < 0.2))  # 4.7 mm: the UR5's bump
 
 
 def test_models_follow_the_base_and_refuse_other_arms():
@@ -147,7 +147,10 @@ def test_tabulated_meshes_are_never_closer_than_their_table_says(name, links):
     are within 1 cm; and it must be close to it (a useless bound would be safe too)."""
     model = planning.sphere_model(urkin.robot(name))
     (pair,) = [p for p in model.meshes if p.frames == links]
-    assert not np.any(np.all(np.sort(model.frames[model.pairs], axis=1) == links, axis=1))
+    on = np.all(np.sort(model.frames[model.pairs], axis=1) == links, axis=1)
+    bumps = np.flatnonzero(np.isin(model.radii, pair.spheres[:, 3]) & (model.frames == links[1]))
+    assert len(bumps) == len(pair.spheres)  # the pair's own spheres: the only ones tested
+    assert not np.any(on & ~np.isin(model.pairs, bumps).any(axis=1))
     rng = np.random.default_rng(31)
     Q = urkin.robots.random_configurations(model.robot, 40_000, rng)
     bound = pair.lower_bound(Q)
@@ -168,6 +171,8 @@ def test_tabulated_meshes_are_never_closer_than_their_table_says(name, links):
     slack = []
     for q, lower in zip(Q[pick], bound[pick]):
         meshes = posed_meshes(name, q)
+        if links == (3, 6):  # the table holds wrist 3 but for its bump (its sphere's, below)
+            meshes[6] = tabled_wrist_3(name, meshes[6])
         a, b = (sample_surface(meshes[k], 2500, rng) for k in pair.frames)
         around = np.linalg.norm(np.ptp(b, axis=0)) + 0.06  # b's bounding box and 6 cm
         a = a[np.linalg.norm(a - b.mean(axis=0), axis=1) <= around]
@@ -178,6 +183,46 @@ def test_tabulated_meshes_are_never_closer_than_their_table_says(name, links):
     # slopes (9 mm for the base and the long upper arm); a solid of revolution 2–4 mm wider
     allowed = 0.004 + pair._slope().sum() / 2 + (0.0 if links[1] - links[0] == 2 else 0.004)
     assert np.median(slack) < allowed
+
+
+def tabled_wrist_3(name: str, posed: np.ndarray, part: bool = False) -> np.ndarray:
+    """The pieces of wrist 3's mesh that its table holds (or, ``part=True``, its bump), placed
+    like ``posed``, the mesh placed by the URDF: the rigid motion taking the mesh in its DH
+    frame onto ``posed``, fitted to their vertices (Kabsch), carries the pieces."""
+    from tests.fit_spheres import mesh_in_dh_frames
+    from tests.pair_tables import split
+
+    local = mesh_in_dh_frames(name)[6]
+    pieces, bump = split(local)
+    P, W = local.reshape(-1, 3), posed.reshape(-1, 3)
+    p0, w0 = P.mean(axis=0), W.mean(axis=0)
+    U, _, Vt = np.linalg.svd((P - p0).T @ (W - w0))
+    R = (U @ np.diag([1, 1, np.sign(np.linalg.det(U @ Vt))]) @ Vt).T
+    np.testing.assert_allclose((P - p0) @ R.T + w0, W, atol=1e-9)
+    return (pieces[bump if part else ~bump] - p0) @ R.T + w0
+
+
+def test_the_ur5s_wrist_3_bump_is_held_by_its_sphere_and_tested_against_the_forearm():
+    """The UR5's wrist 3 is round but for a bump 5.6 mm high: its table (forearm and wrist 3)
+    holds the solid the rest sweeps about joint 6, and one small sphere, tested against every
+    forearm sphere, holds the bump (placed by the URDF at random configurations).  The UR3's
+    and UR10's wrists have no bump one small sphere holds: their tables hold all of it."""
+    model = planning.sphere_model(urkin.robot("UR5"))
+    (pair,) = [p for p in model.meshes if p.frames == (3, 6)]
+    assert pair.spheres.shape == (1, 4) and pair.spheres[0, 3] < 0.006
+    (bump,) = np.flatnonzero(model.radii < 0.006)
+    assert model.frames[bump] == 6 and model.names[bump] == "wrist 3 sphere 1"
+    mine = model.pairs[np.any(model.pairs == bump, axis=1)]
+    assert np.all(mine[:, 1] == bump)
+    np.testing.assert_array_equal(np.sort(mine[:, 0]), np.flatnonzero(model.frames == 3))
+    rng = np.random.default_rng(41)
+    for q in rng.uniform(-np.pi, np.pi, (5, 6)):
+        centre = model.place(q)[bump] @ urkin.T_BASE_LINK_BASE[:3, :3].T
+        points = tabled_wrist_3("UR5", posed_meshes("UR5", q)[6], part=True).reshape(-1, 3)
+        assert np.linalg.norm(points - centre, axis=1).max() <= model.radii[bump]
+    for name in ("UR3", "UR10"):
+        meshes = planning.sphere_model(urkin.robot(name)).meshes
+        assert [p.spheres.shape for p in meshes if p.frames == (3, 6)] == [(0, 4)]
 
 
 def test_tool_spheres_join_the_model_with_derived_pairs():

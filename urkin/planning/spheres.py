@@ -25,32 +25,32 @@ Provenance of the fitted models
     16 mm and more there, and one ball on each wrist 2 cm).
 
 Self-collision pairs
-    Three pairs of links of the fitted models are tested on their meshes, not their
-    spheres: the base and the upper arm (their relative pose depends on joints 1 and 2
-    only), the forearm and wrist 2 (joints 4 and 5), and the forearm and wrist 3 turned
-    about joint 6's axis by any angle (a solid of revolution around its nearly round mesh:
-    joints 4 and 5 again).  ``python -m tests.pair_tables`` tabulates the exact distance of
-    each pair over its two joints, one node per degree (:class:`MeshPair`; between nodes a
-    lower bound from the nearest four).  Their spheres, which reach 1–3 cm beyond the
-    surface at the housings' flat faces, overlap where the links are clear: of random
-    configurations, the spheres leave 60 % of the UR5's free of self-collision, the tables
-    70 % (UR10: 79 and 82 %; UR3: 59 and 66 %); of VAMP's 700 MotionBenchMaker UR5 problems
-    (VAMP's gripper spheres on the flange), the spheres put the start or goal of 49 in
-    collision, the tables and spheres together 6 (four by a tabled pair whose meshes are
-    0.1–5 mm apart, two by a sphere against a box).  The
-    other pairs of the fitted models are witnessed by the meshes: in 2,000 seeded random
+    Three pairs of links of the fitted models are tested on their meshes, not their spheres: the
+    base and the upper arm (their relative pose depends on joints 1 and 2 only), the forearm and
+    wrist 2 (joints 4 and 5), and the forearm and wrist 3 turned about joint 6's axis by any
+    angle (a solid of revolution around its nearly round mesh: joints 4 and 5 again; the UR5's
+    wrist 3 carries a bump 5.6 mm high, which the solid leaves out and a small sphere of its own
+    holds, tested against every forearm sphere).  ``python -m tests.pair_tables`` tabulates the
+    exact distance of each pair over its two joints, one node per degree (:class:`MeshPair`;
+    between nodes a lower bound from the nearest four).  Their spheres, which reach 1–3 cm
+    beyond the surface at the housings' flat faces, overlap where the links are clear: of random
+    configurations, the spheres leave 60 % of the UR5's free of self-collision, the tables 70 %
+    (UR10: 79 and 82 %; UR3: 59 and 66 %); of VAMP's 700 MotionBenchMaker UR5 problems (VAMP's
+    gripper spheres on the flange), the spheres put the start or goal of 49 in collision, the
+    tables and spheres together 5 (three by a tabled pair whose meshes are 0.1–2.4 mm apart, two
+    by a sphere against a box; of the 689 that VAMP's own spheres leave free, one).  The other
+    pairs of the fitted models are witnessed by the meshes: in 2,000 seeded random
     configurations, wherever two links that are not the same or adjacent came within 5 mm of
     each other, the two spheres holding the nearby points form a pair to test; pairs that
-    overlapped in every one of 20,000 random configurations are dropped (a fixed overlap of
-    two housings would make every configuration a collision).  The tests check on fresh
+    overlapped in every one of 20,000 random configurations are dropped (a fixed overlap of two
+    housings would make every configuration a collision).  The tests check on fresh
     configurations that no contact of the meshes goes unseen, and the table against surface
-    samples.  Of a hand-built model (:func:`self_pairs`, no meshes to consult): two spheres
-    are tested against each other unless their links are the same or
-    adjacent (frames ``i`` and ``i ± 1``; the tool frame is part of link 6), or, over 20,000
-    random configurations within the joint limits (seed 0), they never came within 2 cm of
-    each other (they cannot meet in practice) or always overlapped; it runs once per model
-    (a fifth of a second for 45 spheres).  Tool spheres added to a fitted model get their
-    pairs by this rule.
+    samples.  Of a hand-built model (:func:`self_pairs`, no meshes to consult): two spheres are
+    tested against each other unless their links are the same or adjacent (frames ``i`` and
+    ``i ± 1``; the tool frame is part of link 6), or, over 20,000 random configurations within
+    the joint limits (seed 0), they never came within 2 cm of each other (they cannot meet in
+    practice) or always overlapped; it runs once per model (a fifth of a second for 45 spheres).
+    Tool spheres added to a fitted model get their pairs by this rule.
 """
 
 from __future__ import annotations
@@ -114,15 +114,31 @@ class MeshPair:
         Metres; rows: the first joint, columns: the second.
     reach : ndarray, shape (2,)
         Metres.
+    spheres : ndarray, shape (k, 4)
+        Spheres ``(x, y, z, radius)`` fixed in the second link's frame that hold the part of
+        its mesh the table leaves out (the UR5's wrist 3 carries a small bump that its solid
+        of revolution would spread around the whole turn); a fitted model tests them
+        against the first link's spheres.  Empty by default.
     """
 
     frames: tuple[int, int]
     distance: np.ndarray
     reach: np.ndarray
+    spheres: np.ndarray = field(default_factory=lambda: np.zeros((0, 4)))
 
     def __post_init__(self) -> None:
         a, b = self.frames
         n = len(self.distance)
+        spheres = np.asarray(self.spheres, dtype=float)
+        if spheres.ndim != 2 or spheres.shape[1] != 4 or not np.isfinite(spheres).all():
+            raise ValueError(
+                f"spheres must be finite rows (x, y, z, radius), shape (k, 4); got shape "
+                f"{spheres.shape}"
+            )
+        if np.any(spheres[:, 3] <= 0):
+            raise ValueError("spheres: every radius must be positive (metres)")
+        object.__setattr__(self, "spheres", spheres)
+        spheres.setflags(write=False)
         if b - a not in (2, 3) or not 0 <= a <= 6 - (b - a):
             raise ValueError(
                 f"frames must be (a, a + 2) or (a, a + 3) within frames 0 … 6; got {self.frames}"
@@ -661,15 +677,22 @@ def _pair_contacts(
 @functools.lru_cache(maxsize=16)
 def _fitted(name: str) -> SphereModel:
     arm = _robot_by_name(name)
+    pairs = _mesh_pairs(name.lower())
+    rows = list(FITTED[name.lower()])
+    extra = []  # what a table leaves out: its spheres against every sphere of the first link
+    for pair in pairs:
+        for sphere in pair.spheres:
+            first = [i for i, row in enumerate(FITTED[name.lower()]) if row[0] == pair.frames[0]]
+            extra.extend((i, len(rows)) for i in first)
+            rows.append((pair.frames[1], *sphere))
     model = SphereModel.from_rows(
         arm,
-        FITTED[name.lower()],
+        rows,
         pairs=PAIRS[name.lower()],
         source=(
             f"fitted to the ROS-Industrial {arm.name} collision meshes (urkin.planning.spheres)"
         ),
     )
-    pairs = _mesh_pairs(name.lower())
     on = np.sort(model.frames[model.pairs], axis=1)
     tabled = np.zeros(len(model.pairs), dtype=bool)  # tested on the meshes now
     for pair in pairs:
@@ -682,7 +705,7 @@ def _fitted(name: str) -> SphereModel:
         model.frames,
         model.centres,
         model.radii,
-        model.pairs[~tabled],
+        np.concatenate([model.pairs[~tabled], np.array(extra, dtype=np.intp).reshape(-1, 2)]),
         model.names,
         model.source + f"; {links} tested on their tabulated meshes",
         pairs,
@@ -699,7 +722,9 @@ def _mesh_pairs(name: str) -> tuple[MeshPair, ...]:
         for a, b in data["links"]:
             key = f"{name}_{a}{b}"
             distance = data[f"{key}_distance"].astype(float) * unit
-            pairs.append(MeshPair((int(a), int(b)), distance, data[f"{key}_reach"].astype(float)))
+            reach = data[f"{key}_reach"].astype(float)
+            spheres = data[f"{key}_spheres"].astype(float)
+            pairs.append(MeshPair((int(a), int(b)), distance, reach, spheres))
     return tuple(pairs)
 
 
