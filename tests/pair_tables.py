@@ -33,9 +33,9 @@ from the axis than the wrist's typical radius at that height (in slabs ``EDGE`` 
 median over ``SECTORS`` sectors of the turn of each sector's largest radius; the largest of that
 in the vertex's slab and its two neighbours) are the bump, when one sphere (made as the fitted
 spheres are) of radius at most ``BUMP_RADIUS`` holds them; the table holds the rest, and the
-sphere is stored with the table (``<arm>_36_spheres``): a fitted model tests it against every
-forearm sphere.  The UR3's wrist has wider irregularities around a third of its turn (no small
-sphere holds them) and the UR10's none: their tables hold the whole wrist.
+sphere is stored with the table (``<arm>_36_spheres``): a fitted model tests it against the
+forearm spheres it can meet.  The UR3's wrist has wider irregularities around a third of its
+turn (no small sphere holds them) and the UR10's none: their tables hold the whole wrist.
 
 The solid of revolution around wrist 3: its pieces but for a bump, in slabs ``SLAB`` thick
 along joint 6's axis; each slab's radius is the largest distance from

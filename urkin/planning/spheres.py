@@ -30,27 +30,28 @@ Self-collision pairs
     wrist 2 (joints 4 and 5), and the forearm and wrist 3 turned about joint 6's axis by any
     angle (a solid of revolution around its nearly round mesh: joints 4 and 5 again; the UR5's
     wrist 3 carries a bump 5.6 mm high, which the solid leaves out and a small sphere of its own
-    holds, tested against every forearm sphere).  ``python -m tests.pair_tables`` tabulates the
-    exact distance of each pair over its two joints, one node per degree (:class:`MeshPair`;
-    between nodes a lower bound from the nearest four).  Their spheres, which reach 1–3 cm
-    beyond the surface at the housings' flat faces, overlap where the links are clear: of random
-    configurations, the spheres leave 60 % of the UR5's free of self-collision, the tables 70 %
-    (UR10: 79 and 82 %; UR3: 59 and 66 %); of VAMP's 700 MotionBenchMaker UR5 problems (VAMP's
-    gripper spheres on the flange), the spheres put the start or goal of 49 in collision, the
-    tables and spheres together 5 (three by a tabled pair whose meshes are 0.1–2.4 mm apart, two
-    by a sphere against a box; of the 689 that VAMP's own spheres leave free, one).  The other
-    pairs of the fitted models are witnessed by the meshes: in 2,000 seeded random
-    configurations, wherever two links that are not the same or adjacent came within 5 mm of
-    each other, the two spheres holding the nearby points form a pair to test; pairs that
-    overlapped in every one of 20,000 random configurations are dropped (a fixed overlap of two
-    housings would make every configuration a collision).  The tests check on fresh
-    configurations that no contact of the meshes goes unseen, and the table against surface
-    samples.  Of a hand-built model (:func:`self_pairs`, no meshes to consult): two spheres are
-    tested against each other unless their links are the same or adjacent (frames ``i`` and
-    ``i ± 1``; the tool frame is part of link 6), or, over 20,000 random configurations within
-    the joint limits (seed 0), they never came within 2 cm of each other (they cannot meet in
-    practice) or always overlapped; it runs once per model (a fifth of a second for 45 spheres).
-    Tool spheres added to a fitted model get their pairs by this rule.
+    holds, tested against the forearm spheres it can meet by the rule of hand-built models
+    below).  ``python -m tests.pair_tables`` tabulates the exact distance of each pair over its
+    two joints, one node per degree (:class:`MeshPair`; between nodes a lower bound from the
+    nearest four).  Their spheres, which reach 1–3 cm beyond the surface at the housings' flat
+    faces, overlap where the links are clear: of random configurations, the spheres leave 60 %
+    of the UR5's free of self-collision, the tables 70 % (UR10: 79 and 82 %; UR3: 59 and 66 %);
+    of VAMP's 700 MotionBenchMaker UR5 problems (VAMP's gripper spheres on the flange), the
+    spheres put the start or goal of 49 in collision, the tables and spheres together 5 (three
+    by a tabled pair whose meshes are 0.1–2.4 mm apart, two by a sphere against a box; of the
+    689 that VAMP's own spheres leave free, one).  The other pairs of the fitted models are
+    witnessed by the meshes: in 2,000 seeded random configurations, wherever two links that are
+    not the same or adjacent came within 5 mm of each other, the two spheres holding the nearby
+    points form a pair to test; pairs that overlapped in every one of 20,000 random
+    configurations are dropped (a fixed overlap of two housings would make every configuration a
+    collision).  The tests check on fresh configurations that no contact of the meshes goes
+    unseen, and the table against surface samples.  Of a hand-built model (:func:`self_pairs`,
+    no meshes to consult): two spheres are tested against each other unless their links are the
+    same or adjacent (frames ``i`` and ``i ± 1``; the tool frame is part of link 6), or, over
+    20,000 random configurations within the joint limits (seed 0), they never came within 2 cm
+    of each other (they cannot meet in practice) or always overlapped; it runs once per model (a
+    fifth of a second for 45 spheres).  Tool spheres added to a fitted model get their pairs by
+    this rule.
 """
 
 from __future__ import annotations
@@ -118,7 +119,8 @@ class MeshPair:
         Spheres ``(x, y, z, radius)`` fixed in the second link's frame that hold the part of
         its mesh the table leaves out (the UR5's wrist 3 carries a small bump that its solid
         of revolution would spread around the whole turn); a fitted model tests them
-        against the first link's spheres.  Empty by default.
+        against the first link's spheres that they can meet (the rule of hand-built models,
+        module notes).  Empty by default.
     """
 
     frames: tuple[int, int]
@@ -679,7 +681,7 @@ def _fitted(name: str) -> SphereModel:
     arm = _robot_by_name(name)
     pairs = _mesh_pairs(name.lower())
     rows = list(FITTED[name.lower()])
-    extra = []  # what a table leaves out: its spheres against every sphere of the first link
+    extra = []  # what a table leaves out: its spheres against the first link's spheres
     for pair in pairs:
         for sphere in pair.spheres:
             first = [i for i, row in enumerate(FITTED[name.lower()]) if row[0] == pair.frames[0]]
@@ -697,6 +699,10 @@ def _fitted(name: str) -> SphereModel:
     tabled = np.zeros(len(model.pairs), dtype=bool)  # tested on the meshes now
     for pair in pairs:
         tabled |= np.all(on == pair.frames, axis=1)
+    extra = np.array(extra, dtype=np.intp).reshape(-1, 2)
+    if len(extra):  # those that can meet, by the rule of hand-built models (module notes)
+        near, apart = _contacts(model, extra[:, 0], extra[:, 1])
+        extra = extra[near & apart]
     links = ", ".join(
         f"the {FRAME_NAMES[a]} and {FRAME_NAMES[b]}" for a, b in (p.frames for p in pairs)
     )
@@ -705,7 +711,7 @@ def _fitted(name: str) -> SphereModel:
         model.frames,
         model.centres,
         model.radii,
-        np.concatenate([model.pairs[~tabled], np.array(extra, dtype=np.intp).reshape(-1, 2)]),
+        np.concatenate([model.pairs[~tabled], extra]),
         model.names,
         model.source + f"; {links} tested on their tabulated meshes",
         pairs,
