@@ -297,6 +297,28 @@ def test_hand_built_models_check_their_rows():
         planning.Scene(boxes=[{"center": [0, 0, 0], "size": [1, 1, 1]}])
 
 
+def test_mesh_pairs_name_what_is_wrong_with_their_arguments():
+    D, reach = np.zeros((4, 4)), np.zeros(2)
+    pair = planning.spheres.MeshPair([3, 5], D.tolist(), reach.tolist())  # lists are arrays
+    assert pair.frames == (3, 5) and pair.distance.shape == (4, 4) and pair.spheres.shape == (0, 4)
+    with pytest.raises(ValueError, match=r"frames must be two DH frame numbers.*got \(3,\)"):
+        planning.spheres.MeshPair((3,), D, reach)
+    with pytest.raises(ValueError, match="frames must be two DH frame numbers"):
+        planning.spheres.MeshPair((3.0, 5.0), D, reach)
+    with pytest.raises(TypeError, match="distance must be numbers"):
+        planning.spheres.MeshPair((3, 5), "table", reach)
+    with pytest.raises(ValueError, match=r"distance must be \(n, n\)"):
+        planning.spheres.MeshPair((3, 5), 0.0, reach)
+    with pytest.raises(ValueError, match="reach non-negative"):
+        planning.spheres.MeshPair((3, 5), D, [0.1, np.nan])
+    with pytest.raises(ValueError, match=r"spheres must be finite rows .* got shape \(4,\)"):
+        planning.spheres.MeshPair((3, 6), D, reach, [0, 0, 0, 0.01])
+    with pytest.raises(ValueError, match="spheres: every radius must be positive"):
+        planning.spheres.MeshPair((3, 6), D, reach, [[0, 0, 0, -0.01]])
+    with pytest.raises(ValueError, match="spheres must be finite rows"):
+        planning.spheres.MeshPair((3, 6), D, reach, [[0, 0, np.inf, 0.01]])
+
+
 def test_mesh_pairs_refuse_tables_they_cannot_use():
     fine = np.zeros((4, 4)), np.zeros(2)
     for frames in ((3, 4), (2, 6), (4, 7), (5, 7)):  # adjacent, too far apart, past the flange

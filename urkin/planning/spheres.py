@@ -129,9 +129,18 @@ class MeshPair:
     spheres: np.ndarray = field(default_factory=lambda: np.zeros((0, 4)))
 
     def __post_init__(self) -> None:
-        a, b = self.frames
-        n = len(self.distance)
-        spheres = np.asarray(self.spheres, dtype=float)
+        frames = tuple(self.frames) if isinstance(self.frames, (tuple, list)) else ()
+        if len(frames) != 2 or not all(isinstance(f, (int, np.integer)) for f in frames):
+            raise ValueError(
+                f"frames must be two DH frame numbers, (a, a + 2) or (a, a + 3); got "
+                f"{self.frames!r}"
+            )
+        a, b = int(frames[0]), int(frames[1])
+        object.__setattr__(self, "frames", (a, b))
+        for name in ("distance", "reach", "spheres"):  # float arrays of their own, or an error
+            object.__setattr__(self, name, real(getattr(self, name), name, finite=False).copy())
+        n = len(self.distance) if self.distance.ndim else 0
+        spheres = self.spheres
         if spheres.ndim != 2 or spheres.shape[1] != 4 or not np.isfinite(spheres).all():
             raise ValueError(
                 f"spheres must be finite rows (x, y, z, radius), shape (k, 4); got shape "
@@ -139,7 +148,6 @@ class MeshPair:
             )
         if np.any(spheres[:, 3] <= 0):
             raise ValueError("spheres: every radius must be positive (metres)")
-        object.__setattr__(self, "spheres", spheres)
         spheres.setflags(write=False)
         if b - a not in (2, 3) or not 0 <= a <= 6 - (b - a):
             raise ValueError(
