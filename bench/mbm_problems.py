@@ -64,16 +64,6 @@ JOINTS = (
 )
 #: Links whose spheres ride on the flange: the force-torque sensor and the gripper.
 TOOL_ROOT = "wrist_3_link"
-#: The URDF links that move with DH frames 0 … 6.
-ARM_LINKS = (
-    "base_link",
-    "shoulder_link",
-    "upper_arm_link",
-    "forearm_link",
-    "wrist_1_link",
-    "wrist_2_link",
-    "wrist_3_link",
-)
 
 
 @dataclass(frozen=True)
@@ -166,6 +156,8 @@ def vamp_model() -> planning.SphereModel:
     problems have a free start and goal, the number VAMP ships as valid."""
     links = {link.get("name"): link for link in _urdf().findall("link")}
     joints = {j.find("child").get("link"): j for j in _urdf().findall("joint")}
+    by_name = {j.get("name"): j.find("child").get("link") for j in _urdf().findall("joint")}
+    arm_links = ["base_link"] + [by_name[name] for name in JOINTS]  # DH frames 0 … 6
 
     def at_zero(name: str) -> np.ndarray:  # the link's pose in base_link, every joint at 0
         T = np.eye(4)
@@ -177,7 +169,7 @@ def vamp_model() -> planning.SphereModel:
 
     frames = T_BASE_LINK_BASE @ urkin.fk_frames(urkin.robot("ur5"), np.zeros(6))
     rows = []
-    for k, name in enumerate(ARM_LINKS):
+    for k, name in enumerate(arm_links):
         T = np.linalg.inv(frames[k]) @ at_zero(name)
         rows += [(k, *(T @ c)[:3], r) for c, r in _spheres_of(links[name])]
     centres, radii, _ = tool_spheres()

@@ -689,11 +689,11 @@ def _fitted(name: str) -> SphereModel:
     arm = _robot_by_name(name)
     pairs = _mesh_pairs(name.lower())
     rows = list(FITTED[name.lower()])
+    frames = np.array([row[0] for row in rows])
     extra = []  # what a table leaves out: its spheres against the first link's spheres
     for pair in pairs:
         for sphere in pair.spheres:
-            first = [i for i, row in enumerate(FITTED[name.lower()]) if row[0] == pair.frames[0]]
-            extra.extend((i, len(rows)) for i in first)
+            extra.extend((i, len(rows)) for i in np.flatnonzero(frames == pair.frames[0]))
             rows.append((pair.frames[1], *sphere))
     model = SphereModel.from_rows(
         arm,
