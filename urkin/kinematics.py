@@ -136,48 +136,28 @@ def _six(q: ArrayLike) -> list[float] | None:
     """The scalar fast path's test: the six floats of ``q`` when it is one configuration, of
     shape (6,) or a stack of one (1, 6), as a float array, finite and within
     ±:data:`MAX_JOINT_ANGLE`; else None (and the general path checks ``q`` and explains what is
-    wrong)."""
-    if type(q) is np.ndarray:
+    wrong).
+
+    One sum of squares decides (NaN and inf fail it; an overflow gives inf): it is below
+    ``MAX_JOINT_ANGLE²`` only when every angle is in range, and the rare configuration with
+    every angle in range but a larger sum takes the general path, which checks each angle
+    (:func:`fk` and :func:`jacobian` inline the same test)."""
+    if type(q) is np.ndarray and q.dtype is _FLOAT:
         shape = q.shape
         if shape == _SIX or shape == _ONE_ROW:
-            return _one(q)
+            values = q.tolist()
+            if len(values) == 1:  # a stack of one
+                (values,) = values
+            a, b, c, d, e, f = values
+            if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
+                return values
     return None
 
 
 _SIX, _ONE_ROW = (6,), (1, 6)
 
 
-def _one(q: np.ndarray) -> list[float] | None:
-    """:func:`_six` of an array of shape (6,) or (1, 6) (the caller has checked its type and
-    shape).
-
-    One sum of squares decides (NaN and inf fail it; an overflow gives inf): it is below
-    ``MAX_JOINT_ANGLE²`` only when every angle is in range, and the rare configuration with
-    every angle in range but a larger sum takes the general path, which checks each angle."""
-    if q.dtype is _FLOAT:
-        values = q.tolist()
-        if len(values) == 1:  # a stack of one
-            (values,) = values
-        a, b, c, d, e, f = values
-        if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
-            return values
-    return None
-
-
 _MAX_SQUARED = MAX_JOINT_ANGLE**2
-
-
-def _one_pose(robot: Robot, q: ArrayLike, one, shape: tuple[int, ...]) -> np.ndarray | None:
-    """The generated one-pose function ``one`` at ``q`` when ``q`` is one configuration (6,) or
-    a stack of one (1, 6) passing :func:`_one` and ``robot`` is a plain :class:`Robot` (the
-    fast path of :func:`fk` and :func:`jacobian`); else None."""
-    if type(q) is np.ndarray and type(robot) is Robot and robot._plain:
-        size = q.shape
-        if size == _SIX or size == _ONE_ROW:
-            values = _one(q)
-            if values is not None:
-                return one(values, robot.lengths, None if size == _SIX else np.empty((1, *shape)))
-    return None
 
 
 def _few(q: ArrayLike) -> list[list[float]] | None:
@@ -260,9 +240,11 @@ def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> fk(ur5, np.zeros((10, 6))).shape
     (10, 4, 4)
     """
-    found = _one_pose(robot, q, _gen.t06_one, (4, 4))
-    if found is not None:  # one pose, or a stack of one, of the plain arm: no detour
-        return found
+    if type(q) is np.ndarray and q.shape == _SIX and q.dtype is _FLOAT and type(robot) is Robot:
+        values = q.tolist()  # one float configuration: checked and evaluated with no detour
+        a, b, c, d, e, f = values
+        if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED and robot._plain:
+            return _gen.t06_one(values, robot.lengths)
     robot = check_robot(robot)
     T = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))
     if robot._plain:
@@ -358,9 +340,11 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> J[3:, 0]  # joint 1 turns about the base z axis
     array([0., 0., 1.])
     """
-    found = _one_pose(robot, q, _gen.jacobian_one, (6, 6))
-    if found is not None:  # one pose, or a stack of one, of the plain arm: no detour
-        return found
+    if type(q) is np.ndarray and q.shape == _SIX and q.dtype is _FLOAT and type(robot) is Robot:
+        values = q.tolist()  # one float configuration: the test of fk
+        a, b, c, d, e, f = values
+        if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED and robot._plain:
+            return _gen.jacobian_one(values, robot.lengths)
     robot = check_robot(robot)
     J = _evaluate(robot, q, _gen.jacobian_one, _gen.jacobian_many, (6, 6))
     if robot._plain:

@@ -22,7 +22,6 @@ from __future__ import annotations
 import argparse
 import functools
 import itertools
-import math
 import sys
 from pathlib import Path
 
@@ -226,7 +225,9 @@ from struct import Struct
 
 import numpy as np
 
-# one pose is written straight into a fresh array (cheaper than building it from a tuple)
+# one pose is written straight into a fresh array (cheaper than building it from a tuple),
+# by a struct whose pad bytes are the constant zeros
+_empty = np.empty
 '''
 
 
@@ -323,6 +324,22 @@ def _printed(final: list[sp.Expr], keys: list, shape: tuple[int, ...], prefix=()
     return [repr(float(text)) if _is_number(text) else text for text in flat]
 
 
+def _struct_format(flat: list[str]) -> str:
+    """The struct format that packs an array's printed entries as doubles and its constant
+    zeros as pad bytes (``pack_into`` zero-fills them, and +0.0 is eight zero bytes), so that
+    the generated code passes only the entries that vary."""
+    runs = []
+    for zero, group in itertools.groupby(text == "0.0" for text in flat):
+        count = len(list(group))
+        runs.append(f"{8 * count}x" if zero else f"{count}d")
+    return "".join(runs)
+
+
+def _packed(flat: list[str]) -> list[str]:
+    """The printed entries a struct of :func:`_struct_format` takes: all but the zeros."""
+    return [text for text in flat if text != "0.0"]
+
+
 def _emit(
     name: str,
     doc: str,
@@ -345,12 +362,13 @@ def _emit(
         "    if out is tuple:",
         f"        return ({', '.join(flat)})",
         "    if out is None:",
-        f"        out = np.empty({shape})",
-        f"    _pack{math.prod(shape)}(out, at, {', '.join(flat)})",
+        f"        out = _empty({shape})",
+        f"    _pack_{name}(out, at, {', '.join(_packed(flat))})",
         "    return out",
     ]
     many = _emit_many(name, doc, final, keys, shape, trig, temps, sums, used_q)
-    return "\n".join(one) + "\n\n\n" + "\n".join(many) + "\n"
+    packer = f'_pack_{name} = Struct("{_struct_format(flat)}").pack_into'
+    return packer + "\n\n\n" + "\n".join(one) + "\n\n\n" + "\n".join(many) + "\n"
 
 
 def _emit_pose_jacobian(pose: dict, jacobian: dict) -> str:
@@ -373,7 +391,7 @@ def _emit_pose_jacobian(pose: dict, jacobian: dict) -> str:
                 "    Jacobian into ``out`` (6, 6) and returns the top three rows of the pose (12",
                 '    entries, row by row; the last row is 0, 0, 0, 1) as a tuple."""',
                 *lines,
-                f"    _pack36(out, 0, {', '.join(jacobian_flat)})",
+                f"    _pack_jacobian(out, 0, {', '.join(_packed(jacobian_flat))})",
                 f"    return ({', '.join(pose_flat[:12])})",
             ]
         )
@@ -587,9 +605,7 @@ def generate_code() -> str:
             (3, 6),
         ),
     ]
-    sizes = sorted({math.prod(function[3]) for function in functions})
-    header = _HEADER + "".join(f'_pack{n} = Struct("{n}d").pack_into\n' for n in sizes)
-    header += "\n" + _COS_SIN
+    header = _HEADER + _COS_SIN
     parts = [header, *(_emit(*function) for function in functions)]
     parts.append(_emit_pose_jacobian(t06, _matrix_entries(ur_geometric_jacobian())))
     return "\n\n\n".join(part.rstrip("\n") for part in parts) + "\n"

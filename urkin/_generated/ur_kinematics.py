@@ -11,12 +11,9 @@ from struct import Struct
 
 import numpy as np
 
-# one pose is written straight into a fresh array (cheaper than building it from a tuple)
-_pack16 = Struct("16d").pack_into
-_pack18 = Struct("18d").pack_into
-_pack36 = Struct("36d").pack_into
-_pack112 = Struct("112d").pack_into
-
+# one pose is written straight into a fresh array (cheaper than building it from a tuple),
+# by a struct whose pad bytes are the constant zeros
+_empty = np.empty
 
 def _cos_sin(angles, c, s):
     """cos and sin of a block of angles into ``c`` and ``s`` (same shape).
@@ -37,6 +34,9 @@ def _cos_sin(angles, c, s):
     np.divide(2.0, c, out=c)
     np.multiply(s, c, out=s)
     np.subtract(c, 1.0, out=c)
+
+
+_pack_t06 = Struct("12d24x1d").pack_into
 
 
 def t06_one(q, lengths, out=None, at=0):
@@ -74,8 +74,8 @@ def t06_one(q, lengths, out=None, at=0):
     if out is tuple:
         return (c1*x3 + c6*x0, -c1*x6 - s6*x0, -c1*x7 + c5*s1, c1*x9 + s1*x8, -c6*x10 + s1*x3, -s1*x6 + s6*x10, -c1*c5 - c234*x0, -c1*x8 + s1*x9, c5*x4 + x5, -c5*x1 + x2, -x11, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x11, 0.0, 0.0, 0.0, 1.0)
     if out is None:
-        out = np.empty((4, 4))
-    _pack16(out, at, c1*x3 + c6*x0, -c1*x6 - s6*x0, -c1*x7 + c5*s1, c1*x9 + s1*x8, -c6*x10 + s1*x3, -s1*x6 + s6*x10, -c1*c5 - c234*x0, -c1*x8 + s1*x9, c5*x4 + x5, -c5*x1 + x2, -x11, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x11, 0.0, 0.0, 0.0, 1.0)
+        out = _empty((4, 4))
+    _pack_t06(out, at, c1*x3 + c6*x0, -c1*x6 - s6*x0, -c1*x7 + c5*s1, c1*x9 + s1*x8, -c6*x10 + s1*x3, -s1*x6 + s6*x10, -c1*c5 - c234*x0, -c1*x8 + s1*x9, c5*x4 + x5, -c5*x1 + x2, -x11, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x11, 1.0)
     return out
 
 
@@ -205,6 +205,9 @@ def t06_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
 t06_many.work_rows = 47
 
 
+_pack_frames = Struct("1d32x1d32x1d32x2d8x1d8x1d8x1d16x1d8x1d24x11d8x1d24x11d8x1d24x10d8x2d24x13d24x13d24x1d").pack_into
+
+
 def frames_one(q, lengths, out=None, at=0):
     """Frames T_0_i, i = 0 … 6 (one pose: ``q`` six floats, ``lengths`` the six link lengths; written
     into ``out`` from byte ``at`` if given; ``out=tuple``: the entries as a tuple of
@@ -256,8 +259,8 @@ def frames_one(q, lengths, out=None, at=0):
     if out is tuple:
         return (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, c1, 0.0, s1, 0.0, s1, 0.0, x0, 0.0, 0.0, 1.0, 0.0, d1, 0.0, 0.0, 0.0, 1.0, x1, -c1*s2, s1, a2*x1, x2, -s1*s2, x0, a2*x2, s2, c2, 0.0, x3, 0.0, 0.0, 0.0, 1.0, c1*c23, -c1*s23, s1, x5, c23*s1, -s1*s23, x0, s1*x4, s23, c23, 0.0, x6, 0.0, 0.0, 0.0, 1.0, x7, s1, x8, x5 + x9, x10, x0, x11, s1*x4 - x12, s234, 0.0, -c234, x6, 0.0, 0.0, 0.0, 1.0, c5*x7 + x13, -x8, x14, c1*x15 + x9, c234*c5*s1 - x16, -x11, x17, s1*x15 - x12, x18, c234, x20, x21, 0.0, 0.0, 0.0, 1.0, c1*x23 + c6*x13, -c1*x25 - s6*x13, x14, c1*x27 + s1*x26, -c6*x16 + s1*x23, -s1*x25 + s6*x16, x17, -c1*x26 + s1*x27, c6*x18 + x24, -s6*x18 + x22, x20, -d6*x19 + x21, 0.0, 0.0, 0.0, 1.0)
     if out is None:
-        out = np.empty((7, 4, 4))
-    _pack112(out, at, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, c1, 0.0, s1, 0.0, s1, 0.0, x0, 0.0, 0.0, 1.0, 0.0, d1, 0.0, 0.0, 0.0, 1.0, x1, -c1*s2, s1, a2*x1, x2, -s1*s2, x0, a2*x2, s2, c2, 0.0, x3, 0.0, 0.0, 0.0, 1.0, c1*c23, -c1*s23, s1, x5, c23*s1, -s1*s23, x0, s1*x4, s23, c23, 0.0, x6, 0.0, 0.0, 0.0, 1.0, x7, s1, x8, x5 + x9, x10, x0, x11, s1*x4 - x12, s234, 0.0, -c234, x6, 0.0, 0.0, 0.0, 1.0, c5*x7 + x13, -x8, x14, c1*x15 + x9, c234*c5*s1 - x16, -x11, x17, s1*x15 - x12, x18, c234, x20, x21, 0.0, 0.0, 0.0, 1.0, c1*x23 + c6*x13, -c1*x25 - s6*x13, x14, c1*x27 + s1*x26, -c6*x16 + s1*x23, -s1*x25 + s6*x16, x17, -c1*x26 + s1*x27, c6*x18 + x24, -s6*x18 + x22, x20, -d6*x19 + x21, 0.0, 0.0, 0.0, 1.0)
+        out = _empty((7, 4, 4))
+    _pack_frames(out, at, 1.0, 1.0, 1.0, 1.0, c1, s1, s1, x0, 1.0, d1, 1.0, x1, -c1*s2, s1, a2*x1, x2, -s1*s2, x0, a2*x2, s2, c2, x3, 1.0, c1*c23, -c1*s23, s1, x5, c23*s1, -s1*s23, x0, s1*x4, s23, c23, x6, 1.0, x7, s1, x8, x5 + x9, x10, x0, x11, s1*x4 - x12, s234, -c234, x6, 1.0, c5*x7 + x13, -x8, x14, c1*x15 + x9, c234*c5*s1 - x16, -x11, x17, s1*x15 - x12, x18, c234, x20, x21, 1.0, c1*x23 + c6*x13, -c1*x25 - s6*x13, x14, c1*x27 + s1*x26, -c6*x16 + s1*x23, -s1*x25 + s6*x16, x17, -c1*x26 + s1*x27, c6*x18 + x24, -s6*x18 + x22, x20, -d6*x19 + x21, 1.0)
     return out
 
 
@@ -553,6 +556,9 @@ def frames_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
 frames_many.work_rows = 159
 
 
+_pack_jacobian = Struct("5d8x5d16x4d16x5d8x6d24x2d").pack_into
+
+
 def jacobian_one(q, lengths, out=None, at=0):
     """Geometric Jacobian [v; ω] of the flange origin (one pose: ``q`` six floats, ``lengths`` the six link lengths; written
     into ``out`` from byte ``at`` if given; ``out=tuple``: the entries as a tuple of
@@ -590,8 +596,8 @@ def jacobian_one(q, lengths, out=None, at=0):
     if out is tuple:
         return (c1*x1 - s1*x4, -c1*x9, c1*x11, c1*x10, -d6*(c234*x13 + x12), 0.0, c1*x4 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(-c234*c5*s1 + x14), 0.0, 0.0, x4, x3, d5*s234 - x2, -s234*x0, 0.0, 0.0, s1, s1, s1, c1*s234, -c234*x14 + c5*s1, 0.0, x15, x15, x15, s1*s234, -c234*x12 - x13, 1.0, 0.0, 0.0, 0.0, -c234, -x7)
     if out is None:
-        out = np.empty((6, 6))
-    _pack36(out, at, c1*x1 - s1*x4, -c1*x9, c1*x11, c1*x10, -d6*(c234*x13 + x12), 0.0, c1*x4 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(-c234*c5*s1 + x14), 0.0, 0.0, x4, x3, d5*s234 - x2, -s234*x0, 0.0, 0.0, s1, s1, s1, c1*s234, -c234*x14 + c5*s1, 0.0, x15, x15, x15, s1*s234, -c234*x12 - x13, 1.0, 0.0, 0.0, 0.0, -c234, -x7)
+        out = _empty((6, 6))
+    _pack_jacobian(out, at, c1*x1 - s1*x4, -c1*x9, c1*x11, c1*x10, -d6*(c234*x13 + x12), c1*x4 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(-c234*c5*s1 + x14), x4, x3, d5*s234 - x2, -s234*x0, s1, s1, s1, c1*s234, -c234*x14 + c5*s1, x15, x15, x15, s1*s234, -c234*x12 - x13, 1.0, -c234, -x7)
     return out
 
 
@@ -748,6 +754,9 @@ def jacobian_many(q, d1, a2, a3, d4, d5, d6, out=None, work=None):
 jacobian_many.work_rows = 68
 
 
+_pack_position_jacobian = Struct("5d8x5d16x4d8x").pack_into
+
+
 def position_jacobian_one(q, lengths, out=None, at=0):
     """Position Jacobian ∂p/∂q (one pose: ``q`` six floats, ``lengths`` the six link lengths; written
     into ``out`` from byte ``at`` if given; ``out=tuple``: the entries as a tuple of
@@ -782,8 +791,8 @@ def position_jacobian_one(q, lengths, out=None, at=0):
     if out is tuple:
         return (c1*x1 - s1*x5, -c1*x9, c1*x11, c1*x10, -d6*(c1*x12 + s1*s5), 0.0, c1*x5 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(c1*s5 - s1*x12), 0.0, 0.0, x5, x4, d5*s234 - x3, -s234*x0, 0.0)
     if out is None:
-        out = np.empty((3, 6))
-    _pack18(out, at, c1*x1 - s1*x5, -c1*x9, c1*x11, c1*x10, -d6*(c1*x12 + s1*s5), 0.0, c1*x5 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(c1*s5 - s1*x12), 0.0, 0.0, x5, x4, d5*s234 - x3, -s234*x0, 0.0)
+        out = _empty((3, 6))
+    _pack_position_jacobian(out, at, c1*x1 - s1*x5, -c1*x9, c1*x11, c1*x10, -d6*(c1*x12 + s1*s5), c1*x5 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(c1*s5 - s1*x12), x5, x4, d5*s234 - x3, -s234*x0)
     return out
 
 
@@ -950,5 +959,5 @@ def pose_jacobian_one(q, lengths, out):
     x24 = x21 + x22
     x25 = -x20 + x24
     x26 = -c1
-    _pack36(out, 0, x17, -c1*x23, c1*x25, c1*x24, -d6*(c234*x15 + x0), 0.0, x14, -s1*x23, s1*x25, s1*x24, d6*(-c234*c5*s1 + x7), 0.0, 0.0, x13, x12, d5*s234 - x11, -s234*x9, 0.0, 0.0, s1, s1, s1, c1*s234, x8, 0.0, x26, x26, x26, s1*s234, x16, 1.0, 0.0, 0.0, 0.0, -c234, x19)
+    _pack_jacobian(out, 0, x17, -c1*x23, c1*x25, c1*x24, -d6*(c234*x15 + x0), x14, -s1*x23, s1*x25, s1*x24, d6*(-c234*c5*s1 + x7), x13, x12, d5*s234 - x11, -s234*x9, s1, s1, s1, c1*s234, x8, x26, x26, x26, s1*s234, x16, 1.0, -c234, x19)
     return (c1*x3 + c6*x0, -c1*x6 - s6*x0, x8, x14, -c6*x7 + s1*x3, -s1*x6 + s6*x7, x16, -x17, c5*x4 + x5, -c5*x1 + x2, x19, d1 + x23)
