@@ -47,11 +47,11 @@ def _c_function(name: str, function) -> str:
     body_start = next(i for i, line in enumerate(lines) if line.rstrip().endswith('"""')) + 1
     for line in lines[body_start:]:
         text = line.strip()
-        if text.startswith(("out = ", "if out is", "return (")) or text == "return out":
-            continue
+        if text.startswith(("out = ", "if out is", "_pack_")) or text == "return out":
+            continue  # the entries are read from the tuple branch, zeros included
         if text.endswith((" = q", " = lengths")):
             continue  # the C loop reads the angles and lengths itself
-        match = re.match(r"_pack\d+\(out, at, (.*)\)$", text)
+        match = re.match(r"return \((.*)\)$", text)
         if match:
             entries = _split(match.group(1))
             continue

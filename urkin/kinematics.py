@@ -240,11 +240,16 @@ def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> fk(ur5, np.zeros((10, 6))).shape
     (10, 4, 4)
     """
-    if type(q) is np.ndarray and q.shape == _SIX and q.dtype is _FLOAT and type(robot) is Robot:
-        values = q.tolist()  # one float configuration: checked and evaluated with no detour
-        a, b, c, d, e, f = values
-        if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED and robot._plain:
-            return _gen.t06_one(values, robot.lengths)
+    if type(q) is np.ndarray and q.dtype is _FLOAT and type(robot) is Robot and robot._plain:
+        shape = q.shape  # one float configuration: checked and evaluated with no detour
+        if shape == _SIX or shape == _ONE_ROW:
+            values = q.tolist()
+            if len(values) == 1:  # a stack of one
+                (values,) = values
+            a, b, c, d, e, f = values
+            if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
+                out = None if len(shape) == 1 else np.empty((1, 4, 4))
+                return _gen.t06_one(values, robot.lengths, out)
     robot = check_robot(robot)
     T = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))
     if robot._plain:
@@ -340,11 +345,16 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> J[3:, 0]  # joint 1 turns about the base z axis
     array([0., 0., 1.])
     """
-    if type(q) is np.ndarray and q.shape == _SIX and q.dtype is _FLOAT and type(robot) is Robot:
-        values = q.tolist()  # one float configuration: the test of fk
-        a, b, c, d, e, f = values
-        if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED and robot._plain:
-            return _gen.jacobian_one(values, robot.lengths)
+    if type(q) is np.ndarray and q.dtype is _FLOAT and type(robot) is Robot and robot._plain:
+        shape = q.shape  # one float configuration: the test of fk
+        if shape == _SIX or shape == _ONE_ROW:
+            values = q.tolist()
+            if len(values) == 1:  # a stack of one
+                (values,) = values
+            a, b, c, d, e, f = values
+            if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
+                out = None if len(shape) == 1 else np.empty((1, 6, 6))
+                return _gen.jacobian_one(values, robot.lengths, out)
     robot = check_robot(robot)
     J = _evaluate(robot, q, _gen.jacobian_one, _gen.jacobian_many, (6, 6))
     if robot._plain:
