@@ -3,7 +3,8 @@ TypeError or ValueError whose message is urkin's (not numpy's "could not broadca
 Python's "has no attribute"), or accept it only where accepting it is documented.
 
 The garbage: None, a string, a bool, NaN, infinity, complex numbers, one entry too many, an
-empty stack, strings in an array, a ragged list, a (2, 3)-grid stack; and for every numeric
+empty stack, strings in an array, a ragged list, a (2, 3)-grid stack, entries of 1e300, float32
+and object arrays; and for every numeric
 keyword option: NaN, −1, 0, infinity, a string, 1e300."""
 
 from __future__ import annotations
@@ -182,6 +183,10 @@ def garbage(value) -> list[tuple[str, object]]:
     out.append(("strings", np.full(a.shape or (1,), "x").tolist()))
     out.append(("ragged", [[1, 2], [3]]))
     out.append(("grid", np.broadcast_to(a, (2, 3, *a.shape)).copy()))
+    out.append(("empty stack", np.zeros((0, *a.shape))))
+    out.append(("huge", np.full(a.shape, 1e300)))  # norms and products overflow
+    out.append(("float32", a.astype(np.float32)))
+    out.append(("objects", a.astype(object)))
     return out
 
 

@@ -75,6 +75,9 @@ def test_scene_keeps_leading_axes_and_refuses_bad_obstacles():
         planning.Box([0, 0, 0], [1, 1, 1], rotation=np.ones((3, 3)))
     with pytest.raises(ValueError, match="cylinder axis must be a non-zero direction"):
         planning.Cylinder([0, 0, 0], [0, 0, 0], 0.1, 0.2)
+    # a direction of any size keeps its direction (its norm would overflow or underflow)
+    for axis, unit in (([3e300, 0, 4e300], [0.6, 0, 0.8]), ([5e-324, 0, 0], [1, 0, 0])):
+        assert planning.Cylinder([0, 0, 0], axis, 0.1, 0.2).axis.tolist() == unit
     with pytest.raises(ValueError, match="sphere radius must be positive"):
         planning.Sphere([0, 0, 0], 0.0)
     with pytest.raises(ValueError, match="box centre must be a 3-vector"):

@@ -88,6 +88,17 @@ def test_block_spheres_cover_the_surface_and_protrude_at_most_as_stated(size, pr
     assert reach > protrusion / 3  # and the bound is not vacuous
 
 
+@pytest.mark.parametrize(
+    "size, protrusion",
+    [([50.0, 50.0, 40.0], 0.008), ([1e300] * 3, 0.008), ([0.05] * 3, 1e-7), ([1.0] * 3, 1e-300)],
+)
+def test_block_spheres_refuse_sizes_that_need_too_many_spheres(size, protrusion):
+    """A block in millimetres, or a protrusion far below the sphere model's, would need
+    millions of spheres (or overflow the count): refused at once, saying why."""
+    with pytest.raises(ValueError, match="sizes are in metres"):
+        planning.block_spheres(size, protrusion)
+
+
 def _upright_depth(ca, ya, ha, cb, yb, hb):
     """The separation of two upright boxes by 1D interval overlaps on the five axes that
     can separate them (both boxes' horizontal axes, and the vertical)."""

@@ -122,7 +122,7 @@ def test_circle_lies_on_its_circle_with_equal_chords_and_the_chord_error_is_the_
         (lambda: tj.square((0, 0, 0), 0.1), "either by name"),
         (lambda: tj.square((0, 0, 0), 0.1, plane="xy", normal=(0, 0, 1)), "either by name"),
         (lambda: tj.square((0, 0, 0), -0.1, plane="xy"), "side must be one number > 0"),
-        (lambda: tj.circle((0, 0, 0), 0.1, normal=(0, 0, 0)), "zero vector"),
+        (lambda: tj.circle((0, 0, 0), 0.1, normal=(0, 0, 0)), "normal must be a non-zero"),
         (lambda: tj.circle((0, 0), 0.1, plane="xy"), r"center must be a point"),
         (lambda: tj.line((0, 0, 0), (1, 0, 0)).points(0.0), "step must be one number > 0"),
         (lambda: tj.line((0, 0, 0), (1, 0, 0)).points(float("nan")), "step"),
@@ -131,6 +131,14 @@ def test_circle_lies_on_its_circle_with_equal_chords_and_the_chord_error_is_the_
 def test_bad_paths_are_refused_with_the_argument_named(call, message):
     with pytest.raises((ValueError, TypeError), match=message):
         call()
+
+
+def test_plane_normal_keeps_its_direction_at_any_scale():
+    """A normal whose norm overflows (or underflows) still gives the plane it points across."""
+    reference = tj.circle((0.4, 0, 0.3), 0.05, normal=(0, 0, 1)).points()
+    for normal in ((0, 0, 1e300), (0, 0, 5e-324), (0, 1e-200, 1e300)):
+        points = tj.circle((0.4, 0, 0.3), 0.05, normal=normal).points()
+        assert np.allclose(points, reference, rtol=0, atol=1e-15)
 
 
 def test_pose_path_constant_and_slerp_orientation():
@@ -423,3 +431,15 @@ def test_bad_vias_are_refused_with_the_argument_named(kwargs, message):
     arguments |= kwargs
     with pytest.raises(ValueError, match=message):
         tj.via_trajectory(**arguments)
+
+
+@pytest.mark.parametrize("kind", ["cubic", "quintic", "trapezoid"])
+def test_time_scaling_at_extreme_durations_is_exact_or_refused(kind):
+    """A duration whose square overflows still scales (its peaks are tiny); one so short that
+    the peaks overflow is refused, saying so, rather than returning infinities."""
+    long = tj.time_scaling(kind, 1e300)
+    assert 0 < long.peak_speed < 1e-299 and 0 <= long.peak_acceleration < 1e-299
+    s, _, _ = long(np.array([0.0, 5e299, 1e300]))
+    assert np.allclose(s, [0.0, 0.5, 1.0], rtol=0, atol=1e-15)
+    with pytest.raises(ValueError, match="too short"):
+        tj.time_scaling(kind, 1e-160)

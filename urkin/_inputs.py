@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["positive", "real", "shape_text", "unstack"]
+__all__ = ["positive", "real", "shape_text", "unit", "unstack"]
 
 
 def positive(
@@ -123,6 +123,28 @@ def real(x: Any, name: str, *, complex_ok: bool = False, finite: bool = True) ->
         place = f"entry {tuple(int(i) for i in where)}" if array.ndim > 1 else f"entry {where[0]}"
         raise ValueError(f"{name} contains NaN or infinity ({place})")
     return array
+
+
+def unit(vector: np.ndarray, name: str) -> np.ndarray:
+    """The direction of a checked, finite 3-vector as a unit vector, or a ValueError naming
+    ``name`` for the zero vector.  Scaled by its largest entry first, so that neither a huge
+    vector (whose norm overflows to infinity) nor a tiny one (whose norm underflows to 0) loses
+    its direction.
+
+    Examples
+    --------
+    >>> unit(np.array([0.0, 3e300, 4e300]), "axis")
+    array([0. , 0.6, 0.8])
+    >>> unit(np.zeros(3), "axis")
+    Traceback (most recent call last):
+    ...
+    ValueError: axis must be a non-zero direction; got [0.0, 0.0, 0.0]
+    """
+    largest = float(np.abs(vector).max())
+    if largest == 0.0:
+        raise ValueError(f"{name} must be a non-zero direction; got {vector.tolist()}")
+    scaled = vector / largest
+    return scaled / np.sqrt(scaled @ scaled)
 
 
 def unstack(result: np.ndarray, lead: tuple[int, ...]) -> np.ndarray:

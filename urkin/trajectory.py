@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import positive, real
+from urkin._inputs import positive, real, unit
 from urkin.tracking import Tracking, track
 from urkin.transforms import check_rotation, so3_exp, so3_log
 
@@ -94,11 +94,7 @@ def _plane_axes(plane: str | None, normal: ArrayLike | None) -> tuple[np.ndarray
             raise ValueError(f"plane must be one of {', '.join(PLANES)}; got {plane!r}")
         eye = np.eye(3)
         return eye[PLANES[plane][0]], eye[PLANES[plane][1]]
-    n = _point(normal, "normal")
-    size = float(np.linalg.norm(n))
-    if size == 0.0:
-        raise ValueError("normal must not be the zero vector")
-    n = n / size
+    n = unit(_point(normal, "normal"), "normal")
     # u: the base axis least aligned with n, made perpendicular to it (deterministic)
     axis = np.eye(3)[int(np.argmin(np.abs(n)))]
     u = axis - (axis @ n) * n
@@ -412,22 +408,24 @@ class TimeScaling:
         if self.kind == "cubic":
             s = tau * tau * (3 - 2 * tau)
             sd = 6 * tau * (1 - tau) / T
-            sdd = (6 - 12 * tau) / T**2
+            sdd = (6 - 12 * tau) / T / T  # T**2 could overflow
         elif self.kind == "quintic":
             s = tau**3 * (10 - 15 * tau + 6 * tau * tau)
             sd = 30 * tau**2 * (1 - tau) ** 2 / T
-            sdd = 60 * tau * (1 - tau) * (1 - 2 * tau) / T**2
-        else:
-            v, a = self.peak_speed, self.peak_acceleration
-            ta = v / a
-            tt = np.clip(t, 0.0, T)
-            rising, falling = tt < ta, tt > T - ta
-            back = T - tt
+            sdd = 60 * tau * (1 - tau) * (1 - 2 * tau) / T / T
+        else:  # in τ, with the speed in units of 1/T and the acceleration in units of 1/T²
+            V = self.peak_speed * T  # in (1, 2]
+            A = V * V / (V - 1.0)
+            ramp = (V - 1.0) / V  # the fraction of T spent speeding up (and slowing down)
+            rising, falling = tau < ramp, tau > 1.0 - ramp
+            back = 1.0 - tau
             s = np.where(
-                rising, 0.5 * a * tt**2, np.where(falling, 1 - 0.5 * a * back**2, v * (tt - ta / 2))
+                rising,
+                0.5 * A * tau * tau,
+                np.where(falling, 1 - 0.5 * A * back * back, V * (tau - ramp / 2)),
             )
-            sd = np.where(rising, a * tt, np.where(falling, a * back, v))
-            sdd = np.where(rising, a, np.where(falling, -a, 0.0))
+            sd = np.where(rising, A * tau, np.where(falling, A * back, V)) / T
+            sdd = np.where(rising, A, np.where(falling, -A, 0.0)) / T / T
         return s, np.where(moving, sd, 0.0), np.where(moving, sdd, 0.0)
 
 
@@ -458,7 +456,7 @@ def time_scaling(kind: str, T: float, peak_speed: float | None = None) -> TimeSc
         if peak_speed is not None:
             raise ValueError(f"peak_speed is the trapezoid's; a {kind} time scaling has none")
         speed, acceleration = _PEAKS[kind]
-        return TimeScaling(kind, T, speed / T, acceleration / T**2)
+        return _peaks(kind, T, speed / T, acceleration / T / T)  # T**2 could overflow
     if kind != "trapezoid":
         raise ValueError(f"kind must be 'cubic', 'quintic' or 'trapezoid'; got {kind!r}")
     v = 1.5 / T if peak_speed is None else _positive(peak_speed, "peak_speed")
@@ -467,7 +465,17 @@ def time_scaling(kind: str, T: float, peak_speed: float | None = None) -> TimeSc
             f"peak_speed must lie in (1/T, 2/T] = ({1 / T:.6g}, {2 / T:.6g}] 1/s for T = {T:g} s; "
             f"got {v:.6g}"
         )
-    return TimeScaling("trapezoid", T, v, v * v / (v * T - 1.0))
+    return _peaks("trapezoid", T, v, v / (v * T - 1.0) * v)
+
+
+def _peaks(kind: str, T: float, speed: float, acceleration: float) -> TimeScaling:
+    """The time scaling, or a ValueError when ``T`` is so short that its peaks overflow."""
+    if not (math.isfinite(speed) and math.isfinite(acceleration)):
+        raise ValueError(
+            f"T = {T:g} s is too short: the {kind} time scaling's peak speed and acceleration "
+            "overflow"
+        )
+    return TimeScaling(kind, T, speed, acceleration)
 
 
 def minimum_time(

@@ -201,6 +201,11 @@ def _grasp_at(block: Block, yaw: float) -> np.ndarray:
     return make_transform(_down(np.array(yaw)), [*block.centre[:2], block.top])
 
 
+#: The most spheres :func:`block_spheres` makes for one block (a 1 m cube at the default
+#: protrusion takes about 12,000).
+MAX_BLOCK_SPHERES = 20_000
+
+
 def block_spheres(size: ArrayLike, max_protrusion: float = 0.008) -> tuple[np.ndarray, np.ndarray]:
     """Spheres covering a box's surface, centred in its frame: ``(centres (K, 3), radii (K,))``.
 
@@ -220,13 +225,22 @@ def block_spheres(size: ArrayLike, max_protrusion: float = 0.008) -> tuple[np.nd
     if s.shape != (3,) or np.any(s <= 0):
         raise ValueError(f"size must be three positive edge lengths (m); got {s.tolist()}")
     p = float(positive(max_protrusion, "max_protrusion", what="a positive distance (m)"))
-    n = np.maximum(1, np.ceil(s / (p / 0.36))).astype(int)
+    with np.errstate(over="ignore"):  # infinitely many cells: refused below
+        n = np.maximum(1.0, np.ceil(s / (p / 0.36)))  # cells along each edge, floats until known
     while True:
+        many = n.max() > MAX_BLOCK_SPHERES  # checked first: the products could overflow
+        if many or np.prod(n) - np.prod(np.maximum(n - 2.0, 0.0)) > MAX_BLOCK_SPHERES:
+            raise ValueError(
+                f"a block of size {s.tolist()} m needs more than {MAX_BLOCK_SPHERES:,} spheres "
+                f"to stay within max_protrusion = {p:g} m of it: sizes are in metres (did you "
+                "pass millimetres?), or allow a larger max_protrusion"
+            )
         cell = s / n
-        radius = float(np.linalg.norm(cell)) / 2
+        radius = float(np.sqrt(cell @ cell)) / 2
         if radius - cell.min() / 2 <= p:
             break
         n[int(np.argmax(cell))] += 1
+    n = n.astype(int)
     grid = np.stack(np.meshgrid(*(np.arange(k) for k in n), indexing="ij"), axis=-1).reshape(-1, 3)
     surface = np.any((grid == 0) | (grid == n - 1), axis=1)
     centres = (grid[surface] + 0.5) * cell - s / 2

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import real
+from urkin._inputs import real, unit
 from urkin.transforms import check_rotation
 
 #: Boxes with a bounding ball at most this wide (m) are broad-phased in Scene._touches.
@@ -86,11 +86,7 @@ class Cylinder:
     def __post_init__(self) -> None:
         _name(self.name, "cylinder")
         object.__setattr__(self, "centre", _vector(self.centre, "cylinder centre"))
-        axis = _vector(self.axis, "cylinder axis")
-        norm = float(np.linalg.norm(axis))
-        if norm == 0:
-            raise ValueError("cylinder axis must be a non-zero direction")
-        object.__setattr__(self, "axis", axis / norm)
+        object.__setattr__(self, "axis", unit(_vector(self.axis, "cylinder axis"), "cylinder axis"))
         object.__setattr__(self, "radius", _length(self.radius, "cylinder radius"))
         object.__setattr__(self, "length", _length(self.length, "cylinder length"))
 
