@@ -541,6 +541,24 @@ def test_wrap_angles_precision():
     np.testing.assert_array_equal(wrap_angles(tiny), tiny)
 
 
+def test_wrap_angles_of_huge_angles_is_exact():
+    """Far beyond a few turns, removing whole turns of the rounded 2π loses ``|q| · 2⁻⁵³`` (8e-9
+    rad at 1.2e8, everything at 1e17): such angles are reduced by the true π, as a 60-digit
+    reference does (and within 512 turns, to the round-off of that subtraction)."""
+    import mpmath
+
+    mpmath.mp.dps = 60
+    angles = [30.0, -1000.0, 123456789.0, 1e10, -4e15, 1e17, 2.0**60]
+    exact = [
+        float(mpmath.mpf(x) - mpmath.nint(mpmath.mpf(x) / (2 * mpmath.pi)) * 2 * mpmath.pi)
+        for x in angles
+    ]
+    wrapped = wrap_angles(angles)
+    np.testing.assert_allclose(wrapped[2:], exact[2:], rtol=0, atol=4.5e-16)
+    np.testing.assert_allclose(wrapped[:2], exact[:2], rtol=0, atol=2e-13)
+    assert wrap_angles(1e17) == wrap_angles([1e17])[0]
+
+
 @pytest.mark.parametrize(
     ("basis", "minus_quarter"),
     [
