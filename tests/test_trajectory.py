@@ -443,3 +443,20 @@ def test_time_scaling_at_extreme_durations_is_exact_or_refused(kind):
     assert np.allclose(s, [0.0, 0.5, 1.0], rtol=0, atol=1e-15)
     with pytest.raises(ValueError, match="too short"):
         tj.time_scaling(kind, 1e-160)
+
+
+@pytest.mark.parametrize(
+    "path, step",
+    [
+        (lambda: tj.line((0, 0, 0), (1e300, 1e300, 0)), 1e-3),  # its squares overflow
+        (lambda: tj.circle((0, 0, 0), 1e300, plane="xy"), 1e-3),  # a count beyond int64
+        (lambda: tj.square((0, 0, 0), 1e6, plane="xy"), 1e-3),  # 4e9 points: 30 GB
+        (lambda: tj.line((0, 0, 0), (1, 0, 0)), 1e-300),
+    ],
+)
+def test_sampling_that_would_take_too_many_points_is_refused(path, step):
+    """Before: a negative-dimension error, an empty (0, 3) circle, or a 30 GB allocation."""
+    p = path()
+    assert math.isfinite(p.length)
+    with pytest.raises(ValueError, match="takes more than 10,000,000 points"):
+        p.points(step)

@@ -144,7 +144,8 @@ class Path:
         """Length of each straight segment (m); a circle is one segment of length 2πr."""
         if self.is_circle:
             return np.array([2 * math.pi * self.radius])
-        return np.linalg.norm(np.diff(self.vertices, axis=0), axis=1)
+        d = np.diff(self.vertices, axis=0)
+        return np.hypot(np.hypot(d[:, 0], d[:, 1]), d[:, 2])  # no overflow of the squares
 
     @property
     def length(self) -> float:
@@ -199,7 +200,15 @@ class Path:
     def _pieces(self, step: float) -> np.ndarray:
         """How many equal pieces each segment is cut into for ``step``."""
         step = _step(step)
-        return np.floor(self.segment_lengths / (step * (1 - 1e-9))).astype(int) + 1
+        with np.errstate(over="ignore"):
+            pieces = np.floor(self.segment_lengths / (step * (1 - 1e-9))) + 1
+        if not pieces.sum() <= MAX_SAMPLES:  # inf too
+            raise ValueError(
+                f"sampling a path of {self.length:.4g} m every step = {step:g} m takes more than "
+                f"{MAX_SAMPLES:,} points: lengths are in metres (did you pass millimetres?), or "
+                "use a larger step"
+            )
+        return pieces.astype(int)
 
     def chord_error(self, step: float = 1e-3) -> float:
         """Largest distance (m) between the path and the straight lines joining its samples:
@@ -207,6 +216,10 @@ class Path:
         if not self.is_circle:
             return 0.0
         return float(self.radius * (1 - math.cos(math.pi / self._pieces(step)[0])))
+
+
+#: The most samples :meth:`Path.points` takes (10 km of path at 1 mm).
+MAX_SAMPLES = 10_000_000
 
 
 def polyline(points: ArrayLike, closed: bool = False) -> Path:
@@ -227,7 +240,7 @@ def polyline(points: ArrayLike, closed: bool = False) -> Path:
         vertices = vertices[:-1]  # closing is what closed=True does
     if closed:
         vertices = np.concatenate([vertices, vertices[:1]])
-    lengths = np.linalg.norm(np.diff(vertices, axis=0), axis=1)
+    lengths = Path(vertices=vertices, closed=closed).segment_lengths
     if np.any(lengths == 0.0):
         k = int(np.argmin(lengths))
         raise ValueError(
