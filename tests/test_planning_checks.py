@@ -75,6 +75,17 @@ def test_scene_keeps_leading_axes_and_refuses_bad_obstacles():
         planning.Box([0, 0, 0], [1, 1, 1], rotation=np.ones((3, 3)))
     with pytest.raises(ValueError, match="cylinder axis must be a non-zero direction"):
         planning.Cylinder([0, 0, 0], [0, 0, 0], 0.1, 0.2)
+    # coordinates and sizes far beyond a robot cell: their squares lose precision, and from
+    # 1e154 m overflow (a cylinder, sphere or capsule there vanished from the checks)
+    for make in (
+        lambda: planning.Box([1e7, 0, 0], [1, 1, 1]),
+        lambda: planning.Box([0, 0, 0], [1, 1e300, 1]),
+        lambda: planning.Cylinder([0, 0, 4e299], [0, 0, 1], 0.05, 1e300),
+        lambda: planning.Sphere([0, 0, 1e200], 1e200),
+        lambda: planning.Capsule([0, 0, -1e160], [0, 0, 1e160], 0.05),
+    ):
+        with pytest.raises(ValueError, match=r"within ±1e\+06 m of the robot"):
+            make()
     # a direction of any size keeps its direction (its norm would overflow or underflow)
     for axis, unit in (([3e300, 0, 4e300], [0.6, 0, 0.8]), ([5e-324, 0, 0], [1, 0, 0])):
         assert planning.Cylinder([0, 0, 0], axis, 0.1, 0.2).axis.tolist() == unit

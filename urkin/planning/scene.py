@@ -27,10 +27,25 @@ _SMALL = 0.3
 __all__ = ["Box", "Capsule", "Cylinder", "Scene", "Sphere"]
 
 
-def _vector(x: ArrayLike, name: str) -> np.ndarray:
+#: The largest coordinate or size of an obstacle (m).  The tests square distances: far beyond
+#: the robot's cell their round-off grows with the square of the coordinates, and from about
+#: 1e154 m the squares overflow (an obstacle there would vanish from the checks).
+FARTHEST = 1e6
+
+
+def _far(value: float, name: str) -> ValueError:
+    return ValueError(
+        f"{name} reaches {value:g} m: obstacles are given in metres, within ±{FARTHEST:g} m of "
+        "the robot (a larger scene loses the precision of the distance tests)"
+    )
+
+
+def _vector(x: ArrayLike, name: str, *, bounded: bool = True) -> np.ndarray:
     v = real(x, name)
     if v.shape != (3,):
         raise ValueError(f"{name} must be a 3-vector (metres); got shape {v.shape}")
+    if bounded and np.abs(v).max() > FARTHEST:
+        raise _far(float(np.abs(v).max()), name)
     return v
 
 
@@ -41,6 +56,8 @@ def _length(x: float, name: str, *, zero_ok: bool = False) -> float:
     value = float(array)
     if value < 0 or (value == 0 and not zero_ok):
         raise ValueError(f"{name} must be positive (metres); got {value:g}")
+    if value > FARTHEST:
+        raise _far(value, name)
     return value
 
 
@@ -86,7 +103,9 @@ class Cylinder:
     def __post_init__(self) -> None:
         _name(self.name, "cylinder")
         object.__setattr__(self, "centre", _vector(self.centre, "cylinder centre"))
-        object.__setattr__(self, "axis", unit(_vector(self.axis, "cylinder axis"), "cylinder axis"))
+        object.__setattr__(
+            self, "axis", unit(_vector(self.axis, "cylinder axis", bounded=False), "cylinder axis")
+        )
         object.__setattr__(self, "radius", _length(self.radius, "cylinder radius"))
         object.__setattr__(self, "length", _length(self.length, "cylinder length"))
 
