@@ -460,3 +460,15 @@ def test_sampling_that_would_take_too_many_points_is_refused(path, step):
     assert math.isfinite(p.length)
     with pytest.raises(ValueError, match="takes more than 10,000,000 points"):
         p.points(step)
+
+
+def test_via_trajectory_with_gaps_too_short_for_its_vias_is_refused():
+    """Vias half a radian apart 1e-160 s apart need accelerations beyond any float: refused,
+    not returned as infinities; 1e160 s apart, the accelerations underflow to about zero."""
+    q = np.array([[0.0] * 6, [0.5] * 6, [0.0] * 6])
+    with pytest.raises(ValueError, match="too short for these vias"):
+        tj.via_trajectory(q, [0.0, 1e-160, 2e-160])
+    slow = tj.via_trajectory(q, [0.0, 1e160, 2e160])
+    assert np.isfinite(slow.qdd).all() and np.abs(slow.qdd).max() < 1e-300
+    same = tj.via_trajectory(q, [0.0, 1.0, 2.0])  # the same path, in τ
+    np.testing.assert_allclose(slow.q, same.q, rtol=0, atol=1e-15)

@@ -705,32 +705,38 @@ def via_trajectory(
             f"t_via must be strictly increasing; t_via[{k + 1}] = {t[k + 1]:g} s does not come "
             f"after t_via[{k}] = {t[k]:g} s"
         )
-    if qd_via is None:
-        v = _via_velocities(q, t)
-    else:
+    if qd_via is not None:
         v = real(qd_via, "qd_via")
         if v.shape != q.shape:
             raise ValueError(
                 f"qd_via must have one velocity per via and joint, shape {q.shape}; got {v.shape}"
             )
     times = _sample_times(float(t[0]), float(t[-1]), samples, dt)
-    j = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 2)  # segment
-    T = gaps[j][:, None]
-    tau = ((times - t[j]) / gaps[j])[:, None]
-    q0, q1, v0, v1 = q[j], q[j + 1], v[j], v[j + 1]
-    tau2, tau3 = tau * tau, tau * tau * tau
-    position = (
-        (1 - 3 * tau2 + 2 * tau3) * q0
-        + (3 * tau2 - 2 * tau3) * q1
-        + T * (tau - 2 * tau2 + tau3) * v0
-        + T * (tau3 - tau2) * v1
-    )
-    velocity = (
-        (6 * tau2 - 6 * tau) * (q0 - q1) / T
-        + (1 - 4 * tau + 3 * tau2) * v0
-        + (3 * tau2 - 2 * tau) * v1
-    )
-    acceleration = (12 * tau - 6) * (q0 - q1) / (T * T) + (
-        (6 * tau - 4) * v0 + (6 * tau - 2) * v1
-    ) / T
+    with np.errstate(all="ignore"):  # gaps too short for the vias are refused below
+        if qd_via is None:
+            v = _via_velocities(q, t)
+        j = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 2)  # segment
+        T = gaps[j][:, None]
+        tau = ((times - t[j]) / gaps[j])[:, None]
+        q0, q1, v0, v1 = q[j], q[j + 1], v[j], v[j + 1]
+        tau2, tau3 = tau * tau, tau * tau * tau
+        position = (
+            (1 - 3 * tau2 + 2 * tau3) * q0
+            + (3 * tau2 - 2 * tau3) * q1
+            + T * (tau - 2 * tau2 + tau3) * v0
+            + T * (tau3 - tau2) * v1
+        )
+        velocity = (
+            (6 * tau2 - 6 * tau) * (q0 - q1) / T
+            + (1 - 4 * tau + 3 * tau2) * v0
+            + (3 * tau2 - 2 * tau) * v1
+        )
+        acceleration = (12 * tau - 6) * (q0 - q1) / T / T + (  # T * T could overflow
+            (6 * tau - 4) * v0 + (6 * tau - 2) * v1
+        ) / T
+    if not all(np.isfinite(x).all() for x in (position, velocity, acceleration)):
+        raise ValueError(
+            f"t_via's shortest gap, {gaps.min():g} s, is too short for these vias: the "
+            "velocities or accelerations overflow"
+        )
     return Trajectory(times, position, velocity, acceleration)
