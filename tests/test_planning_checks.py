@@ -483,3 +483,19 @@ def test_edges_certified_near_a_tabulated_contact_are_free_at_every_sample():
     verdicts = planning.edges_free(MODEL, empty, A, B)
     np.testing.assert_array_equal(verdicts, every)
     assert 0.3 < verdicts.mean() < 0.95
+
+
+def test_resolutions_that_would_take_too_many_samples_are_refused_by_name():
+    """Before: numpy's "Maximum allowed size exceeded" or "negative dimensions", or minutes of
+    checks and gigabytes for a resolution of a nanometre."""
+    model = planning.sphere_model(urkin.robot("ur5"))
+    qa = np.array([0, -1.57, 0, -1.57, 0, 0.0])
+    qb = qa + 0.3
+    for call in (
+        lambda: planning.edges_free(model, planning.Scene(), qa, qb, resolution=1e-9),
+        lambda: planning.edge_samples(model, qa, qb, resolution=1e-300),
+    ):
+        with pytest.raises(ValueError, match=r"every resolution = .* use a coarser resolution"):
+            call()
+    with pytest.raises(ValueError, match=r"to finest = 1e-300 m .* use a larger finest"):
+        planning.certify_edges(model, planning.Scene(), qa, qb, finest=1e-300)

@@ -681,7 +681,25 @@ def _edge_ends(qa: ArrayLike, qb: ArrayLike) -> tuple[np.ndarray, np.ndarray, tu
 
 def _intervals(model, A, B, resolution) -> np.ndarray:
     travel = _travels(model, A, B, resolution).max(axis=1, initial=0.0)
-    return np.maximum(1, np.ceil(travel / resolution)).astype(np.intp)
+    return _counts(travel, resolution)
+
+
+#: The most samples one call checks along its edges (about ten seconds of checks).
+MAX_SAMPLES = 10_000_000
+
+
+def _counts(travel: np.ndarray, resolution: float) -> np.ndarray:
+    """The intervals each edge is cut into: (K,) from the edges' travels (K,) (m), or a
+    ValueError naming ``resolution`` when all of them would take more than
+    :data:`MAX_SAMPLES` samples."""
+    with np.errstate(over="ignore"):
+        counts = np.maximum(1.0, np.ceil(travel / resolution))
+    if not counts.sum() <= MAX_SAMPLES:  # inf too
+        raise ValueError(
+            f"checking these edges every resolution = {resolution:g} m takes more than "
+            f"{MAX_SAMPLES:,} samples: use a coarser resolution (the default is {RESOLUTION:g} m)"
+        )
+    return counts.astype(np.intp)
 
 
 def _travels(model, A, B, resolution, rough: bool = False) -> np.ndarray:
@@ -818,7 +836,8 @@ def certify_edges(
     by at most what both spheres move).  Pieces not proven are halved and checked again, all
     the edges' pieces of a round in one batch, until every piece is proven, a middle collides
     as it is (the edge is not free), or a piece is down to ``finest``: an edge that stays
-    within ``finest`` of contact is not proven (False), though it may be free.
+    within ``finest`` of contact is not proven (False), though it may be free (so are the
+    edges still open when a round would check more than :data:`MAX_SAMPLES` pieces).
 
     Parameters
     ----------
@@ -857,7 +876,14 @@ def _proven(model, scene, A, B, speeds, finest) -> np.ndarray:
     travel = speeds.max(axis=1, initial=0.0)
     proven = np.ones(len(A), dtype=bool)
     # first pieces: a coarse start, as far apart as a few rounds of halving from the finest
-    counts = np.maximum(1, np.ceil(travel / (4 * finest * 2**6))).astype(np.intp)
+    with np.errstate(over="ignore"):
+        counts = np.maximum(1.0, np.ceil(travel / (4 * finest * 2**6)))
+    if not counts.sum() <= MAX_SAMPLES:  # inf too
+        raise ValueError(
+            f"certifying these edges to finest = {finest:g} m starts from more than "
+            f"{MAX_SAMPLES:,} pieces: use a larger finest (the default is {FINEST:g} m)"
+        )
+    counts = counts.astype(np.intp)
     edge = np.repeat(np.arange(len(A)), counts)
     lo = (np.arange(len(edge)) - np.repeat(np.cumsum(counts) - counts, counts)) / counts[edge]
     width = 1.0 / counts[edge]
@@ -870,6 +896,9 @@ def _proven(model, scene, A, B, speeds, finest) -> np.ndarray:
         small = open_ & (travel[edge] * width <= finest)
         proven[edge[small]] = False  # still not proven at the finest: within reach of contact
         open_ &= proven[edge]
+        if 2 * np.count_nonzero(open_) > MAX_SAMPLES:  # too many pieces within reach
+            proven[edge[open_]] = False
+            break
         edge, lo, width = edge[open_], lo[open_], half[open_]
         edge, lo, width = np.repeat(edge, 2), np.repeat(lo, 2), np.repeat(width, 2)
         lo[1::2] += width[1::2]  # the two halves
@@ -923,8 +952,7 @@ def _edges_free(
     prove little)."""
     if len(A) == 1:
         return np.array([_edge_free(model, scene, A[0], B[0], speeds[0], resolution, known, prove)])
-    counts = np.maximum(1, np.ceil(speeds.max(axis=1, initial=0.0) / resolution))
-    counts = counts.astype(np.intp)
+    counts = _counts(speeds.max(axis=1, initial=0.0), resolution)
     samples = counts + 1
     first = np.cumsum(samples) - samples  # each edge's first sample in the flat arrays
     edge = np.repeat(np.arange(len(A)), samples)
@@ -955,7 +983,7 @@ def _edges_free(
 def _edge_free(model, scene, a, b, speed, resolution, known, prove) -> bool:
     """:func:`_edges_free` of one edge ``a`` → ``b`` (6,), ``speed`` (S + P,): the same samples,
     grown alike, with the bookkeeping of its sample count done once (:func:`_plan`)."""
-    n = max(1, math.ceil(speed.max(initial=0.0) / resolution))
+    n = int(_counts(speed.max(initial=0.0), resolution))
     plan = _plan(n, known, prove)
     step = b - a
     touched = np.zeros(len(plan.first), dtype=bool)
