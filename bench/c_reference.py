@@ -47,7 +47,8 @@ def _c_function(name: str, function) -> str:
     body_start = next(i for i, line in enumerate(lines) if line.rstrip().endswith('"""')) + 1
     for line in lines[body_start:]:
         text = line.strip()
-        if text.startswith(("out = ", "if out is", "_pack_")) or text == "return out":
+        skip = ("out = ", "if out is", "elif out is", "_pack_")
+        if text.startswith(skip) or text == "return out":
             continue  # the entries are read from the tuple branch, zeros included
         if text.endswith((" = q", " = lengths")):
             continue  # the C loop reads the angles and lengths itself

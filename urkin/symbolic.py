@@ -359,10 +359,10 @@ def _emit(
         "    into ``out`` from byte ``at`` if given; ``out=tuple``: the entries as a tuple of",
         '    floats, row by row, for loops on Python floats)."""',
         *lines,
-        "    if out is tuple:",
-        f"        return ({', '.join(flat)})",
         "    if out is None:",
         f"        out = _empty({shape})",
+        "    elif out is tuple:",
+        f"        return ({', '.join(flat)})",
         f"    _pack_{name}(out, at, {', '.join(_packed(flat))})",
         "    return out",
     ]

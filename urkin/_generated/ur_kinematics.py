@@ -71,10 +71,10 @@ def t06_one(q, lengths, out=None, at=0):
     x9 = a2*c2 + a3*c23 + d5*s234 - d6*x7
     x10 = c1*s5
     x11 = s234*s5
-    if out is tuple:
-        return (c1*x3 + c6*x0, -c1*x6 - s6*x0, -c1*x7 + c5*s1, c1*x9 + s1*x8, -c6*x10 + s1*x3, -s1*x6 + s6*x10, -c1*c5 - c234*x0, -c1*x8 + s1*x9, c5*x4 + x5, -c5*x1 + x2, -x11, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x11, 0.0, 0.0, 0.0, 1.0)
     if out is None:
         out = _empty((4, 4))
+    elif out is tuple:
+        return (c1*x3 + c6*x0, -c1*x6 - s6*x0, -c1*x7 + c5*s1, c1*x9 + s1*x8, -c6*x10 + s1*x3, -s1*x6 + s6*x10, -c1*c5 - c234*x0, -c1*x8 + s1*x9, c5*x4 + x5, -c5*x1 + x2, -x11, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x11, 0.0, 0.0, 0.0, 1.0)
     _pack_t06(out, at, c1*x3 + c6*x0, -c1*x6 - s6*x0, -c1*x7 + c5*s1, c1*x9 + s1*x8, -c6*x10 + s1*x3, -s1*x6 + s6*x10, -c1*c5 - c234*x0, -c1*x8 + s1*x9, c5*x4 + x5, -c5*x1 + x2, -x11, a2*s2 + a3*s23 - c234*d5 + d1 - d6*x11, 1.0)
     return out
 
@@ -256,10 +256,10 @@ def frames_one(q, lengths, out=None, at=0):
     x25 = c5*x24 + c6*s234
     x26 = c5*d6 + d4
     x27 = -c234*d6*s5 + x15
-    if out is tuple:
-        return (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, c1, 0.0, s1, 0.0, s1, 0.0, x0, 0.0, 0.0, 1.0, 0.0, d1, 0.0, 0.0, 0.0, 1.0, x1, -c1*s2, s1, a2*x1, x2, -s1*s2, x0, a2*x2, s2, c2, 0.0, x3, 0.0, 0.0, 0.0, 1.0, c1*c23, -c1*s23, s1, x5, c23*s1, -s1*s23, x0, s1*x4, s23, c23, 0.0, x6, 0.0, 0.0, 0.0, 1.0, x7, s1, x8, x5 + x9, x10, x0, x11, s1*x4 - x12, s234, 0.0, -c234, x6, 0.0, 0.0, 0.0, 1.0, c5*x7 + x13, -x8, x14, c1*x15 + x9, c234*c5*s1 - x16, -x11, x17, s1*x15 - x12, x18, c234, x20, x21, 0.0, 0.0, 0.0, 1.0, c1*x23 + c6*x13, -c1*x25 - s6*x13, x14, c1*x27 + s1*x26, -c6*x16 + s1*x23, -s1*x25 + s6*x16, x17, -c1*x26 + s1*x27, c6*x18 + x24, -s6*x18 + x22, x20, -d6*x19 + x21, 0.0, 0.0, 0.0, 1.0)
     if out is None:
         out = _empty((7, 4, 4))
+    elif out is tuple:
+        return (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, c1, 0.0, s1, 0.0, s1, 0.0, x0, 0.0, 0.0, 1.0, 0.0, d1, 0.0, 0.0, 0.0, 1.0, x1, -c1*s2, s1, a2*x1, x2, -s1*s2, x0, a2*x2, s2, c2, 0.0, x3, 0.0, 0.0, 0.0, 1.0, c1*c23, -c1*s23, s1, x5, c23*s1, -s1*s23, x0, s1*x4, s23, c23, 0.0, x6, 0.0, 0.0, 0.0, 1.0, x7, s1, x8, x5 + x9, x10, x0, x11, s1*x4 - x12, s234, 0.0, -c234, x6, 0.0, 0.0, 0.0, 1.0, c5*x7 + x13, -x8, x14, c1*x15 + x9, c234*c5*s1 - x16, -x11, x17, s1*x15 - x12, x18, c234, x20, x21, 0.0, 0.0, 0.0, 1.0, c1*x23 + c6*x13, -c1*x25 - s6*x13, x14, c1*x27 + s1*x26, -c6*x16 + s1*x23, -s1*x25 + s6*x16, x17, -c1*x26 + s1*x27, c6*x18 + x24, -s6*x18 + x22, x20, -d6*x19 + x21, 0.0, 0.0, 0.0, 1.0)
     _pack_frames(out, at, 1.0, 1.0, 1.0, 1.0, c1, s1, s1, x0, 1.0, d1, 1.0, x1, -c1*s2, s1, a2*x1, x2, -s1*s2, x0, a2*x2, s2, c2, x3, 1.0, c1*c23, -c1*s23, s1, x5, c23*s1, -s1*s23, x0, s1*x4, s23, c23, x6, 1.0, x7, s1, x8, x5 + x9, x10, x0, x11, s1*x4 - x12, s234, -c234, x6, 1.0, c5*x7 + x13, -x8, x14, c1*x15 + x9, c234*c5*s1 - x16, -x11, x17, s1*x15 - x12, x18, c234, x20, x21, 1.0, c1*x23 + c6*x13, -c1*x25 - s6*x13, x14, c1*x27 + s1*x26, -c6*x16 + s1*x23, -s1*x25 + s6*x16, x17, -c1*x26 + s1*x27, c6*x18 + x24, -s6*x18 + x22, x20, -d6*x19 + x21, 1.0)
     return out
 
@@ -593,10 +593,10 @@ def jacobian_one(q, lengths, out=None, at=0):
     x13 = c1*c5
     x14 = c1*s5
     x15 = -c1
-    if out is tuple:
-        return (c1*x1 - s1*x4, -c1*x9, c1*x11, c1*x10, -d6*(c234*x13 + x12), 0.0, c1*x4 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(-c234*c5*s1 + x14), 0.0, 0.0, x4, x3, d5*s234 - x2, -s234*x0, 0.0, 0.0, s1, s1, s1, c1*s234, -c234*x14 + c5*s1, 0.0, x15, x15, x15, s1*s234, -c234*x12 - x13, 1.0, 0.0, 0.0, 0.0, -c234, -x7)
     if out is None:
         out = _empty((6, 6))
+    elif out is tuple:
+        return (c1*x1 - s1*x4, -c1*x9, c1*x11, c1*x10, -d6*(c234*x13 + x12), 0.0, c1*x4 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(-c234*c5*s1 + x14), 0.0, 0.0, x4, x3, d5*s234 - x2, -s234*x0, 0.0, 0.0, s1, s1, s1, c1*s234, -c234*x14 + c5*s1, 0.0, x15, x15, x15, s1*s234, -c234*x12 - x13, 1.0, 0.0, 0.0, 0.0, -c234, -x7)
     _pack_jacobian(out, at, c1*x1 - s1*x4, -c1*x9, c1*x11, c1*x10, -d6*(c234*x13 + x12), c1*x4 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(-c234*c5*s1 + x14), x4, x3, d5*s234 - x2, -s234*x0, s1, s1, s1, c1*s234, -c234*x14 + c5*s1, x15, x15, x15, s1*s234, -c234*x12 - x13, 1.0, -c234, -x7)
     return out
 
@@ -788,10 +788,10 @@ def position_jacobian_one(q, lengths, out=None, at=0):
     x10 = x7 + x8
     x11 = x10 - x6
     x12 = c234*c5
-    if out is tuple:
-        return (c1*x1 - s1*x5, -c1*x9, c1*x11, c1*x10, -d6*(c1*x12 + s1*s5), 0.0, c1*x5 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(c1*s5 - s1*x12), 0.0, 0.0, x5, x4, d5*s234 - x3, -s234*x0, 0.0)
     if out is None:
         out = _empty((3, 6))
+    elif out is tuple:
+        return (c1*x1 - s1*x5, -c1*x9, c1*x11, c1*x10, -d6*(c1*x12 + s1*s5), 0.0, c1*x5 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(c1*s5 - s1*x12), 0.0, 0.0, x5, x4, d5*s234 - x3, -s234*x0, 0.0)
     _pack_position_jacobian(out, at, c1*x1 - s1*x5, -c1*x9, c1*x11, c1*x10, -d6*(c1*x12 + s1*s5), c1*x5 + s1*x1, -s1*x9, s1*x11, s1*x10, d6*(c1*s5 - s1*x12), x5, x4, d5*s234 - x3, -s234*x0)
     return out
 
