@@ -557,6 +557,9 @@ def test_wrap_angles_of_huge_angles_is_exact():
     np.testing.assert_allclose(wrapped[2:], exact[2:], rtol=0, atol=4.5e-16)
     np.testing.assert_allclose(wrapped[:2], exact[:2], rtol=0, atol=2e-13)
     assert wrap_angles(1e17) == wrap_angles([1e17])[0]
+    in_place = np.array(angles)
+    wrap_angles(in_place, out=in_place)  # the angles it reads are the ones it overwrites
+    np.testing.assert_array_equal(in_place, wrapped)
 
 
 @pytest.mark.parametrize(

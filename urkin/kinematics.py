@@ -140,8 +140,7 @@ def _six(q: ArrayLike) -> list[float] | None:
 
     One sum of squares decides (NaN and inf fail it; an overflow gives inf): it is below
     ``MAX_JOINT_ANGLE²`` only when every angle is in range, and the rare configuration with
-    every angle in range but a larger sum takes the general path, which checks each angle
-    (:func:`fk` and :func:`jacobian` inline the same test)."""
+    every angle in range but a larger sum takes the general path, which checks each angle."""
     if type(q) is np.ndarray and q.dtype is _FLOAT:
         shape = q.shape
         if shape == _SIX or shape == _ONE_ROW:
@@ -158,6 +157,18 @@ _SIX, _ONE_ROW = (6,), (1, 6)
 
 
 _MAX_SQUARED = MAX_JOINT_ANGLE**2
+
+
+def _one_pose(robot: Robot, q: ArrayLike, one, stacked: tuple[int, ...]) -> np.ndarray | None:
+    """The generated one-pose function ``one`` at ``q`` when ``robot`` is a plain
+    :class:`Robot` and ``q`` one configuration passing :func:`_six` (``stacked``: the shape of
+    a stack of one's result); else None.  The fast path of :func:`fk`, :func:`jacobian` and
+    :func:`position_jacobian`."""
+    if type(robot) is Robot and robot._plain:
+        values = _six(q)
+        if values is not None:
+            return one(values, robot.lengths, None if q.ndim == 1 else np.empty(stacked))
+    return None
 
 
 def _few(q: ArrayLike) -> list[list[float]] | None:
@@ -240,16 +251,9 @@ def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> fk(ur5, np.zeros((10, 6))).shape
     (10, 4, 4)
     """
-    if type(q) is np.ndarray and q.dtype is _FLOAT and type(robot) is Robot and robot._plain:
-        shape = q.shape  # one float configuration: checked and evaluated with no detour
-        if shape == _SIX or shape == _ONE_ROW:
-            values = q.tolist()
-            if len(values) == 1:  # a stack of one
-                (values,) = values
-            a, b, c, d, e, f = values
-            if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
-                out = None if len(shape) == 1 else np.empty((1, 4, 4))
-                return _gen.t06_one(values, robot.lengths, out)
+    T = _one_pose(robot, q, _gen.t06_one, (1, 4, 4))
+    if T is not None:  # one pose, or a stack of one, of the plain arm: no detour
+        return T
     robot = check_robot(robot)
     T = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))
     if robot._plain:
@@ -345,16 +349,9 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> J[3:, 0]  # joint 1 turns about the base z axis
     array([0., 0., 1.])
     """
-    if type(q) is np.ndarray and q.dtype is _FLOAT and type(robot) is Robot and robot._plain:
-        shape = q.shape  # one float configuration: the test of fk
-        if shape == _SIX or shape == _ONE_ROW:
-            values = q.tolist()
-            if len(values) == 1:  # a stack of one
-                (values,) = values
-            a, b, c, d, e, f = values
-            if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
-                out = None if len(shape) == 1 else np.empty((1, 6, 6))
-                return _gen.jacobian_one(values, robot.lengths, out)
+    J = _one_pose(robot, q, _gen.jacobian_one, (1, 6, 6))
+    if J is not None:  # one pose, or a stack of one, of the plain arm: no detour
+        return J
     robot = check_robot(robot)
     J = _evaluate(robot, q, _gen.jacobian_one, _gen.jacobian_many, (6, 6))
     if robot._plain:
@@ -384,10 +381,9 @@ def position_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> position_jacobian(urkin.robot("ur5"), np.zeros((4, 6))).shape
     (4, 3, 6)
     """
-    values = _six(q)
-    if values is not None and type(robot) is Robot and robot._plain:  # one pose: no detour
-        out = None if q.ndim == 1 else np.empty((1, 3, 6))  # a stack of one
-        return _gen.position_jacobian_one(values, robot.lengths, out)
+    J = _one_pose(robot, q, _gen.position_jacobian_one, (1, 3, 6))
+    if J is not None:  # one pose, or a stack of one, of the plain arm: no detour
+        return J
     robot = check_robot(robot)
     if not robot._plain:
         return jacobian(robot, q)[..., :3, :]

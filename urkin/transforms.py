@@ -694,18 +694,20 @@ def wrap_angles(q: ArrayLike, *, check: bool = True, out: np.ndarray | None = No
         angles = q
     # ceil((x − π)/2π) counts the turns to remove; −π lands on π exactly (the division by 2π
     # is kept rather than a multiplication by 1/2π, which is not exact at x = −π)
-    turns = np.ceil((angles - np.pi) / (2.0 * np.pi))
-    turns *= 2.0 * np.pi
-    wrapped = np.subtract(angles, turns, out=out)
-    if check:
+    exact = None
+    if check:  # before the subtraction, which may write over the angles (out=q)
         far = np.abs(angles) > _FEW_TURNS  # NaN is not: it stays NaN
         if far.any():  # numpy's sine and cosine reduce by the true π, to the last bit
             exact = np.arctan2(np.sin(angles), np.cos(angles))
             exact = np.where(exact == -np.pi, np.pi, exact)
-            if isinstance(wrapped, np.ndarray):
-                np.copyto(wrapped, exact, where=far)
-            else:  # one angle, as a numpy scalar
-                wrapped = exact[()]
+    turns = np.ceil((angles - np.pi) / (2.0 * np.pi))
+    turns *= 2.0 * np.pi
+    wrapped = np.subtract(angles, turns, out=out)
+    if exact is not None:
+        if isinstance(wrapped, np.ndarray):
+            np.copyto(wrapped, exact, where=far)
+        else:  # one angle, as a numpy scalar
+            wrapped = exact[()]
     return wrapped
 
 
