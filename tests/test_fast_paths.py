@@ -241,8 +241,44 @@ def test_a_stack_of_one_keeps_its_axis_and_equals_the_single_call(function, shap
     np.testing.assert_array_equal(stacked_one[0], function(arm, q))
 
 
+def _stack_of_one_calls():
+    """Every public function taking joint angles, as ``(name, call(q))``."""
+    from urkin import kinematics, planning
+
+    arm = urkin.robot("ur5")
+    model = planning.sphere_model(arm)
+    table = planning.Scene(boxes=[planning.Box([0, 0, -0.06], [2, 2, 0.1], name="table")])
+    other = np.array([0.5, -1.0, 1.0, -0.4, 1.2, 0.0])
+    return [
+        ("check_joints", lambda q: kinematics.check_joints(q)),
+        ("wrap_angles", lambda q: wrap_angles(q)),
+        ("singularity_factors", lambda q: kinematics.singularity_factors(arm, q)),
+        ("singular_families", lambda q: kinematics.singular_families(arm, q)),
+        ("manipulability", lambda q: kinematics.manipulability(arm, q)),
+        ("condition_number", lambda q: kinematics.condition_number(arm, q)),
+        ("is_free", lambda q: planning.is_free(model, table, q)),
+        ("clearance", lambda q: planning.clearance(model, table, q).distance),
+        ("edges_free", lambda q: planning.edges_free(model, table, q, other + 0 * q)),
+        ("certify_edges", lambda q: planning.certify_edges(model, table, q, other + 0 * q)),
+        ("edge_samples", lambda q: planning.edge_samples(model, q, other + 0 * q)),
+        ("place", lambda q: model.place(q)),
+    ]
+
+
+@pytest.mark.parametrize(
+    "name, call", _stack_of_one_calls(), ids=lambda x: x if isinstance(x, str) else ""
+)
+def test_every_function_of_joint_angles_keeps_the_axis_of_a_stack_of_one(name, call):
+    """The batching rule (DESIGN §2): a (1, 6) stack gives a result with a leading axis of 1,
+    equal to the single configuration's (which the scalar fast path of (6,) computes)."""
+    q = np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.2])
+    single, stacked = np.asarray(call(q)), np.asarray(call(q[None]))
+    assert stacked.shape == (1, *single.shape), name
+    np.testing.assert_allclose(stacked[0], single, rtol=0, atol=1e-15)
+
+
 def test_in_range_angles_whose_squares_add_up_past_the_bound_take_the_general_path():
-    """The one-pose test is one sum of squares; six angles each within ±8π can exceed it, and
+    """The one-pose test is one Euclidean norm; six angles each within ±8π can exceed it, and
     must still be computed (by the checked path), not refused."""
     arm = urkin.robot("ur5")
     q = np.full(6, 7.5 * np.pi)

@@ -177,21 +177,31 @@ def test_the_smaller_tree_extends_while_the_other_is_twice_its_size():
     assert planning.rrt._extending(trees, goal) is start  # balanced again: alternate
 
 
-def test_a_shortcut_that_fails_the_finer_recheck_gives_its_waypoints_back(monkeypatch):
-    """The final re-check at a quarter of the resolution can find what a shortcut's check
-    missed;
-    the planner then puts back the waypoints that shortcut skipped (here a shortcut that
-    skips everything: the straight edge through the wall)."""
-    raw = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=1, simplify=False)
-    assert raw.success and len(raw.path) > 2
-    monkeypatch.setattr(planning.rrt, "shortcut", lambda model, scene, path, **_: path[[0, -1]])
-    plan = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=1)
-    assert plan.success
-    np.testing.assert_array_equal(plan.path, raw.path)
-    # only the skipped waypoints of a blocked edge come back
-    path = raw.path[[0, 2, len(raw.path) - 1]]
-    back = planning.rrt._restored(path, raw.path, np.array([False, True]))
-    np.testing.assert_array_equal(back, np.vstack([raw.path[[0]], raw.path[2:]]))
+def test_shortcuts_are_taken_only_where_proven_and_not_certified_again(monkeypatch):
+    """A shortcut is taken only where certify_edges proves it free, so the final re-check
+    certifies only the path's other edges (the marks _shortcut returns are exactly the
+    shortcuts it took) and no shortcut can fail the finer re-check."""
+    wiggle = np.linspace(START, GOAL, 9)
+    wiggle[1:-1, 1] -= 0.6  # lift the upper arm over the wall on the way
+    wiggle[1:-1, 2] -= 0.6
+    assert planning.edges_free(MODEL, WALL, wiggle[:-1], wiggle[1:]).all()
+    short, taken = planning.rrt._shortcut(MODEL, WALL, wiggle, 3, 30, 16, 0.01)
+    assert len(short) < len(wiggle) and taken.any() and len(taken) == len(short) - 1
+    rows = {q.tobytes() for q in wiggle}
+    assert all(q.tobytes() in rows for q in short)
+    assert planning.certify_edges(MODEL, WALL, short[:-1][taken], short[1:][taken]).all()
+    # the final re-check is not asked to certify the shortcuts again
+    real, asked = planning.rrt._proven, []
+
+    def proven(model, scene, A, B, *rest):
+        asked.extend(zip(map(bytes, A), map(bytes, B)))
+        return real(model, scene, A, B, *rest)
+
+    monkeypatch.setattr(planning.rrt, "_proven", proven)
+    fine, certified = planning.rrt._rechecked(MODEL, WALL, short, 0.01, taken)
+    assert fine.all() and certified[taken].all()
+    skipped = {(bytes(a), bytes(b)) for a, b in zip(short[:-1][taken], short[1:][taken])}
+    assert not skipped & set(asked)
 
 
 def test_the_final_recheck_gives_the_verdicts_of_both_checks():
@@ -213,9 +223,9 @@ def test_an_edge_of_the_trees_that_fails_the_finer_recheck_is_planned_again(monk
     re-check is made to refuse the first edge once)."""
     real, calls = planning.rrt._rechecked, []
 
-    def rechecked(model, scene, path, resolution):
+    def rechecked(model, scene, path, resolution, known=None):
         calls.append(resolution)
-        fine, proven = real(model, scene, path, resolution)
+        fine, proven = real(model, scene, path, resolution, known)
         if len(calls) == 1:
             fine[0] = proven[0] = False
         return fine, proven
@@ -241,9 +251,9 @@ def test_an_edge_free_at_the_samples_but_not_proven_is_replaced(monkeypatch):
     real = planning.rrt._rechecked
     base = planning.rrt_connect(MODEL, WALL, START, GOAL, seed=2, simplify=False)
 
-    def doubt_first(model, scene, path, resolution):
+    def doubt_first(model, scene, path, resolution, known=None):
         resolutions.append(resolution)
-        fine, proven = real(model, scene, path, resolution)
+        fine, proven = real(model, scene, path, resolution, known)
         if len(resolutions) == 1 and np.array_equal(path[0], base.path[0]):
             proven[0] = False  # the first edge of the first path is in doubt
         return fine, proven

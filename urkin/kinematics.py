@@ -85,7 +85,9 @@ def _joints(
     """
     values = _six(q)
     if values is not None:  # the common case, checked without building another array
-        return q.reshape(1, 6), (), values
+        if q.ndim == 1:
+            return q.reshape(1, 6), (), values
+        return q, (1,), None  # a stack of one keeps its leading axis
     if type(q) is np.ndarray and q.dtype is _FLOAT and q.ndim > 1 and q.shape[-1] == 6 and q.size:
         # a float stack: two reductions check it (NaN fails both comparisons)
         if -MAX_JOINT_ANGLE <= q.min() and q.max() <= MAX_JOINT_ANGLE:
@@ -138,17 +140,17 @@ def _six(q: ArrayLike) -> list[float] | None:
     ±:data:`MAX_JOINT_ANGLE`; else None (and the general path checks ``q`` and explains what is
     wrong).
 
-    One sum of squares decides (NaN and inf fail it; an overflow gives inf): it is below
-    ``MAX_JOINT_ANGLE²`` only when every angle is in range, and the rare configuration with
-    every angle in range but a larger sum takes the general path, which checks each angle."""
+    One Euclidean norm decides (:func:`math.hypot`: NaN and inf fail it, and it does not
+    overflow): it is at most ``MAX_JOINT_ANGLE`` only when every angle is in range, and the
+    rare configuration with every angle in range but a larger norm takes the general path,
+    which checks each angle."""
     if type(q) is np.ndarray and q.dtype is _FLOAT:
         shape = q.shape
         if shape == _SIX or shape == _ONE_ROW:
             values = q.tolist()
             if len(values) == 1:  # a stack of one
                 (values,) = values
-            a, b, c, d, e, f = values
-            if a * a + b * b + c * c + d * d + e * e + f * f <= _MAX_SQUARED:
+            if _hypot(*values) <= MAX_JOINT_ANGLE:
                 return values
     return None
 
@@ -156,7 +158,7 @@ def _six(q: ArrayLike) -> list[float] | None:
 _SIX, _ONE_ROW = (6,), (1, 6)
 
 
-_MAX_SQUARED = MAX_JOINT_ANGLE**2
+_hypot = math.hypot
 
 
 def _one_pose(robot: Robot, q: ArrayLike, one, stacked: tuple[int, ...]) -> np.ndarray | None:

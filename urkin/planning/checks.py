@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike
 
 from urkin._inputs import positive
 from urkin.kinematics import _joints
-from urkin.planning.scene import Scene
+from urkin.planning.scene import Scene, _dot
 from urkin.planning.spheres import (
     FRAME_NAMES,
     SphereModel,
@@ -142,7 +142,7 @@ def _hits(
             k = groups.pair_order[offsets]
             i, j = model.pairs[k, 0], model.pairs[k, 1]
             d = points(rows, i) - points(rows, j)
-            d2 = np.einsum("ki,ki->k", d, d)
+            d2 = _dot(d, d)
             reach = model.radii[i] + model.radii[j]
             hit[rows[d2 <= reach * reach]] = True
             if grow is not None:
@@ -361,7 +361,7 @@ class _Points:
         if self.placed is not None:
             return self.placed[rows, :, spheres]
         A = self.F4[rows, model.frames[spheres]]  # (H, 4, 4)
-        return np.einsum("hij,hj->hi", A[:, :3, :3], model.centres[spheres]) + A[:, :3, 3]
+        return _dot(A[:, :3, :3], model.centres[spheres][:, None]) + A[:, :3, 3]
 
 
 #: The largest radius of a group's bounding ball (m): a link's spheres are split until each
@@ -603,7 +603,7 @@ def explain(model: SphereModel, scene: Scene, q: ArrayLike) -> str:
     Q, lead, _ = _joints(q, "q")
     if lead != ():
         raise ValueError(f"explain takes one configuration, shape (6,); got shape {np.shape(q)}")
-    c = clearance(model, scene, Q)
+    c = clearance(model, scene, Q[0])
     if not math.isfinite(float(c.distance)):
         return "free: nothing to collide with (no obstacles and no self-collision pairs)"
     a = model.names[int(c.sphere)]

@@ -12,12 +12,13 @@ checked in one batch (most blocked extensions end there, cheaply); which tree ex
 towards each is decided as the block is drawn, and a tree that grew meanwhile is searched
 again among its new nodes.  The trees
 live in preallocated arrays; the nearest node is found over the whole tree with one array
-operation.  Every edge is checked with
+operation.  Every edge of the trees is checked with
 :func:`urkin.planning.edges_free` at ``resolution`` (no sphere centre moves further between
-samples), and the final path once more at a quarter of it: where a shortcut fails there, the
-waypoints it skipped are put back and checked again; where an edge of the trees fails, or
-passes but cannot be proven free between its samples (:func:`~urkin.planning.certify_edges`),
-it is replaced: an edge in doubt by a detour through a waypoint near its middle whose two
+samples); a shortcut is taken only where it is proven free between its samples too
+(:func:`~urkin.planning.certify_edges`).  The final path's other edges are certified, and
+those that cannot be are checked once more at a quarter of the resolution; where an edge of
+the trees fails there, or passes but cannot be proven free between its samples, it is
+replaced: an edge in doubt by a detour through a waypoint near its middle whose two
 edges are proven free (nearby candidates tried in one batch), and otherwise the way between
 its ends is planned again at half the resolution (an edge in doubt stays if both fail).
 """
@@ -44,7 +45,7 @@ from urkin.planning.checks import (
     _proven,
     _travels,
 )
-from urkin.planning.scene import Scene
+from urkin.planning.scene import Scene, _dot
 from urkin.planning.spheres import SphereModel
 
 __all__ = ["Plan", "rrt_connect", "shortcut"]
@@ -233,15 +234,10 @@ def rrt_connect(
             G,
             time.perf_counter() - t0,
         )
-    raw = path
+    known = None  # the edges already proven free: the shortcuts taken
     if simplify and len(path) > 2:
-        path = shortcut(model, scene, path, seed=seed, resolution=resolution)
-    fine, proven = _rechecked(model, scene, path, resolution)
-    if not fine.all() and len(path) < len(raw):
-        # a shortcut that passed at the resolution but not at a quarter: the waypoints it
-        # skipped come back, and the edges between them are re-checked
-        path = _restored(path, raw, ~fine)
-        fine, proven = _rechecked(model, scene, path, resolution)
+        path, known = _shortcut(model, scene, path, seed, _ROUNDS, _BATCH, resolution)
+    fine, proven = _rechecked(model, scene, path, resolution, known)
     # edges free at the samples but not proven free between them (certify_edges) are in
     # doubt: they may graze an obstacle between samples
     doubt = fine & ~proven
@@ -316,17 +312,23 @@ def _detour(model, scene, a, b, rng, lower, upper) -> np.ndarray | None:
     return M[int(np.argmax(both))] if both.any() else None
 
 
-def _rechecked(model, scene, path: np.ndarray, resolution: float):
+def _rechecked(model, scene, path: np.ndarray, resolution: float, known=None):
     """Two verdicts on each edge of ``path``: whether it is free at the samples of the final
     re-check, at a quarter of the resolution, and whether it is proven free between them too
     (:func:`~urkin.planning.certify_edges`).  An edge proven free is free at any samples:
-    only the others are re-checked."""
+    only the others are re-checked; ``known`` (M − 1,) marks edges already proven (the
+    shortcuts :func:`_shortcut` took), which are not certified again."""
     A, B = path[:-1], path[1:]
-    travel = _travels(model, A, B, resolution)
-    proven = _proven(model, scene, A, B, travel, FINEST)
+    proven = np.zeros(len(A), dtype=bool) if known is None else known.copy()
+    todo = np.flatnonzero(~proven)
     fine = proven.copy()
-    if not proven.all():
-        fine[~proven] = _fine(model, scene, A[~proven], B[~proven], travel[~proven], resolution)
+    if len(todo):
+        travel = _travels(model, A[todo], B[todo], resolution)
+        proven[todo] = now = _proven(model, scene, A[todo], B[todo], travel, FINEST)
+        fine[todo] = now
+        if not now.all():
+            left = todo[~now]
+            fine[left] = _fine(model, scene, A[left], B[left], travel[~now], resolution)
     return fine, proven
 
 
@@ -334,18 +336,6 @@ def _fine(model, scene, A, B, travel, resolution: float) -> np.ndarray:
     """Whether each edge ``A`` → ``B`` (with its :func:`~urkin.planning.checks._travel`) is
     free at the resolution of the final re-check."""
     return _edges_free(model, scene, A, B, travel, resolution / _RECHECK, known=2)
-
-
-def _restored(path: np.ndarray, raw: np.ndarray, blocked: np.ndarray) -> np.ndarray:
-    """``path`` (waypoints of ``raw``, in order) with the waypoints of ``raw`` that its
-    ``blocked`` edges skip put back."""
-    where = {q.tobytes(): k for k, q in enumerate(raw)}
-    keep = np.zeros(len(raw), dtype=bool)
-    index = [where[q.tobytes()] for q in path]
-    keep[index] = True
-    for k in np.flatnonzero(blocked):
-        keep[index[k] : index[k + 1]] = True
-    return raw[keep]
 
 
 def _check_options(seed, max_iterations, time_limit, step) -> None:
@@ -457,10 +447,10 @@ class _Draws:
         targets = np.array([entry[2] for entry in entries])
         near = np.array([entry[3] for entry in entries])
         d = tree.nodes[None, first : tree.count] - targets[:, None]
-        d2 = np.einsum("kij,kij->ki", d, d)
+        d2 = _dot(d, d)
         best = np.argmin(d2, axis=1)
         gap = tree.nodes[near] - targets
-        nearer = d2[np.arange(len(mine)), best] < np.einsum("ki,ki->k", gap, gap)
+        nearer = d2[np.arange(len(mine)), best] < _dot(gap, gap)
         for k, entry in zip(mine, entries):  # searched up to the tree's size now
             self.queue[k] = (tree, tree.count, *entry[2:])
         if nearer.any():
@@ -533,7 +523,7 @@ class _Tree:
     def nearest(self, q: np.ndarray) -> int | np.ndarray:
         """The index of the node nearest ``q`` (6,), or of each row of ``q`` (K, 6): (K,)."""
         d = self.nodes[None, : self.count] - np.atleast_2d(q)[:, None]
-        near = np.argmin(np.einsum("kij,kij->ki", d, d), axis=1)
+        near = np.argmin(_dot(d, d), axis=1)
         return int(near[0]) if np.ndim(q) == 1 else near
 
     def add(self, q: np.ndarray, parent: int) -> int:
@@ -602,14 +592,16 @@ def shortcut(
     resolution: float = RESOLUTION,
 ) -> np.ndarray:
     """A shorter path through fewer waypoints: straight edges that skip waypoints replace the
-    waypoints they skip when they are free.
+    waypoints they skip when they are proven free.
 
     Waypoints where the path goes straight on are dropped first (no check needed: the path
     is the same).
-    Each round draws ``batch`` candidate pairs of waypoints (``i < j − 1``), checks all their
-    edges in one batched call at a quarter of the samples, then the ones found free that skip
-    the most without overlapping at full resolution, and applies those that pass; it stops
-    after ``rounds`` rounds or three rounds without a change.
+    Each round draws ``batch`` candidate pairs of waypoints (``i < j − 1``) and checks all their
+    edges in one batched call at a quarter of the samples (``4 · resolution``); the ones found
+    free there that skip the most without overlapping are then proven free throughout, between
+    samples too (as :func:`~urkin.planning.certify_edges` proves them), in one more, and
+    those proven are applied.  It stops after ``rounds`` rounds or three rounds without a
+    change.
 
     Returns
     -------
@@ -624,9 +616,20 @@ def shortcut(
     positive(seed, "seed", integer=True, zero_ok=True, what=_SEED)
     positive(rounds, "rounds", integer=True, zero_ok=True)
     positive(batch, "batch", integer=True, what="an integer ≥ 1")
+    return _shortcut(model, scene, P, seed, rounds, batch, resolution)[0]
+
+
+#: :func:`shortcut`'s rounds and batch, as :func:`rrt_connect` runs it.
+_ROUNDS, _BATCH = 30, 16
+
+
+def _shortcut(model, scene, P, seed, rounds, batch, resolution) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`shortcut` of a checked path (M, 6), and which edges of the result it proved
+    free (the shortcuts it took): (M' − 1,) bool."""
     P = _straightened(P)
     rng = np.random.default_rng(seed)
-    blocked: set[bytes] = set()  # edges found in collision, by their end configurations
+    refused: set[bytes] = set()  # edges not proven free, by their end configurations
+    proven: set[bytes] = set()  # the shortcuts taken
     idle = 0
     for _ in range(rounds):
         if len(P) <= 2 or idle >= 3:
@@ -634,9 +637,9 @@ def shortcut(
         i = rng.integers(0, len(P) - 2, batch)
         j = np.minimum(i + 2 + rng.integers(0, len(P), batch) % (len(P) - i - 1), len(P) - 1)
         ok = j - i >= 2
-        # each candidate once, and none already found blocked (same choice, less checking)
+        # each candidate once, and none already refused (same choice, less checking)
         keys = [P[a].tobytes() + P[b].tobytes() for a, b in zip(i[ok], j[ok])]
-        seen, kept = set(blocked), []
+        seen, kept = set(refused), []
         for n, key in enumerate(keys):
             if key not in seen:
                 seen.add(key)
@@ -644,30 +647,31 @@ def shortcut(
         i, j, keys = i[ok][kept], j[ok][kept], [keys[n] for n in kept]
         if len(i) == 0:
             idle += 1
-            if len(blocked) >= (len(P) - 1) * (len(P) - 2) // 2 and _all_blocked(P, blocked):
-                break  # every shortcut of this path is known blocked: no round can change it
+            if len(refused) >= (len(P) - 1) * (len(P) - 2) // 2 and _all_refused(P, refused):
+                break  # every shortcut of this path is known refused: no round can change it
             continue
-        # every candidate at a quarter of the samples; at full resolution only the longest
-        # that do not overlap among those found free
+        # every candidate at a quarter of the samples; proven free only the longest that do
+        # not overlap among those found free
         speeds = _travels(model, P[i], P[j], resolution)
         rough = _edges_free(model, scene, P[i], P[j], speeds, 4 * resolution, known=2, prove=False)
         chosen = np.flatnonzero(rough)[_apart(i[rough], j[rough])]
-        fine = np.zeros(0, dtype=bool)
+        sure = np.zeros(0, dtype=bool)
         if len(chosen):
-            A, B = P[i[chosen]], P[j[chosen]]
-            fine = _edges_free(model, scene, A, B, speeds[chosen], resolution, known=2)
-        blocked.update(keys[k] for k in np.flatnonzero(~rough))
-        blocked.update(keys[k] for k in chosen[~fine])
-        taken = chosen[fine]
+            sure = _proven(model, scene, P[i[chosen]], P[j[chosen]], speeds[chosen], FINEST)
+        refused.update(keys[k] for k in np.flatnonzero(~rough))
+        refused.update(keys[k] for k in chosen[~sure])
+        taken = chosen[sure]
         if not len(taken):
             idle += 1
             continue
+        proven.update(keys[k] for k in taken)
         keep = np.ones(len(P), dtype=bool)
         for a, b in zip(i[taken], j[taken]):
             keep[a + 1 : b] = False
         P = P[keep]
         idle = 0
-    return P
+    taken = np.array([P[a].tobytes() + P[a + 1].tobytes() in proven for a in range(len(P) - 1)])
+    return P, taken.astype(bool)
 
 
 def _straightened(P: np.ndarray) -> np.ndarray:
@@ -694,10 +698,10 @@ def _apart(i: np.ndarray, j: np.ndarray) -> list[int]:
     return taken
 
 
-def _all_blocked(P: np.ndarray, blocked: set[bytes]) -> bool:
-    """Whether every edge between two non-neighbouring waypoints of ``P`` is in ``blocked``."""
+def _all_refused(P: np.ndarray, refused: set[bytes]) -> bool:
+    """Whether every edge between two non-neighbouring waypoints of ``P`` is in ``refused``."""
     return all(
-        P[a].tobytes() + P[b].tobytes() in blocked
+        P[a].tobytes() + P[b].tobytes() in refused
         for a in range(len(P) - 2)
         for b in range(a + 2, len(P))
     )
