@@ -179,6 +179,20 @@ def test_bad_input_names_the_problem(kwargs, error, message):
         urkin.ik(urkin.robot("ur5"), **kwargs)
 
 
+@pytest.mark.parametrize("guess_shape", [(6,), (1, 6), (1, 1, 6)])
+@pytest.mark.parametrize("target_lead", [(), (1,), (3,)])
+def test_one_guess_of_any_stack_shape_serves_every_target(guess_shape, target_lead):
+    """q0 holding one configuration, as (6,) or a stack of one, is the guess of every target;
+    the result keeps the targets' leading axes."""
+    ur5 = urkin.robot("ur5")
+    Q = np.random.default_rng(4).uniform(-2.5, 2.5, (*target_lead, 6))
+    guess = np.full(guess_shape, 0.1)
+    result = urkin.ik(ur5, urkin.fk(ur5, Q), q0=guess)
+    assert result.q.shape == (*target_lead, 6)
+    assert np.all(result.success)
+    np.testing.assert_allclose(urkin.fk(ur5, result.q), urkin.fk(ur5, Q), atol=1e-9)
+
+
 def test_results_index_and_print():
     ur5 = urkin.robot("ur5")
     targets = urkin.fk(ur5, np.random.default_rng(9).uniform(-np.pi, np.pi, (3, 6)))

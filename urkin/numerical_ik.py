@@ -815,15 +815,15 @@ def ik(
         Q0 = np.zeros((n, 6))
     else:
         guess, guess_lead, _ = _joints(q0, "q0")
-        if guess_lead not in ((), lead):
-            raise ValueError(
-                f"q0 holds {math.prod(guess_lead)} configurations for {n} targets: give one "
-                f"guess, or one per target (shape {(*lead, 6)}); got shape {(*guess_lead, 6)}"
-            )
-        if guess_lead != ():
+        if len(guess) == 1:  # one guess (of shape (6,), (1, 6), …) for every target
+            Q0 = np.repeat(guess, n, axis=0)
+        elif guess_lead == lead:
             Q0 = guess.copy()
         else:
-            Q0 = guess.reshape(1, 6).copy() if n == 1 else np.broadcast_to(guess, (n, 6)).copy()
+            raise ValueError(
+                f"q0 holds {len(guess)} configurations for {n} targets: give one guess, or "
+                f"one per target (shape {(*lead, 6)}); got shape {(*guess_lead, 6)}"
+            )
     if 1 < n <= _HAND_OFF:  # a few targets: each solved as if alone, on the single path
         alone = {
             "method": rule,
