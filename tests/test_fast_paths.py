@@ -277,6 +277,16 @@ def test_every_function_of_joint_angles_keeps_the_axis_of_a_stack_of_one(name, c
     np.testing.assert_allclose(stacked[0], single, rtol=0, atol=1e-15)
 
 
+@pytest.mark.parametrize(
+    "name, call", _stack_of_one_calls(), ids=lambda x: x if isinstance(x, str) else ""
+)
+@pytest.mark.parametrize("lead", [(0,), (2, 0)], ids=str)
+def test_every_function_of_joint_angles_takes_an_empty_stack(name, call, lead):
+    """An empty stack gives an empty result with its leading axes, not numpy's error."""
+    single = np.asarray(call(np.zeros(6)))
+    assert np.asarray(call(np.zeros((*lead, 6)))).shape == (*lead, *single.shape), name
+
+
 def test_in_range_angles_whose_squares_add_up_past_the_bound_take_the_general_path():
     """The one-pose test is one Euclidean norm; six angles each within ±8π can exceed it, and
     must still be computed (by the checked path), not refused."""

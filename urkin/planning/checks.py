@@ -549,11 +549,13 @@ def clearance(model: SphereModel, scene: Scene, q: ArrayLike) -> Clearance:
     Q, lead, _ = _joints(q, "q")
     Q = Q.reshape(-1, 6)
     n = len(Q)
-    W = model.place(Q)
     best = np.full(n, np.inf)
     sphere = np.full(n, -1)
     obstacle = np.full(n, -1)
     other = np.full(n, -1)
+    if not n:  # an empty stack
+        return Clearance(*(a.reshape(lead) for a in (best, sphere, obstacle, other)))
+    W = model.place(Q)
     rows = np.arange(n)
     if len(scene) and len(model._moving):
         moving = model._moving
@@ -664,6 +666,9 @@ def edge_samples(
     ``resolution`` metres between samples (see the module notes)."""
     _check_model(model)
     A, B, lead = _edge_ends(qa, qb)
+    if not len(A):  # an empty stack
+        positive(resolution, "resolution", what="a positive distance (m)")
+        return np.zeros(lead, dtype=np.intp)
     counts = _intervals(model, A, B, resolution)
     return int(counts[0]) if lead == () else counts.reshape(lead)
 
@@ -812,6 +817,9 @@ def edges_free(
     """
     _check(model, scene)
     A, B, lead = _edge_ends(qa, qb)
+    if not len(A):  # an empty stack
+        positive(resolution, "resolution", what="a positive distance (m)")
+        return np.ones(lead, dtype=bool)
     # one edge: the rough speed bound (more samples, which one edge's batches absorb, for a
     # tenth of the bound's cost); a stack: the tighter bound, since every sample costs there
     speeds = _travels(model, A, B, resolution, rough=len(A) == 1)
@@ -867,6 +875,8 @@ def certify_edges(
     _check(model, scene)
     A, B, lead = _edge_ends(qa, qb)
     positive(finest, "finest", what="a positive distance (m)")
+    if not len(A):  # an empty stack
+        return np.ones(lead, dtype=bool)
     proven = _proven(model, scene, A, B, _travels(model, A, B, finest), finest)
     return bool(proven[0]) if lead == () else proven.reshape(lead)
 
