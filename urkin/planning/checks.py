@@ -118,15 +118,23 @@ def _hits(
     F4 = _frames(model.robot, Q)  # (N, 8, 4, 4)
     points = _Points(model, F4)
     groups = _groups(model)
-    G = _place(F4, groups.place)  # (N, g, 3)
+    sparse = n >= _SPARSE  # the balls placed frame by frame (_place_by_frame)
+    if sparse:
+        G = _place_by_frame(F4, groups.by_frame, len(groups.radii)).transpose(0, 2, 1)
+    else:
+        G = _place(F4, groups.place)  # (N, g, 3)
     if grow is not None:  # a ball grows by the most any of its spheres grows
         grow_groups = grow[:, groups.filled].max(axis=2)  # (N, g)
     if len(groups.pairs):
         gp = len(groups.pairs)
-        d = F4.reshape(n, 128) @ groups.apart  # (N, 3 gp): the pairs' x, then y, then z differences
-        d *= d
-        d2 = d[:, :gp] + d[:, gp : 2 * gp]
-        d2 += d[:, 2 * gp :]
+        if sparse:  # from the placed balls
+            d = G[:, groups.pairs[:, 0]] - G[:, groups.pairs[:, 1]]
+            d2 = _dot(d, d)
+        else:  # one product: the pairs' x, then y, then z differences (N, 3 gp)
+            d = F4.reshape(n, 128) @ groups.apart
+            d *= d
+            d2 = d[:, :gp] + d[:, gp : 2 * gp]
+            d2 += d[:, 2 * gp :]
         if grow is None:
             near = d2 <= groups.reach2
         else:
@@ -315,33 +323,46 @@ _SPARSE = 32
 
 def _place_all(model: SphereModel, F4: np.ndarray) -> np.ndarray:
     """Every sphere centre of the model placed by the frames ``F4`` (N, 8, 4, 4): (N, 3, S),
-    coordinate-major.  Frame by frame, one product of the frame's 3 × 4 rows with its
-    spheres' homogeneous centres: twelve multiplications per centre, where the placing
-    matrix's product (:func:`_place`) makes 128 per coordinate, mostly by zeros; for fewer
-    than ``_SPARSE`` configurations, that one product costs less than a product per frame."""
+    coordinate-major.  Frame by frame (:func:`_place_by_frame`) from ``_SPARSE``
+    configurations on; for fewer, the placing matrix's one product (:func:`_place`) costs
+    less than a product per frame."""
     n = len(F4)
     if n < _SPARSE:
         return _place(F4, _placing(model)).transpose(0, 2, 1)
-    out = np.empty((n, 3, len(model)))
-    for frame, where, C in _by_frame(model):
+    return _place_by_frame(F4, _by_frame(model), len(model))
+
+
+def _place_by_frame(F4: np.ndarray, parts, k: int) -> np.ndarray:
+    """Centres fixed in frames (``parts``: :func:`_frame_parts`, ``k`` of them) placed by the
+    frames ``F4`` (N, 8, 4, 4): (N, 3, k), coordinate-major.  One product of each frame's 3 × 4
+    rows with its centres: twelve multiplications per centre, where the placing matrix's
+    product makes 128 per coordinate, mostly by zeros."""
+    n = len(F4)
+    out = np.empty((n, 3, k))
+    for frame, where, C in parts:
         out[:, :, where] = (F4[:, frame, :3].reshape(3 * n, 4) @ C).reshape(n, 3, -1)
     return out
 
 
+def _frame_parts(frames: np.ndarray, centres: np.ndarray):
+    """Per frame holding centres: the frame, where its centres are among them (a slice where
+    they are consecutive) and their homogeneous coordinates (4, k)."""
+    parts = []
+    for frame in np.unique(frames):
+        where = np.flatnonzero(frames == frame)
+        C = np.vstack([centres[where].T, np.ones(len(where))])
+        if np.all(np.diff(where) == 1):
+            where = slice(int(where[0]), int(where[-1]) + 1)
+        parts.append((int(frame), where, C))
+    return tuple(parts)
+
+
 def _by_frame(model: SphereModel) -> tuple[tuple[int, slice | np.ndarray, np.ndarray], ...]:
-    """Per frame holding spheres: the frame, where its spheres are in the model (a slice where
-    they are consecutive) and their homogeneous centres (4, k) (built once per model and kept
-    on it)."""
+    """The model's spheres by frame (:func:`_frame_parts`; built once per model and kept on
+    it)."""
     found = model.__dict__.get("_by_frame")
     if found is None:
-        parts = []
-        for frame in np.unique(model.frames):
-            where = np.flatnonzero(model.frames == frame)
-            C = np.vstack([model.centres[where].T, np.ones(len(where))])
-            if np.all(np.diff(where) == 1):
-                where = slice(int(where[0]), int(where[-1]) + 1)
-            parts.append((int(frame), where, C))
-        found = tuple(parts)
+        found = _frame_parts(model.frames, model.centres)
         object.__setattr__(model, "_by_frame", found)
     return found
 
@@ -383,7 +404,8 @@ class _Groups:
     balls' placing
     matrix (:func:`_placing_matrix`); ``apart`` (128, 3 gp): the placing matrix of the
     differences of the group pairs' centres, coordinate by coordinate; ``reach``: the sums
-    of their radii, ``reach2`` their squares."""
+    of their radii, ``reach2`` their squares; ``by_frame``: the balls by frame
+    (:func:`_frame_parts`)."""
 
     frames: np.ndarray
     centres: np.ndarray
@@ -399,6 +421,7 @@ class _Groups:
     apart: np.ndarray
     reach: np.ndarray
     reach2: np.ndarray
+    by_frame: tuple
 
 
 def _groups(model: SphereModel) -> _Groups:
@@ -460,6 +483,7 @@ def _build_groups(model: SphereModel) -> _Groups:
         np.ascontiguousarray(apart.reshape(128, -1)),
         radii[pairs[:, 0]] + radii[pairs[:, 1]],
         (radii[pairs[:, 0]] + radii[pairs[:, 1]]) ** 2,
+        _frame_parts(frames, centres),
     )
 
 
