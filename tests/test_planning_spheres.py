@@ -352,13 +352,15 @@ def test_table_lower_bounds_fall_no_faster_than_their_reach(rng, name):
         assert np.all(change <= np.abs(step[:, j : j + 2]) @ pair.reach + 1e-12)
 
 
-@pytest.mark.parametrize("n", [1, 2, 3, 4, 100, 512, 513, 1500])
-def test_check_frames_match_the_frames_of_the_kinematics_at_every_stack_size(rng, n):
+@pytest.mark.parametrize("plain", [False, True], ids=["base and tool", "plain"])
+@pytest.mark.parametrize("n", [0, 1, 2, 3, 4, 5, 6, 100, 512, 513, 1500])
+def test_check_frames_match_the_frames_of_the_kinematics_at_every_stack_size(rng, n, plain):
     """The collision checks' frames, products of the DH link transforms for mid-sized stacks,
-    are the generated kinematics' frames with the tool to round-off, at any stack size (and
-    on a moved base with a tool), whichever of the two the checks pick for it."""
+    or the one-pose code written into the stack for a few configurations of a plain arm, are
+    the generated kinematics' frames with the tool to round-off, at any stack size (and on a
+    moved base with a tool), whichever the checks pick for it."""
     T = urkin.transforms.make_transform(urkin.transforms.rot_z(0.7), [0.2, -0.1, 0.5])
-    arm = urkin.robot("ur5").with_base(T).with_tool(T)
+    arm = urkin.robot("ur5") if plain else urkin.robot("ur5").with_base(T).with_tool(T)
     Q = rng.uniform(-np.pi, np.pi, (n, 6))
     generated = planning.spheres.frames_with_tool(arm, Q)
     np.testing.assert_allclose(planning.spheres._chain(arm, Q), generated, atol=1e-14)

@@ -66,6 +66,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
+from urkin._generated import ur_kinematics as _gen
 from urkin._inputs import real
 from urkin.kinematics import fk_frames
 from urkin.planning._sphere_tables import FITTED, PAIRS
@@ -512,10 +513,24 @@ def _frames(robot: Robot, Q: np.ndarray) -> np.ndarray:
 
     Stacks of the sizes collision checks mostly see (``_CHAIN``) are computed as the partial
     products of their DH link transforms, base to tool: six batched 4×4 products and a dozen
-    array operations, where the generated code makes about a hundred."""
-    if _CHAIN[0] <= len(Q) <= _CHAIN[1]:
+    array operations, where the generated code makes about a hundred.  Fewer configurations of
+    a plain arm (no base or tool set) are written by the generated one-pose code straight into
+    the stack, the tool frame a copy of the flange's."""
+    n = len(Q)
+    if _CHAIN[0] <= n <= _CHAIN[1]:
         return _chain(robot, Q)
+    if robot._plain and n < _CHAIN[0]:  # the generated one-pose code, straight into the stack
+        out = np.empty((n, 8, 4, 4))
+        lengths = robot.lengths
+        for i, row in enumerate(Q.tolist()):
+            _gen.frames_one(row, lengths, out, i * _FRAMES_BYTES)
+        out[:, 7] = out[:, 6]  # a plain arm's tool frame is its flange
+        return out
     return frames_with_tool(robot, Q)
+
+
+#: Bytes of one configuration's eight frames.
+_FRAMES_BYTES = 8 * 16 * 8
 
 
 #: Stack sizes for which :func:`_frames` multiplies link transforms (measured: the generated
