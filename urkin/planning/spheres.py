@@ -513,18 +513,22 @@ def _frames(robot: Robot, Q: np.ndarray) -> np.ndarray:
 
     Stacks of the sizes collision checks mostly see (``_CHAIN``) are computed as the partial
     products of their DH link transforms, base to tool: six batched 4×4 products and a dozen
-    array operations, where the generated code makes about a hundred.  Fewer configurations of
-    a plain arm (no base or tool set) are written by the generated one-pose code straight into
-    the stack, the tool frame a copy of the flange's."""
+    array operations, where the generated code makes about a hundred.  Fewer configurations are
+    written by the generated one-pose code straight into the stack, then moved by the base
+    and given the tool in two products (a plain arm's tool frame is a copy of its flange's)."""
     n = len(Q)
     if _CHAIN[0] <= n <= _CHAIN[1]:
         return _chain(robot, Q)
-    if robot._plain and n < _CHAIN[0]:  # the generated one-pose code, straight into the stack
+    if n < _CHAIN[0]:  # the generated one-pose code, straight into the stack
         out = np.empty((n, 8, 4, 4))
         lengths = robot.lengths
         for i, row in enumerate(Q.tolist()):
             _gen.frames_one(row, lengths, out, i * _FRAMES_BYTES)
-        out[:, 7] = out[:, 6]  # a plain arm's tool frame is its flange
+        if robot._plain:
+            out[:, 7] = out[:, 6]  # a plain arm's tool frame is its flange
+        else:
+            np.matmul(robot.base, out[:, :7], out=out[:, :7])  # numpy buffers the overlap
+            np.matmul(out[:, 6], robot.tool, out=out[:, 7])
         return out
     return frames_with_tool(robot, Q)
 
