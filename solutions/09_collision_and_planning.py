@@ -775,8 +775,8 @@ for name, grown in runs.items():
 # free solution, and the plan reports which one it reached. It first tries the straight edge
 # to every goal (in an open cell that is often enough), and the path it returns is checked once
 # more, at a quarter of the resolution, and `planning.certify_edges` tries to prove each edge
-# free *between* its samples (the fattened-arm test, halving the pieces it cannot prove). An
-# edge it cannot prove — free at every sample, it may graze something in between — is
+# free *between* its samples (the fattened-arm test, cutting in three the pieces it cannot
+# prove). An edge it cannot prove — free at every sample, it may graze something in between — is
 # replaced by a detour through a waypoint near its middle, both new edges proven (a few
 # dozen nearby candidates, tried in one batch); an edge that fails, or has no detour, is
 # planned again at half the resolution.

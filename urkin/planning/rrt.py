@@ -597,11 +597,11 @@ def shortcut(
     Waypoints where the path goes straight on are dropped first (no check needed: the path
     is the same).
     Each round draws ``batch`` candidate pairs of waypoints (``i < j − 1``) and checks all their
-    edges in one batched call at a quarter of the samples (``4 · resolution``); the ones found
-    free there that skip the most without overlapping are then proven free throughout, between
-    samples too (as :func:`~urkin.planning.certify_edges` proves them), in one more, and
-    those proven are applied.  It stops after ``rounds`` rounds or three rounds without a
-    change.
+    edges in one batched call at a few samples each (``32 · resolution``: a cheap filter); the
+    ones found free there that skip the most without overlapping are then proven free
+    throughout, between samples too (as :func:`~urkin.planning.certify_edges` proves them),
+    in one more, and those proven are applied.  It stops after ``rounds`` rounds or three
+    rounds without a change.
 
     Returns
     -------
@@ -621,6 +621,11 @@ def shortcut(
 
 #: :func:`shortcut`'s rounds and batch, as :func:`rrt_connect` runs it.
 _ROUNDS, _BATCH = 30, 16
+#: How much coarser than the resolution :func:`shortcut` samples its candidates before it
+#: tries to prove some free.  Measured on the paths of MotionBenchMaker's UR5 problems: 32
+#: takes 0.72 of the time of 4 for the same shortened lengths (one chosen candidate in ten
+#: then fails its proof, against one in 180); the proof, not the filter, keeps paths free.
+_ROUGH = 32
 
 
 def _shortcut(model, scene, P, seed, rounds, batch, resolution) -> tuple[np.ndarray, np.ndarray]:
@@ -650,10 +655,12 @@ def _shortcut(model, scene, P, seed, rounds, batch, resolution) -> tuple[np.ndar
             if len(refused) >= (len(P) - 1) * (len(P) - 2) // 2 and _all_refused(P, refused):
                 break  # every shortcut of this path is known refused: no round can change it
             continue
-        # every candidate at a quarter of the samples; proven free only the longest that do
-        # not overlap among those found free
+        # every candidate at a few samples; proven free only the longest that do not overlap
+        # among those found free
         speeds = _travels(model, P[i], P[j], resolution)
-        rough = _edges_free(model, scene, P[i], P[j], speeds, 4 * resolution, known=2, prove=False)
+        rough = _edges_free(
+            model, scene, P[i], P[j], speeds, _ROUGH * resolution, known=2, prove=False
+        )
         chosen = np.flatnonzero(rough)[_apart(i[rough], j[rough])]
         sure = np.zeros(0, dtype=bool)
         if len(chosen):
