@@ -359,6 +359,32 @@ def test_certified_edges_are_free_everywhere_and_open_ones_are_certified(rng):
         planning.certify_edges(MODEL, CLUTTER, A[0], B[0], finest=0)
 
 
+def test_certification_never_checks_more_than_max_samples_pieces_in_a_round(monkeypatch):
+    """Near contact the pieces multiply at each round; when the next round would check more
+    than MAX_SAMPLES of them, the edges still open are left unproven (False), not checked in
+    an ever larger batch.  The edge: the upright arm turning about its base 1 mm below a
+    ceiling, so every piece stays 1 mm from contact."""
+    top = float(np.max(MODEL.place(UP)[:, 2] + MODEL.radii))
+    ceiling = planning.Scene(boxes=[planning.Box([0, 0, top + 0.051], [4, 4, 0.1])])
+    turned = UP + np.array([1.0, 0, 0, 0, 0, 0])
+    assert abs(float(planning.clearance(MODEL, ceiling, turned).distance) - 0.001) < 1e-9
+    sizes = []
+    hits = planning.checks._hits
+
+    def counted(model, scene, Q, grow):
+        sizes.append(len(Q))
+        return hits(model, scene, Q, grow)
+
+    monkeypatch.setattr(planning.checks, "_hits", counted)
+    assert planning.certify_edges(MODEL, ceiling, UP, turned)  # 1 mm clear: proven
+    assert len(sizes) >= 3 and sizes[2] > sizes[1] > sizes[0]  # the pieces multiplied
+    cap = 5 * sizes[2] // 6  # between two and three times the pieces left open by round 2
+    monkeypatch.setattr(planning.checks, "MAX_SAMPLES", cap)
+    sizes.clear()
+    assert not planning.certify_edges(MODEL, ceiling, UP, turned)  # left open: not proven
+    assert sizes and max(sizes) <= cap
+
+
 def _mounted_gripper_model() -> planning.SphereModel:
     """The UR5's spheres on an arm mounted on a tilted base, with two spheres on a tool."""
     from urkin.transforms import make_transform

@@ -930,7 +930,7 @@ def _proven(model, scene, A, B, speeds, finest) -> np.ndarray:
         small = open_ & (travel[edge] * width <= finest)
         proven[edge[small]] = False  # still not proven at the finest: within reach of contact
         open_ &= proven[edge]
-        if 2 * np.count_nonzero(open_) > MAX_SAMPLES:  # too many pieces within reach
+        if _CERTIFY_CUT * np.count_nonzero(open_) > MAX_SAMPLES:  # too many pieces within reach
             proven[edge[open_]] = False
             break
         edge, lo, width = edge[open_], lo[open_], width[open_] / _CERTIFY_CUT
