@@ -30,10 +30,13 @@ def _solution_cells(lesson: str) -> tuple[tuple[str, str, str], ...]:
     return tuple((c["cell_type"], f"c{i:03d}", c["source"]) for i, c in enumerate(cells))
 
 
-def namespace_for(lesson: str, replace: dict[str, str] | None = None) -> dict:
+def namespace_for(
+    lesson: str, replace: dict[str, str] | None = None, exercise_id: str | None = None
+) -> dict:
     """The lesson's definitions executed here as the grader selects them — every exercise
-    function and what it needs, demonstrations and plots skipped — with the exercise cells of
-    the functions in ``replace`` holding other code (a student's variant)."""
+    function and what it needs (only those of ``exercise_id`` if given, as the grader runs
+    one exercise), demonstrations and plots skipped — with the exercise cells of the
+    functions in ``replace`` holding other code (a student's variant)."""
     import ast
     import json
     import linecache
@@ -76,7 +79,8 @@ def namespace_for(lesson: str, replace: dict[str, str] | None = None) -> dict:
         notebook = read_notebook(path)
     graded = {ex.function: notebook.graded_site(ex.function, ex.id) for ex in exercises}
     graded = {k: v for k, v in graded.items() if v is not None}
-    roots = {ex.function for ex in exercises} | {u for ex in exercises for u in ex.uses}
+    chosen = [ex for ex in exercises if exercise_id in (None, ex.id)]
+    roots = {ex.function for ex in chosen} | {u for ex in chosen for u in ex.uses}
     namespace = {"__name__": "__main__"}
     for site in notebook.plan(roots, graded):
         source = notebook.cells[site.cell]
@@ -103,7 +107,8 @@ def variant(lesson: str, exercise_id: str, source: str, also: tuple = ()) -> dic
     ``also``, other code in other exercises' cells: pairs of function and source)."""
     from urkin.course.lessons import exercise
 
-    return namespace_for(lesson, {exercise(exercise_id).function: source, **dict(also)})
+    replace = {exercise(exercise_id).function: source, **dict(also)}
+    return namespace_for(lesson, replace, exercise_id)
 
 
 if __name__ == "__main__":

@@ -172,3 +172,30 @@ def test_reading_is_deterministic_and_json_safe(tmp_path):
     first, second = read_notebook(path), read_notebook(path)
     assert [(s.cell, s.kind) for s in first.sites] == [(s.cell, s.kind) for s in second.sites]
     json.dumps(first.cells)
+
+
+def test_cells_read_before_are_remembered_but_their_statements_are_parsed_afresh(tmp_path):
+    """The grader remembers what it read from each cell text (the submissions of a lesson
+    share most cells): a notebook read twice gives the same sites, each with a node of its own
+    (no submission shares an AST with another); texts too long to remember are read each
+    time, and the memo keeps at most its size."""
+    from urkin.course.grading import read
+
+    source = "import numpy as np\n\ndef f(x):\n    return np.sin(x) + g(x)\n\nT = f(1.0)\n"
+    write(notebook(source, "%timeit f(2.0)"), tmp_path / "a_02.ipynb")
+    first, again = (read_notebook(tmp_path / "a_02.ipynb") for _ in range(2))
+    assert [(s.kind, s.binds, s.uses, s.cell, s.index) for s in first.sites] == [
+        (s.kind, s.binds, s.uses, s.cell, s.index) for s in again.sites
+    ]
+    assert first.sites[1].uses == {"np", "g"} and first.sites[2].kind == "assign"
+    assert all(a.node is not b.node for a, b in zip(first.sites, again.sites))
+    again.sites[1].uses.add("changed")  # a site's sets are its own
+    assert read_notebook(tmp_path / "a_02.ipynb").sites[1].uses == {"np", "g"}
+    long = "x = 1\n" * (read._MEMO_CHARACTERS // 6 + 1)
+    write(notebook(long), tmp_path / "b_02.ipynb")
+    assert len(read_notebook(tmp_path / "b_02.ipynb").sites) == long.count("\n")
+    assert read._STATEMENTS.get(long) is None and read._SOURCES.get(long) is None
+    for k in range(read._MEMO_SIZE + 5):
+        write(notebook(f"y{k} = {k}"), tmp_path / "c_02.ipynb")
+        read_notebook(tmp_path / "c_02.ipynb")
+    assert len(read._STATEMENTS.table) <= read._MEMO_SIZE >= len(read._SOURCES.table)

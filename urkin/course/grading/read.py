@@ -28,6 +28,8 @@ import json
 import os
 import re
 import stat
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -331,6 +333,76 @@ class Notebook:
         ]
 
 
+#: What :func:`_facts` finds in one statement: kind, binds, uses, chains, module, mutates.
+_Facts = tuple[str, frozenset, frozenset, frozenset, str, "str | None"]
+
+
+def _facts(node: ast.stmt) -> _Facts:
+    """The :class:`Site` fields of one top-level statement but its place and node."""
+    site = _site(0, 0, node)
+    return (
+        site.kind,
+        frozenset(site.binds),
+        frozenset(site.uses),
+        frozenset(site.chains),
+        site.module,
+        site.mutates,
+    )
+
+
+class _Memo:
+    """A small least-recently-used table of what was read from cells, keyed by their text
+    (thread-safe).  The submissions of one lesson share most of their cells with the course
+    notebook and with each other, so each is read once per grading run; only texts of up to
+    :data:`_MEMO_CHARACTERS` are kept, which bounds the table's memory whatever it is given."""
+
+    def __init__(self, size: int) -> None:
+        self.size, self.table, self.lock = size, OrderedDict(), threading.Lock()
+
+    def get(self, key: str):
+        with self.lock:
+            found = self.table.get(key)
+            if found is not None:
+                self.table.move_to_end(key)
+            return found
+
+    def put(self, key: str, value) -> None:
+        if len(key) > _MEMO_CHARACTERS:
+            return
+        with self.lock:
+            self.table[key] = value
+            while len(self.table) > self.size:
+                self.table.popitem(last=False)
+
+
+#: The longest cell text the memo keeps (a course notebook's longest code cell has about
+#: 4,000 characters), and how many texts each table keeps.
+_MEMO_CHARACTERS, _MEMO_SIZE = 10_000, 512
+_SOURCES, _STATEMENTS = _Memo(_MEMO_SIZE), _Memo(_MEMO_SIZE)
+
+
+def _python_source_memo(text: str) -> tuple[str | None, str | None]:
+    """:func:`_python_source`, remembered (:class:`_Memo`)."""
+    found = _SOURCES.get(text)
+    if found is None:
+        found = _python_source(text)
+        _SOURCES.put(text, found)
+    return found
+
+
+def _sites(cell: int, source: str, body: list[ast.stmt]) -> list[Site]:
+    """The sites of one cell's statements ``body`` (parsed from ``source``): each
+    statement's facts remembered by the cell's source (:class:`_Memo`), the nodes fresh."""
+    facts = _STATEMENTS.get(source)
+    if facts is None or len(facts) != len(body):
+        facts = tuple(_facts(node) for node in body)
+        _STATEMENTS.put(source, facts)
+    return [
+        Site(cell, i, node, kind, set(binds), set(uses), set(chains), module, mutates)
+        for i, (node, (kind, binds, uses, chains, module, mutates)) in enumerate(zip(body, facts))
+    ]
+
+
 def _site(cell: int, index: int, node: ast.stmt) -> Site:
     uses, chains = _free_names(node)
     if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
@@ -424,7 +496,7 @@ def read_notebook(path: str | Path, lesson: str | None = None) -> Notebook:
             break
         if isinstance(cell.get("id"), str):
             notebook.cell_ids[number] = cell["id"]
-        source, why_not = _python_source(text)
+        source, why_not = _python_source_memo(text)
         if source is None:
             notebook.notes.append(f"code cell {number} is {why_not}: it was skipped")
             continue
@@ -446,7 +518,7 @@ def read_notebook(path: str | Path, lesson: str | None = None) -> Notebook:
             )
             break
         notebook.cells[number] = source
-        notebook.sites += [_site(number, i, node) for i, node in enumerate(tree.body)]
+        notebook.sites += _sites(number, source, tree.body)
     return notebook
 
 
