@@ -5,6 +5,8 @@ The meshes are placed by the URDF chain (tests/robot_models.py, no urkin) and th
 points are sampled afresh on every link's surface.
 """
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -130,8 +132,8 @@ def test_fitted_pairs_miss_no_contact_of_the_meshes(name):
                     )
                     near.append(points[reach.min(axis=1) <= CONTACT])
                 if len(near[0]) and len(near[1]):
-                    closest = np.linalg.norm(near[0][:, None] - near[1][None], axis=-1).min()
-                    assert closest >= CONTACT, f"{name} at {q}: links {a}, {b} {closest:.4f} m"
+                    gap = closest(near[0], near[1])
+                    assert gap >= CONTACT, f"{name} at {q}: links {a}, {b} {gap:.4f} m"
                 checked += 1
     assert checked >= 20  # the test looked where spheres of unchecked pairs meet
 
@@ -176,7 +178,7 @@ def test_tabulated_meshes_are_never_closer_than_their_table_says(name, links):
         a, b = (sample_surface(meshes[k], 2500, rng) for k in pair.frames)
         around = np.linalg.norm(np.ptp(b, axis=0)) + 0.06  # b's bounding box and 6 cm
         a = a[np.linalg.norm(a - b.mean(axis=0), axis=1) <= around]
-        sampled = np.sqrt(((a[:, None] - b[None]) ** 2).sum(axis=-1).min()) if len(a) else 1.0
+        sampled = closest(a, b) if len(a) else 1.0
         assert lower <= sampled, f"{name} at {q}: table {lower:.4f} m > samples {sampled:.4f} m"
         slack.append(min(sampled, 0.06) - lower)
     # surface samples ~5 mm apart; between nodes 1° apart the bound falls by up to half the
@@ -185,15 +187,30 @@ def test_tabulated_meshes_are_never_closer_than_their_table_says(name, links):
     assert np.median(slack) < allowed
 
 
-def tabled_wrist_3(name: str, posed: np.ndarray, part: bool = False) -> np.ndarray:
-    """The pieces of wrist 3's mesh that its table holds (or, ``part=True``, its bump), placed
-    like ``posed``, the mesh placed by the URDF: the rigid motion taking the mesh in its DH
-    frame onto ``posed``, fitted to their vertices (Kabsch), carries the pieces."""
+@functools.cache
+def _wrist_3_split(name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Wrist 3's mesh in its DH frame, and its pieces with which of them are its bump
+    (``tests.pair_tables.split``), computed once per arm."""
     from tests.fit_spheres import mesh_in_dh_frames
     from tests.pair_tables import split
 
     local = mesh_in_dh_frames(name)[6]
-    pieces, bump = split(local)
+    return (local, *split(local))
+
+
+def closest(a: np.ndarray, b: np.ndarray) -> float:
+    """The smallest distance between two point sets (n, 3) and (m, 3), from one product:
+    ``|a − b|² = |a|² + |b|² − 2 a·b`` (round-off about 1e-16 m² for points within a metre of
+    the origin)."""
+    d2 = np.einsum("ij,ij->i", a, a)[:, None] + np.einsum("ij,ij->i", b, b)[None] - 2 * a @ b.T
+    return float(np.sqrt(max(d2.min(), 0.0)))
+
+
+def tabled_wrist_3(name: str, posed: np.ndarray, part: bool = False) -> np.ndarray:
+    """The pieces of wrist 3's mesh that its table holds (or, ``part=True``, its bump), placed
+    like ``posed``, the mesh placed by the URDF: the rigid motion taking the mesh in its DH
+    frame onto ``posed``, fitted to their vertices (Kabsch), carries the pieces."""
+    local, pieces, bump = _wrist_3_split(name)
     P, W = local.reshape(-1, 3), posed.reshape(-1, 3)
     p0, w0 = P.mean(axis=0), W.mean(axis=0)
     U, _, Vt = np.linalg.svd((P - p0).T @ (W - w0))
