@@ -353,7 +353,8 @@ def _facts(node: ast.stmt) -> _Facts:
 class _Memo:
     """A small least-recently-used table of what was read from cells, keyed by their text
     (thread-safe).  The submissions of one lesson share most of their cells with the course
-    notebook and with each other, so each is read once per grading run; only texts of up to
+    notebook and with each other, so a shared cell is read once while it stays in the table
+    (the least recently used text leaves first); only texts of up to
     :data:`_MEMO_CHARACTERS` are kept, which bounds the table's memory whatever it is given."""
 
     def __init__(self, size: int) -> None:
