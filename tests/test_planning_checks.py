@@ -175,7 +175,7 @@ def test_touch_tests_agree_with_signed_distances_for_every_kind(rng):
     r = rng.uniform(0.0, 0.1, len(P))
     gap = scene.signed_distances(P) - r[:, None]
     clear = np.abs(gap).min(axis=1) > 1e-9  # away from touching by more than round-off
-    np.testing.assert_array_equal(scene._touches(P, r)[clear], (gap <= 0).any(axis=1)[clear])
+    np.testing.assert_array_equal(scene._touches(P.T, r)[clear], (gap <= 0).any(axis=1)[clear])
     # the dense test of a few points: the squared gap to the nearest obstacle
     np.testing.assert_array_equal((scene._gaps2(P) <= r * r)[clear], (gap <= 0).any(axis=1)[clear])
     outside = np.maximum(scene.signed_distances(P), 0.0).min(axis=1)

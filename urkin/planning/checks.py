@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike
 
 from urkin._inputs import positive
 from urkin.kinematics import _joints
-from urkin.planning.scene import Scene, _dot
+from urkin.planning.scene import Scene, _dot, _squares
 from urkin.planning.spheres import (
     FRAME_NAMES,
     SphereModel,
@@ -118,9 +118,10 @@ def _hits(
     F4 = _frames(model.robot, Q)  # (N, 8, 4, 4)
     points = _Points(model, F4)
     groups = _groups(model)
+    g = len(groups.radii)
     sparse = n >= _SPARSE  # the balls placed frame by frame (_place_by_frame)
     if sparse:
-        G = _place_by_frame(F4, groups.by_frame, len(groups.radii)).transpose(0, 2, 1)
+        G = _place_by_frame(F4, groups.by_frame, g)  # (N, 3, g), coordinate-major
     else:
         G = _place(F4, groups.place)  # (N, g, 3)
     if grow is not None:  # a ball grows by the most any of its spheres grows
@@ -128,8 +129,11 @@ def _hits(
     if len(groups.pairs):
         gp = len(groups.pairs)
         if sparse:  # from the placed balls
-            d = G[:, groups.pairs[:, 0]] - G[:, groups.pairs[:, 1]]
-            d2 = _dot(d, d)
+            d = np.take(G, groups.pairs[:, 0], axis=2)
+            d -= np.take(G, groups.pairs[:, 1], axis=2)
+            d *= d
+            d2 = d[:, 0] + d[:, 1]
+            d2 += d[:, 2]
         else:  # one product: the pairs' x, then y, then z differences (N, 3 gp)
             d = F4.reshape(n, 128) @ groups.apart
             d *= d
@@ -149,8 +153,9 @@ def _hits(
             offsets += np.arange(len(rows))
             k = groups.pair_order[offsets]
             i, j = model.pairs[k, 0], model.pairs[k, 1]
-            d = points(rows, i) - points(rows, j)
-            d2 = _dot(d, d)
+            d = points(rows, i)
+            d -= points(rows, j)
+            d2 = _squares(d)
             reach = model.radii[i] + model.radii[j]
             hit[rows[d2 <= reach * reach]] = True
             if grow is not None:
@@ -160,7 +165,11 @@ def _hits(
     moving = groups.moving
     todo = np.flatnonzero(~hit)  # configurations not yet known to collide as they are
     if len(scene) and len(moving) and len(todo):
-        balls = G[todo[:, None], moving].reshape(-1, 3)
+        if sparse:  # (3, T m): one flat take from the coordinate-major balls
+            at = (todo[:, None] * (3 * g) + moving).reshape(-1)
+            balls = np.take(G, at + _AXES * g)
+        else:
+            balls = G[todo[:, None], moving].reshape(-1, 3).T
         radii = _repeated(groups.radii[moving], len(todo))
         if grow is not None:
             radii = radii + grow_groups[todo[:, None], moving].reshape(-1)
@@ -172,12 +181,12 @@ def _hits(
             valid = members >= 0
             rows = np.repeat(rows, valid.sum(axis=1))
             spheres = members[valid]
-            centres = points(rows, spheres)
+            centres = points(rows, spheres)  # (3, H)
             if grow is None:
                 hit[rows[scene._touches(centres, model.radii[spheres])]] = True
             else:
                 touch = scene._touches(centres, model.radii[spheres] + grow[rows, spheres])
-                rows, spheres, centres = rows[touch], spheres[touch], centres[touch]
+                rows, spheres, centres = rows[touch], spheres[touch], centres[:, touch]
                 grown[rows] = True
                 hit[rows[scene._touches(centres, model.radii[spheres])]] = True
     return grown, hit
@@ -368,21 +377,28 @@ def _by_frame(model: SphereModel) -> tuple[tuple[int, slice | np.ndarray, np.nda
 
 
 class _Points:
-    """World centres of spheres in configurations, asked for as ``(rows (H,), spheres (H,))``:
-    gathered one by one while they are few, and once they are many (an eighth of every sphere
-    in every configuration), every sphere placed in one matrix product and looked up."""
+    """World centres of spheres in configurations, asked for as ``(rows (H,), spheres (H,))``
+    and handed back coordinate-major, (3, H): gathered one by one while they are few, and once
+    they are many (an eighth of every sphere in every configuration), every sphere placed in
+    one matrix product and looked up by one flat :func:`numpy.take` (a fancy index with a
+    slice between its arrays costs about six times as much)."""
 
     def __init__(self, model: SphereModel, F4: np.ndarray) -> None:
         self.model, self.F4, self.placed = model, F4, None
 
     def __call__(self, rows: np.ndarray, spheres: np.ndarray) -> np.ndarray:
         model = self.model
-        if self.placed is None and 8 * len(rows) >= len(self.F4) * len(model):
-            self.placed = _place_all(model, self.F4)
+        k = len(model)
+        if self.placed is None and 8 * len(rows) >= len(self.F4) * k:
+            self.placed = _place_all(model, self.F4).reshape(-1)  # (N, 3, S), flat
         if self.placed is not None:
-            return self.placed[rows, :, spheres]
+            return np.take(self.placed, rows * (3 * k) + spheres + _AXES * k)
         A = self.F4[rows, model.frames[spheres]]  # (H, 4, 4)
-        return _dot(A[:, :3, :3], model.centres[spheres][:, None]) + A[:, :3, 3]
+        return (_dot(A[:, :3, :3], model.centres[spheres][:, None]) + A[:, :3, 3]).T
+
+
+#: The offsets of the x, y and z rows of a coordinate-major array, in units of its row length.
+_AXES = np.arange(3)[:, None]
 
 
 #: The largest radius of a group's bounding ball (m): a link's spheres are split until each

@@ -30,6 +30,15 @@ _SMALL = 0.3
 #: collision check), else einsum.
 _dot = getattr(np, "vecdot", None) or functools.partial(np.einsum, "...i,...i->...")
 
+
+def _squares(Pt: np.ndarray) -> np.ndarray:
+    """The squared lengths of coordinate-major vectors ``Pt`` (3, M): (M,)."""
+    out = Pt[0] * Pt[0]
+    out += Pt[1] * Pt[1]
+    out += Pt[2] * Pt[2]
+    return out
+
+
 __all__ = ["Box", "Capsule", "Cylinder", "Scene", "Sphere"]
 
 
@@ -325,10 +334,10 @@ class Scene:
         flat = P.reshape(-1, 3)
         return self._distances(flat).reshape(*lead, len(self))
 
-    def _touches(self, P: np.ndarray, r: np.ndarray) -> np.ndarray:
-        """Whether each ball (centres ``P`` (M, 3), radii ``r`` (M,)) touches an obstacle: (M,)
-        bool, the same verdict as ``signed_distances <= r`` for a ball that is not within
-        round-off of touching.
+    def _touches(self, Pt: np.ndarray, r: np.ndarray) -> np.ndarray:
+        """Whether each ball (centres ``Pt`` (3, M), coordinate-major; radii ``r`` (M,)) touches
+        an obstacle: (M,) bool, the same verdict as ``signed_distances <= r`` for a ball that is
+        not within round-off of touching.
 
         Squared distances, no square roots but a cylinder's radial one.  Large boxes and
         cylinders (a bounding ball wider than 0.3 m: floors, walls, shelves) and spheres are
@@ -336,12 +345,11 @@ class Scene:
         boxes, small cylinders and capsules only where their bounding balls meet the ball (one
         more product finds where), which most balls do not.
         """
-        M = len(P)
+        M = Pt.shape[1]
         hit = np.zeros(M, dtype=bool)
         if not len(self) or not M:
             return hit
         # obstacle-major: arrays (obstacles, M), so reductions over obstacles run along M
-        Pt = P.T
         r2 = r * r
         if len(self._big_h):
             L = self._big_R @ Pt  # (3B, M) coordinates in each box's frame
@@ -359,7 +367,7 @@ class Scene:
             A = np.empty((6, M))
             A[:3] = Pt
             A[3] = r
-            A[4] = _dot(P, P)
+            A[4] = _squares(Pt)
             A[4] -= r2
             A[5] = 1.0
             k, m = np.nonzero(self._small_rows @ A <= 1e-9)  # round-off of the expansion
@@ -370,9 +378,9 @@ class Scene:
                     pick = kind == code
                     if pick.any():
                         mm = m[pick]
-                        hit[mm[test(P[mm], r[mm], index[pick])]] = True
+                        hit[mm[test(Pt[:, mm].T, r[mm], index[pick])]] = True
         if len(self._big_cyl) or self.spheres:
-            p2 = _dot(P, P)
+            p2 = _squares(Pt)
         if len(self._big_cyl):
             c, a = self._cyl_c[self._big_cyl], self._cyl_a[self._big_cyl]
             t = a @ Pt - self._cyl_ca[self._big_cyl, None]
