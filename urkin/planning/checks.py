@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike
 
 from urkin._inputs import positive
 from urkin.kinematics import _joints
-from urkin.planning.scene import Scene, _dot, _squares
+from urkin.planning.scene import Scene, _dot, _nonzero, _squares
 from urkin.planning.spheres import (
     FRAME_NAMES,
     SphereModel,
@@ -146,7 +146,7 @@ def _hits(
             reach += grow_groups[:, groups.pairs[:, 1]]
             near = d2 <= reach * reach
         if near.any():  # the sphere pairs of the near group pairs, listed by group pair
-            rows, k = np.nonzero(near)
+            rows, k = _nonzero(near)
             counts = groups.pair_count[k]
             offsets = np.repeat(groups.pair_start[k] - np.cumsum(counts) + counts, counts)
             rows = np.repeat(rows, counts)
@@ -174,7 +174,7 @@ def _hits(
         if grow is not None:
             radii = radii + grow_groups[todo[:, None], moving].reshape(-1)
         touch = scene._touches(balls, radii)
-        rows, k = np.nonzero(touch.reshape(len(todo), len(moving)))
+        rows, k = _nonzero(touch.reshape(len(todo), len(moving)))
         rows = todo[rows]
         if len(rows):
             members = groups.members[moving[k]]  # (H, m), −1 pads

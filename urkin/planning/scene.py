@@ -31,6 +31,23 @@ _SMALL = 0.3
 _dot = getattr(np, "vecdot", None) or functools.partial(np.einsum, "...i,...i->...")
 
 
+def _nonzero(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`numpy.nonzero` of a 2-D bool array: the rows and columns of its True entries, in
+    row-major order.  A large array is searched flat (numpy 2.4's 2-D search took 140 µs for
+    50,000 entries, a flat one 23); a small one, where the flat search's extra steps cost more,
+    by numpy's."""
+    if mask.size < _FLAT_SEARCH:
+        return np.nonzero(mask)
+    flat = np.flatnonzero(mask)
+    rows = flat // mask.shape[1]
+    flat -= rows * mask.shape[1]
+    return rows, flat
+
+
+#: Entries from which :func:`_nonzero` searches flat (measured: the two cost alike at 800).
+_FLAT_SEARCH = 1024
+
+
 def _squares(Pt: np.ndarray) -> np.ndarray:
     """The squared lengths of coordinate-major vectors ``Pt`` (3, M): (M,)."""
     out = Pt[0] * Pt[0]
@@ -370,7 +387,7 @@ class Scene:
             A[4] = _squares(Pt)
             A[4] -= r2
             A[5] = 1.0
-            k, m = np.nonzero(self._small_rows @ A <= 1e-9)  # round-off of the expansion
+            k, m = _nonzero(self._small_rows @ A <= 1e-9)  # round-off of the expansion
             if len(m):
                 kind, index = self._small_kind[k], self._small[k]
                 tests = (self._touch_boxes, self._touch_cylinders, self._touch_capsules)

@@ -70,6 +70,7 @@ from urkin._generated import ur_kinematics as _gen
 from urkin._inputs import real
 from urkin.kinematics import fk_frames
 from urkin.planning._sphere_tables import FITTED, PAIRS
+from urkin.planning.scene import _nonzero
 from urkin.robots import Robot, check_robot, random_configurations
 from urkin.robots import robot as _robot_by_name
 
@@ -253,7 +254,7 @@ class _Tables:
         near = self.floor[cell] <= (0.0 if margin is None else margin)
         if not near.any():  # most configurations: every pair's cell rules out contact
             return _NONE, _NONE, np.zeros(0)
-        rows, pairs = np.nonzero(near)
+        rows, pairs = _nonzero(near)
         cell, after = cell[rows, pairs], np.modf(x[rows, pairs])[0]  # x − i
         fall = (np.abs(_STEPS - after[:, None, :]) * self.slope[pairs]).sum(axis=2)  # (H, 4)
         return rows, pairs, (self.flat[cell[:, None] + self.nodes[pairs]] - fall).max(axis=1)
