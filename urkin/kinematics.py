@@ -12,6 +12,7 @@ a base was set with :meth:`urkin.Robot.with_base`).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -161,16 +162,36 @@ _SIX, _ONE_ROW = (6,), (1, 6)
 _hypot = math.hypot
 
 
-def _one_pose(robot: Robot, q: ArrayLike, one, stacked: tuple[int, ...]) -> np.ndarray | None:
-    """The generated one-pose function ``one`` at ``q`` when ``robot`` is a plain
-    :class:`Robot` and ``q`` one configuration passing :func:`_six` (``stacked``: the shape of
-    a stack of one's result); else None.  The fast path of :func:`fk`, :func:`jacobian` and
-    :func:`position_jacobian`."""
-    if type(robot) is Robot and robot._plain:
-        values = _six(q)
-        if values is not None:
-            return one(values, robot.lengths, None if q.ndim == 1 else np.empty(stacked))
-    return None
+def _one_pose_first(one, stacked: tuple[int, ...]):
+    """Decorator: the public function runs the generated one-pose function ``one`` itself when
+    ``robot`` is a plain :class:`Robot` and ``q`` one configuration, of shape (6,) or a stack
+    of one (``stacked``: the shape of a stack of one's result), as a float array, finite and
+    within ±:data:`MAX_JOINT_ANGLE` (:func:`_six`'s test, written out: the fast path of
+    :func:`fk`, :func:`jacobian` and :func:`position_jacobian` makes no call but ``one``'s);
+    anything else goes to the decorated function, which checks it."""
+
+    def decorate(general):
+        @functools.wraps(general)
+        def public(robot: Robot, q: ArrayLike) -> np.ndarray:
+            if type(robot) is Robot and robot._plain and type(q) is np.ndarray:
+                if q.dtype is _FLOAT:
+                    shape = q.shape
+                    if shape == _SIX:
+                        values = q.tolist()
+                        if _hypot(*values) <= MAX_JOINT_ANGLE:
+                            return one(values, robot.lengths)
+                    elif shape == _ONE_ROW:
+                        (values,) = q.tolist()
+                        if _hypot(*values) <= MAX_JOINT_ANGLE:
+                            return one(values, robot.lengths, _empty(stacked))
+            return general(robot, q)
+
+        return public
+
+    return decorate
+
+
+_empty = np.empty
 
 
 def _few(q: ArrayLike) -> list[list[float]] | None:
@@ -224,6 +245,7 @@ def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> 
     return out if len(lead) == 1 else unstack(out, lead)
 
 
+@_one_pose_first(_gen.t06_one, (1, 4, 4))
 def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     """Forward kinematics: the tool pose ``T_base_tool`` for joint angles ``q``.
 
@@ -253,9 +275,6 @@ def fk(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> fk(ur5, np.zeros((10, 6))).shape
     (10, 4, 4)
     """
-    T = _one_pose(robot, q, _gen.t06_one, (1, 4, 4))
-    if T is not None:  # one pose, or a stack of one, of the plain arm: no detour
-        return T
     robot = check_robot(robot)
     T = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))
     if robot._plain:
@@ -327,6 +346,7 @@ def _with_tool_and_base(robot: Robot, J: np.ndarray, q: ArrayLike) -> np.ndarray
     return J
 
 
+@_one_pose_first(_gen.jacobian_one, (1, 6, 6))
 def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     """Geometric Jacobian ``[v; ω]`` of the tool origin, in the base frame.
 
@@ -351,9 +371,6 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> J[3:, 0]  # joint 1 turns about the base z axis
     array([0., 0., 1.])
     """
-    J = _one_pose(robot, q, _gen.jacobian_one, (1, 6, 6))
-    if J is not None:  # one pose, or a stack of one, of the plain arm: no detour
-        return J
     robot = check_robot(robot)
     J = _evaluate(robot, q, _gen.jacobian_one, _gen.jacobian_many, (6, 6))
     if robot._plain:
@@ -361,6 +378,7 @@ def jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     return _with_tool_and_base(robot, J, q)
 
 
+@_one_pose_first(_gen.position_jacobian_one, (1, 3, 6))
 def position_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     """Position Jacobian ``∂p/∂q`` of the tool origin, in the base frame.
 
@@ -383,9 +401,6 @@ def position_jacobian(robot: Robot, q: ArrayLike) -> np.ndarray:
     >>> position_jacobian(urkin.robot("ur5"), np.zeros((4, 6))).shape
     (4, 3, 6)
     """
-    J = _one_pose(robot, q, _gen.position_jacobian_one, (1, 3, 6))
-    if J is not None:  # one pose, or a stack of one, of the plain arm: no detour
-        return J
     robot = check_robot(robot)
     if not robot._plain:
         return jacobian(robot, q)[..., :3, :]
