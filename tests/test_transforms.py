@@ -75,7 +75,31 @@ def test_skew_is_the_cross_product(rng):
 @settings(max_examples=200)
 def test_rpy_round_trip(roll, pitch, yaw):
     R = tf.rpy_to_rotation([roll, pitch, yaw])
-    np.testing.assert_allclose(tf.rotation_to_rpy(R), [roll, pitch, yaw], atol=1e-9)
+    rpy = tf.rotation_to_rpy(R)
+    # the same angles, roll and yaw in (−π, π] (an input of −π comes back as π)
+    np.testing.assert_allclose(tf.wrap_angles(rpy - [roll, pitch, yaw]), 0.0, atol=1e-9)
+    assert np.all(rpy[::2] > -np.pi) and np.all(rpy[::2] <= np.pi)
+
+
+def test_roll_and_yaw_of_half_a_turn_are_pi_not_minus_pi():
+    assert tf.rotation_to_rpy(tf.rot_z(-np.pi))[2] == np.pi
+    assert tf.rotation_to_rpy(tf.rot_x(-np.pi))[0] == np.pi
+    stack = tf.rotation_to_rpy(np.stack([tf.rot_z(-np.pi), tf.rot_x(-np.pi)]))
+    assert stack[0, 2] == np.pi and stack[1, 0] == np.pi
+
+
+def test_wrap_angles_keeps_an_angle_just_above_minus_pi():
+    x = np.nextafter(-np.pi, 0.0)
+    assert tf.wrap_angles(x) == x
+    assert tf.wrap_angles(np.array([x, 3 * np.pi]))[0] == x
+    assert np.all(tf.wrap_angles(np.array([x, -np.pi, 7.0, 3 * np.pi])) <= np.pi)
+
+
+def test_pose_error_of_one_pose_is_exact_near_half_a_turn():
+    for gap in (1e-6, 1e-8, 1e-10):
+        B = tf.make_transform(tf.rot_z(np.pi - gap))
+        assert abs(tf.pose_error(np.eye(4), B)[1] - (np.pi - gap)) < 1e-14
+        assert tf.pose_error(np.eye(4), B)[1] == tf.pose_error(np.eye(4)[None], B[None])[1][0]
 
 
 def test_rpy_is_fixed_axis_xyz():

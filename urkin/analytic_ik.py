@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike
 
 from urkin._inputs import positive, real, unstack
 from urkin.ik_result import IKResult, no_solution_reason, verified
-from urkin.kinematics import flange_pose
+from urkin.kinematics import MAX_JOINT_ANGLE, _range_error, flange_pose
 from urkin.robots import Robot, check_robot
 from urkin.transforms import check_transform, wrap_angles
 
@@ -104,7 +104,7 @@ def _solve_one(
     r2 = wx * wx + wy * wy
     r = math.sqrt(r2)
     found: list[list[float] | None] = [None] * 8
-    if r - d4 < -REACH_TOLERANCE or r2 == 0.0:
+    if r - d4 < -REACH_TOLERANCE or r2 == 0.0 or r2 == math.inf:  # inf: a wrist at 1e154 m
         return found
     gap = r - d4 if abs(r - d4) > _ROUNDOFF * (abs(px) + abs(py) + d6 + d4) else 0.0
     root = math.sqrt(max(gap * (r + d4), 0.0))
@@ -180,7 +180,8 @@ def _solve_one(
 def _representative_one(X: float, Y: float, which: float, a2, a3, d5) -> float:
     """:func:`_representatives` for one pose and one of its two members (``which`` = ±1)."""
     A = math.hypot(X, Y)
-    sigma = (A * A + d5 * d5 - (a2 * a2 + a3 * a3)) / (2.0 * d5 * A) if A > 0.0 else 0.0
+    # d5 = 0 (a custom arm): the circle is a point, every θ234 reaches as far
+    sigma = (A * A + d5 * d5 - (a2 * a2 + a3 * a3)) / (2.0 * d5 * A) if A * d5 != 0.0 else 0.0
     half = math.asin(min(1.0, max(-1.0, sigma)))
     beta = math.atan2(Y, X)
     return beta + half if which > 0 else beta + _PI - half
@@ -216,7 +217,8 @@ def _representatives(X, Y, a2, a3, d5) -> np.ndarray:
     Shape ``(..., 2)`` for ``X``, ``Y`` of shape ``(...)``.
     """
     A = np.hypot(X, Y)
-    sigma = (A * A + d5 * d5 - (a2 * a2 + a3 * a3)) / (2.0 * d5 * np.where(A > 0, A, 1.0))
+    across = 2.0 * d5 * A  # 0 where A = 0, or for an arm with d5 = 0 (then any θ234 does)
+    sigma = (A * A + d5 * d5 - (a2 * a2 + a3 * a3)) / np.where(across != 0, across, np.inf)
     half = np.arcsin(np.clip(sigma, -1.0, 1.0))
     beta = np.arctan2(Y, X)
     return np.stack([beta + half, beta + np.pi - half], axis=-1)
@@ -238,10 +240,11 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
         T.reshape(n, 16)[:, :12].T
     )
     wx, wy, wz = px - d6 * zx, py - d6 * zy, pz - d6 * zz
-    r2 = wx * wx + wy * wy
+    with np.errstate(over="ignore"):  # a wrist 1e154 m away: out of reach, not a warning
+        r2 = wx * wx + wy * wy
     r = np.sqrt(r2)
     gap = r - d4
-    reach1 = (gap >= -REACH_TOLERANCE) & (r2 > 0.0)
+    reach1 = (gap >= -REACH_TOLERANCE) & (r2 > 0.0) & (r2 < np.inf)
     gap[np.abs(gap) <= _ROUNDOFF * (np.abs(px) + np.abs(py) + (d6 + d4))] = 0.0
     root = np.sqrt(np.maximum(gap * (r + d4), 0.0))
     side = np.array([[1.0], [-1.0]])
@@ -465,14 +468,19 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
             f"q_current must have shape (6,) or {(*lead, 6)} for T of shape {goal.shape}; "
             f"got {current.shape}"
         )
+    largest = float(np.abs(current).max(initial=0.0))
+    if largest > MAX_JOINT_ANGLE:
+        raise _range_error(largest, "q_current")
     current = np.broadcast_to(current, (*lead, 6)).reshape(-1, 6)
     q, valid = _solve(poses, robot.lengths)
     lower = np.array([lo for lo, _ in robot.joint_limits])
     upper = np.array([hi for _, hi in robot.joint_limits])
-    # the 2π-equivalent of each angle nearest the current one, pushed back inside the limits
+    # the 2π-equivalent of each angle nearest the current one, pushed back inside the limits by
+    # as many whole turns as it takes (a current angle may be several turns out)
     shifted = current[:, None, :] + wrap_angles(q - current[:, None, :], check=False)
-    shifted = np.where(shifted > upper, shifted - 2 * np.pi, shifted)
-    shifted = np.where(shifted < lower, shifted + 2 * np.pi, shifted)
+    turn = 2 * np.pi
+    shifted -= turn * np.maximum(np.ceil((shifted - upper) / turn), 0.0)
+    shifted += turn * np.maximum(np.ceil((lower - shifted) / turn), 0.0)
     inside = np.all((shifted >= lower) & (shifted <= upper), axis=-1) & valid
     distance = np.where(inside, np.linalg.norm(shifted - current[:, None, :], axis=-1), np.inf)
     best = np.argmin(distance, axis=1)

@@ -70,6 +70,12 @@ class IKResult:
             raise TypeError(
                 "a single IKResult cannot be indexed; index a batch of targets (one leading axis)"
             )
+        if not isinstance(index, (int, np.integer)) or isinstance(index, bool):
+            raise TypeError(
+                f"an IKResult is indexed by one integer (a target of the batch); got "
+                f"{type(index).__name__} {index!r:.40} (slice the arrays: result.q[0:2], "
+                "result.success[0:2])"
+            )
         return IKResult(
             self.q[index].copy(),
             bool(self.success[index]),
@@ -88,6 +94,8 @@ class IKResult:
                 f"IKResult(success={self.success}, q={q}, residual={self.residual:.2e}, "
                 f"iterations={self.iterations}, restarts={self.restarts}, reason={self.reason!r})"
             )
+        if np.size(self.success) == 0:
+            return "IKResult(batch of 0)"
         return (
             f"IKResult(batch of {np.size(self.success)}: {int(np.sum(self.success))} succeeded, "
             f"median iterations {np.median(self.iterations):g})"
@@ -97,6 +105,11 @@ class IKResult:
 def _wrist_points(robot: Robot, T_world_tool: np.ndarray) -> np.ndarray:
     T_base_flange = flange_pose(robot, T_world_tool, check=False)
     return T_base_flange[..., :3, 3] - robot.d6 * T_base_flange[..., :3, 2]
+
+
+def _metres(x: float) -> str:
+    """A distance for a message: to 0.1 mm, or in scientific notation when absurdly large."""
+    return f"{x:.4f}" if x < 1e6 else f"{x:.3g}"
 
 
 def unreachable(robot: Robot, targets: np.ndarray, pose: bool) -> tuple[np.ndarray, list[str]]:
@@ -130,11 +143,12 @@ def unreachable(robot: Robot, targets: np.ndarray, pose: bool) -> tuple[np.ndarr
         points = targets @ T_base_world[:3, :3].T + T_base_world[:3, 3]
         reach = arm + robot.d6 + float(np.linalg.norm(robot.tool[:3, 3]))
         what = "it"
-    distance = np.linalg.norm(points - [0.0, 0.0, robot.d1], axis=-1)
+    offset = points - [0.0, 0.0, robot.d1]
+    distance = np.hypot(np.hypot(offset[..., 0], offset[..., 1]), offset[..., 2])  # no overflow
     bad = distance > reach + 1e-9
     reasons = [
-        f"unreachable: the target is {d - reach:.4f} m beyond the {robot.name}'s reach ({what} "
-        f"is {d:.4f} m from the shoulder; at most {reach:.4f} m is reachable)"
+        f"unreachable: the target is {_metres(d - reach)} m beyond the {robot.name}'s reach "
+        f"({what} is {_metres(d)} m from the shoulder; at most {reach:.4f} m is reachable)"
         if flag
         else ""
         for flag, d in zip(bad, distance)

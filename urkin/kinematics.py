@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike
 from urkin._generated import ur_kinematics as _gen
 from urkin._inputs import positive, real, unstack
 from urkin.robots import Robot, check_robot
-from urkin.transforms import check_transform, inv_transform, skew
+from urkin.transforms import check_transform, inv_transform
 
 __all__ = [
     "MAX_JOINT_ANGLE",
@@ -339,7 +339,12 @@ def _with_tool_and_base(robot: Robot, J: np.ndarray, q: ArrayLike) -> np.ndarray
     R06 = _evaluate(robot, q, _gen.t06_one, _gen.t06_many, (4, 4))[..., :3, :3]
     r = R06 @ robot.tool[:3, 3]  # flange → tool origin, in base coordinates
     J = J.copy()
-    J[..., :3, :] -= skew(r) @ J[..., 3:, :]  # v_tool = v_flange + ω × r
+    # v_tool = v_flange + ω × r, written out (complex angles too: a complex-step derivative)
+    w = J[..., 3:, :]
+    rx, ry, rz = r[..., 0, None], r[..., 1, None], r[..., 2, None]
+    J[..., 0, :] -= ry * w[..., 2, :] - rz * w[..., 1, :]
+    J[..., 1, :] -= rz * w[..., 0, :] - rx * w[..., 2, :]
+    J[..., 2, :] -= rx * w[..., 1, :] - ry * w[..., 0, :]
     R_base = robot.base[:3, :3]
     J[..., :3, :] = R_base @ J[..., :3, :]
     J[..., 3:, :] = R_base @ J[..., 3:, :]

@@ -129,6 +129,28 @@ def _limits(joint_limits: tuple[tuple[float, float], ...]) -> tuple[np.ndarray, 
     return lower, upper, bool(np.all(lower <= -np.pi) and np.all(upper >= np.pi))
 
 
+def _into_limits(wrapped: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> np.ndarray:
+    """Angles wrapped into (−π, π] (..., 6) moved into the joint limits: kept where they are
+    inside, else the whole turn of them inside the limits (a joint allowed 2 … 6 rad turns to
+    4 rad, not −2.28), else clipped to the limits (an angle in a gap of a joint that turns less
+    than a full turn)."""
+    inside = (wrapped >= lower) & (wrapped <= upper)
+    if inside.all():
+        return wrapped
+    turned = wrapped + (2.0 * np.pi) * np.ceil((lower - wrapped) / (2.0 * np.pi))
+    return np.where(
+        inside, wrapped, np.where(turned <= upper, turned, np.clip(wrapped, lower, upper))
+    )
+
+
+def _into_limit(x: float, lo: float, hi: float) -> float:
+    """:func:`_into_limits` of one float angle, with the same operations."""
+    if lo <= x <= hi:
+        return x
+    turned = x + (2.0 * math.pi) * math.ceil((lo - x) / (2.0 * math.pi))
+    return turned if turned <= hi else min(max(x, lo), hi)
+
+
 class _Problem:
     """The targets (flange poses or tool positions), their error and the robot's kinematics."""
 
@@ -215,7 +237,7 @@ class _Problem:
 
     def wrap(self, q: np.ndarray) -> np.ndarray:
         wrapped = wrap_angles(q, check=False)
-        return wrapped if self.wide_limits else np.clip(wrapped, self.lower, self.upper)
+        return wrapped if self.wide_limits else _into_limits(wrapped, self.lower, self.upper)
 
     def wrap_one(self, q: list[float]) -> list[float]:
         """:meth:`wrap` of one configuration given as six floats, to the same bits."""
@@ -223,7 +245,7 @@ class _Problem:
             q = [_wrap_float(x) for x in q]
         if self.wide_limits:
             return q
-        return [min(max(x, lo), hi) for (lo, hi), x in zip(self.robot.joint_limits, q)]
+        return [_into_limit(x, lo, hi) for (lo, hi), x in zip(self.robot.joint_limits, q)]
 
 
 _pack3, _pack6 = Struct("3d").pack_into, Struct("6d").pack_into
@@ -232,7 +254,8 @@ _pack3, _pack6 = Struct("3d").pack_into, Struct("6d").pack_into
 def _wrap_float(x: float) -> float:
     """:func:`urkin.transforms.wrap_angles` of one float, with the same operations (so the
     single and the stacked paths wrap to the same bits)."""
-    return x - math.ceil((x - math.pi) / (2.0 * math.pi)) * (2.0 * math.pi)
+    y = x - math.ceil((x - math.pi) / (2.0 * math.pi)) * (2.0 * math.pi)
+    return y - 2.0 * math.pi if y > math.pi else y
 
 
 def _rotation_parts_one(
@@ -370,6 +393,10 @@ class NewtonRaphson(StepRule):
         return _pinv_step(J, e)
 
 
+#: The largest damping ``dls`` takes.
+_MAX_DAMPING = 1e6
+
+
 class DampedLeastSquares(StepRule):
     """``Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e`` with a fixed damping ``λ``.
 
@@ -382,9 +409,16 @@ class DampedLeastSquares(StepRule):
 
     def __init__(self, damping: float = 0.01) -> None:
         self.damping = float(positive(damping, "damping", zero_ok=True))
+        if self.damping > _MAX_DAMPING:
+            raise ValueError(
+                f"damping must be at most {_MAX_DAMPING:g} (λ² is added to JJᵀ, whose entries "
+                f"are about 1: a larger λ leaves steps of nothing); got {damping!r}"
+            )
 
     def step(self, problem, rows, T, J, e):
         Jt = np.swapaxes(J, -1, -2)
+        if self.damping == 0.0:  # undamped: the least-squares step, defined at a singularity too
+            return _pinv_step(J, e)
         A = J @ Jt + self.damping**2 * np.eye(J.shape[-2])
         return (Jt @ np.linalg.solve(A, e[..., None]))[..., 0]
 

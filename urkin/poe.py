@@ -178,7 +178,9 @@ def _revolute_pieces(data: bytes, n: int) -> tuple[np.ndarray, np.ndarray, np.nd
     """
     axes = np.frombuffer(data).reshape(6, n)
     omega, v = axes[:3].T, axes[3:].T
-    if not np.allclose(np.linalg.norm(omega, axis=1), 1.0, rtol=0, atol=1e-12):
+    with np.errstate(over="ignore"):  # an axis of 1e200: not a unit one, not a warning
+        lengths = np.linalg.norm(omega, axis=1)
+    if not np.allclose(lengths, 1.0, rtol=0, atol=1e-12):
         return None
     W = skew(omega)
     W2 = W @ W
@@ -200,6 +202,8 @@ def _check(M: ArrayLike | None, screws: ArrayLike, q: ArrayLike, name: str):
         )
     angles = real(q, "q")
     n = axes.shape[1]
+    if n == 0:
+        raise ValueError(f"{name} must hold at least one screw axis (shape (6, n), n ≥ 1)")
     if angles.shape[-1:] != (n,):
         raise ValueError(
             f"q must have shape ({n},) or (..., {n}) for {n} screw axes; got {angles.shape}"
@@ -231,11 +235,17 @@ def _moved_screw(T: np.ndarray, screw: np.ndarray) -> np.ndarray:
     return np.concatenate([w, lever + v], axis=-1)
 
 
-def _exponentials(axes: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    """``e^[A_i] q_i`` for every joint: shape (..., n, 4, 4)."""
+def _exponentials(axes: np.ndarray, angles: np.ndarray, name: str) -> np.ndarray:
+    """``e^[A_i] q_i`` for every joint (``name``: the axes' argument): shape (..., n, 4, 4)."""
     pieces = _revolute_pieces(axes.tobytes(), axes.shape[1])
     if pieces is None:  # prismatic or non-unit axes: the general exponential
-        return se3_exp(angles[..., :, None] * axes.T)
+        try:
+            return se3_exp(angles[..., :, None] * axes.T)
+        except ValueError as exc:  # se3_exp names its own argument, a product of ours
+            raise ValueError(
+                f"{name} times q is too large to exponentiate (each {name}_i q_i must be a "
+                f"twist of a few turns at most): {exc}"
+            ) from None
     A_s, A_c, A_t = pieces
     theta = angles[..., None, None]
     return np.eye(4) + np.sin(theta) * A_s + (1.0 - np.cos(theta)) * A_c + theta * A_t
@@ -267,7 +277,7 @@ def fk_space(M: ArrayLike, S: ArrayLike, q: ArrayLike) -> np.ndarray:
     True
     """
     home, axes, angles = _check(_home(M), S, q, "S")
-    E = _exponentials(axes, angles)
+    E = _exponentials(axes, angles, "S")
     T = E[..., 0, :, :]
     for i in range(1, axes.shape[1]):
         T = T @ E[..., i, :, :]
@@ -298,7 +308,7 @@ def fk_body(M: ArrayLike, B: ArrayLike, q: ArrayLike) -> np.ndarray:
     (5, 4, 4)
     """
     home, axes, angles = _check(_home(M), B, q, "B")
-    E = _exponentials(axes, angles)
+    E = _exponentials(axes, angles, "B")
     T = np.broadcast_to(home, (*angles.shape[:-1], 4, 4))
     for i in range(axes.shape[1]):
         T = T @ E[..., i, :, :]
@@ -328,7 +338,7 @@ def jacobian_space(S: ArrayLike, q: ArrayLike) -> np.ndarray:
     True
     """
     _, axes, angles = _check(None, S, q, "S")
-    E = _exponentials(axes, angles)
+    E = _exponentials(axes, angles, "S")
     n = axes.shape[1]
     J = np.empty((*angles.shape[:-1], 6, n))
     J[..., :, 0] = axes[:, 0]
@@ -361,7 +371,7 @@ def jacobian_body(B: ArrayLike, q: ArrayLike) -> np.ndarray:
     (3, 6, 6)
     """
     _, axes, angles = _check(None, B, q, "B")
-    E_inverse = _exponentials(axes, -angles)
+    E_inverse = _exponentials(axes, -angles, "B")
     n = axes.shape[1]
     J = np.empty((*angles.shape[:-1], 6, n))
     J[..., :, n - 1] = axes[:, n - 1]

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import functools
 import math
+import operator
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -143,9 +144,15 @@ class Robot:
             raise ValueError(
                 f"{self.name}: DH lengths are in metres; {lengths} looks like millimetres"
             )
-        limits = tuple((float(lo), float(hi)) for lo, hi in self.joint_limits)
-        if len(limits) != 6 or any(lo >= hi for lo, hi in limits):
-            raise ValueError(f"{self.name}: need six (lower, upper) limits with lower < upper")
+        try:
+            limits = tuple((float(lo), float(hi)) for lo, hi in self.joint_limits)
+        except (TypeError, ValueError):  # None, a ragged row, a string
+            limits = ()
+        if len(limits) != 6 or not all(lo < hi for lo, hi in limits):  # NaN fails lo < hi
+            raise ValueError(
+                f"{self.name}: joint_limits must be six (lower, upper) pairs of numbers in "
+                f"radians with lower < upper; got {self.joint_limits!r:.120}"
+            )
         object.__setattr__(self, "joint_limits", limits)
         object.__setattr__(self, "base", _frozen(self.base, "T_world_base"))
         object.__setattr__(self, "tool", _frozen(self.tool, "T_flange_tool"))
@@ -271,7 +278,8 @@ def robot(name: str) -> Robot:
 def random_configurations(
     robot: Robot, shape: int | tuple[int, ...] = (), seed: int | np.random.Generator = 0
 ) -> np.ndarray:
-    """Seeded joint configurations drawn uniformly within ``robot``'s limits and (−π, π].
+    """Seeded joint configurations drawn uniformly within ``robot``'s limits and (−π, π] (for
+    a joint whose limits lie outside (−π, π], within its limits).
 
     Parameters
     ----------
@@ -291,15 +299,29 @@ def random_configurations(
     ((2, 3, 6), True)
     """
     arm = check_robot(robot)
-    size = (shape,) if isinstance(shape, int) else tuple(shape)
+    try:
+        size = tuple(operator.index(n) for n in np.atleast_1d(np.asarray(shape, dtype=object)))
+    except TypeError:
+        size = (-1,)
+    if np.ndim(shape) > 1 or any(n < 0 for n in size):
+        raise ValueError(f"shape must be a non-negative integer or a tuple of them; got {shape!r}")
+    if not isinstance(seed, np.random.Generator) and not (
+        isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and seed >= 0
+    ):
+        raise ValueError(f"seed must be an integer ≥ 0 or a numpy Generator; got {seed!r}")
     lower, upper = _draw_limits(arm.joint_limits)
     return np.random.default_rng(seed).uniform(lower, upper, (*size, 6))
 
 
 @functools.lru_cache(maxsize=32)
 def _draw_limits(joint_limits: tuple[tuple[float, float], ...]) -> tuple[np.ndarray, np.ndarray]:
-    """The bounds :func:`random_configurations` draws between: the limits within (−π, π]."""
-    lower = np.maximum([lo for lo, _ in joint_limits], -math.pi)
-    upper = np.minimum([hi for _, hi in joint_limits], math.pi)
+    """The bounds :func:`random_configurations` draws between: the limits within (−π, π], or,
+    for a joint whose limits lie outside that interval, the limits (at most a turn of them)."""
+    lo = np.array([lo for lo, _ in joint_limits])
+    hi = np.array([hi for _, hi in joint_limits])
+    lower, upper = np.maximum(lo, -math.pi), np.minimum(hi, math.pi)
+    outside = lower >= upper
+    lower = np.where(outside, lo, lower)
+    upper = np.where(outside, np.minimum(hi, lo + 2 * math.pi), upper)
     lower.flags.writeable = upper.flags.writeable = False
     return lower, upper

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import real
+from urkin._inputs import positive, real
 from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import fk
 from urkin.numerical_ik import ik
@@ -214,7 +214,7 @@ def track(
         raise ValueError("q0 is outside the robot's joint limits")
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)}; got {method!r}")
-    tol = float(real(tol, "tol"))
+    tol = float(positive(tol, "tol"))
     if method == "analytic":
         q, ok, failures = _analytic(robot, T, start)
     else:

@@ -38,6 +38,7 @@ Examples
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -90,7 +91,7 @@ def _plane_axes(plane: str | None, normal: ArrayLike | None) -> tuple[np.ndarray
     if (plane is None) == (normal is None):
         raise ValueError("give the plane either by name (plane='xy', 'yz' or 'zx') or as normal")
     if plane is not None:
-        if plane not in PLANES:
+        if not isinstance(plane, str) or plane not in PLANES:
             raise ValueError(f"plane must be one of {', '.join(PLANES)}; got {plane!r}")
         eye = np.eye(3)
         return eye[PLANES[plane][0]], eye[PLANES[plane][1]]
@@ -312,7 +313,10 @@ def circle(
     """
     c, r = _point(center, "center"), _positive(radius, "radius")
     u, v = _plane_axes(plane, normal)
-    start = float(real(start, "start"))
+    start = real(start, "start")
+    if start.ndim:
+        raise ValueError(f"start must be one angle (rad); got shape {start.shape}")
+    start = float(start)
     first = c + r * (math.cos(start) * u + math.sin(start) * v)
     return Path(vertices=first[None], closed=True, center=c, radius=r, axes=(u, v), start=start)
 
@@ -335,8 +339,8 @@ def pose_path(
         The orientation at the end.  Between the two the orientation turns about one fixed axis
         at a rate proportional to arc length (slerp): ``R_start exp(λ log(R_startᵀ R_end))``,
         ``λ`` the fraction of the length travelled (of a closed path's whole length, which ends
-        back at its start).  The shorter way round is taken; a turn of
-        exactly π has no unique shorter way and is refused.
+        back at its start; of the sample count for a path that stays put).  The shorter way
+        round is taken; a turn of exactly π has no unique shorter way and is refused.
     step : float
         Sampling step (m) when ``points`` is a :class:`Path`.
 
@@ -373,7 +377,17 @@ def pose_path(
         )
     travelled = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(samples, axis=0), axis=1))]
     total = points.length if isinstance(points, Path) else travelled[-1]  # closed: back to start
-    fraction = travelled / total if total > 0 else np.zeros(len(samples))
+    if total > 0:
+        fraction = travelled / total
+    elif len(samples) > 1:  # a path that stays put: the turn spread over its samples
+        fraction = np.linspace(0.0, 1.0, len(samples))
+    elif np.linalg.norm(turn) > 0.0:
+        raise ValueError(
+            "points is a single sample: it cannot hold both R_start and R_end; give at least "
+            "two samples"
+        )
+    else:
+        fraction = np.zeros(1)
     poses[:, :3, :3] = R0 @ so3_exp(fraction[:, None] * turn)
     return poses
 
@@ -465,6 +479,7 @@ def time_scaling(kind: str, T: float, peak_speed: float | None = None) -> TimeSc
     ([0.0, 0.5, 1.0], [0.0, 0.9375, 0.0], 0.9375)
     """
     T = _positive(T, "T")
+    _kind(kind)
     if kind in _PEAKS:
         if peak_speed is not None:
             raise ValueError(f"peak_speed is the trapezoid's; a {kind} time scaling has none")
@@ -479,6 +494,12 @@ def time_scaling(kind: str, T: float, peak_speed: float | None = None) -> TimeSc
             f"got {v:.6g}"
         )
     return _peaks("trapezoid", T, v, v / (v * T - 1.0) * v)
+
+
+def _kind(kind: str) -> None:
+    """Check a time scaling's kind is one of the three names."""
+    if not isinstance(kind, str) or kind not in ("cubic", "quintic", "trapezoid"):
+        raise ValueError(f"kind must be 'cubic', 'quintic' or 'trapezoid'; got {kind!r:.60}")
 
 
 def _peaks(kind: str, T: float, speed: float, acceleration: float) -> TimeScaling:
@@ -519,6 +540,7 @@ def minimum_time(
     >>> ts.T, ts.peak_speed, ts.peak_acceleration
     (1.5, 1.0, 2.0)
     """
+    _kind(kind)
     d = np.abs(real(distance, "distance"))
     if d.ndim != 1 or not np.any(d > 0):
         raise ValueError("distance must be a vector (n,) of joint motions, not all zero")
@@ -531,11 +553,24 @@ def minimum_time(
             raise ValueError(f"{name} must be > 0, one number or one per joint {d.shape}")
         limits.append(limit)
     moving = d > 0
-    V = float(np.min(limits[0][moving] / d[moving]))  # largest ṡ every joint allows (1/s)
-    A = float(np.min(limits[1][moving] / d[moving]))  # largest s̈ (1/s²)
+    with np.errstate(over="ignore", under="ignore"):
+        V = float(np.min(limits[0][moving] / d[moving]))  # largest ṡ every joint allows (1/s)
+        A = float(np.min(limits[1][moving] / d[moving]))  # largest s̈ (1/s²)
+    if not (0.0 < V < math.inf and 0.0 < A < math.inf):
+        raise ValueError(
+            "max_velocity and max_acceleration against distance give no finite, non-zero "
+            f"duration (speed ratio {V:g} 1/s, acceleration ratio {A:g} 1/s²): the limits "
+            "and the distances are many orders of magnitude apart"
+        )
     if kind in _PEAKS:
         speed, acceleration = _PEAKS[kind]
-        return time_scaling(kind, max(speed / V, math.sqrt(acceleration / A)))
+        T = max(speed / V, math.sqrt(acceleration / A))
+        if not T < math.inf:
+            raise ValueError(
+                f"max_velocity and max_acceleration are too small for these distances: the "
+                f"move would take longer than {sys.float_info.max:.3g} s"
+            )
+        return time_scaling(kind, T)
     if kind != "trapezoid":
         raise ValueError(f"kind must be 'cubic', 'quintic' or 'trapezoid'; got {kind!r}")
     if V * V >= A:  # the cruise speed is never reached: a triangle
@@ -587,9 +622,7 @@ def joint_trajectory(
         )
     if not isinstance(scaling, TimeScaling):
         raise TypeError("scaling must be a TimeScaling (from time_scaling or minimum_time)")
-    positive(samples, "samples", integer=True, what="an integer ≥ 2")
-    if samples < 2:
-        raise ValueError(f"samples must be an integer ≥ 2; got {samples!r}")
+    _sample_count(samples)
     t = np.linspace(0.0, scaling.T, int(samples))
     s, sd, sdd = scaling(t)
     delta = q1 - q0
@@ -612,16 +645,28 @@ def _sample_times(t_first: float, t_last: float, samples: int | None, dt: float 
         raise ValueError("give samples or dt, not both")
     if dt is None:
         count = 100 if samples is None else samples
-        positive(count, "samples", integer=True, what="an integer ≥ 2")
-        if count < 2:
-            raise ValueError(f"samples must be an integer ≥ 2; got {samples!r}")
+        _sample_count(count)
         return np.linspace(t_first, t_last, int(count))
     step = _positive(dt, "dt")
     duration = t_last - t_first
     # every dt from the first via, not past the last (a duration that is a whole number of
     # steps keeps its end despite round-off in duration / step)
-    count = math.floor(duration / step + 1e-9) + 1
+    steps = duration / step + 1e-9
+    if not steps < MAX_SAMPLES:  # inf too
+        raise ValueError(
+            f"dt = {step:g} s over {duration:g} s makes more than {MAX_SAMPLES:,} samples: use a "
+            "larger dt"
+        )
+    count = math.floor(steps) + 1
     return np.minimum(t_first + step * np.arange(count), t_last)
+
+
+def _sample_count(samples: int) -> None:
+    """Check a number of samples: an integer from 2 to :data:`MAX_SAMPLES`."""
+    what = f"an integer from 2 to {MAX_SAMPLES:,}"
+    positive(samples, "samples", integer=True, what=what)
+    if not 2 <= samples <= MAX_SAMPLES:
+        raise ValueError(f"samples must be {what}; got {samples!r}")
 
 
 def via_trajectory(
@@ -736,7 +781,7 @@ def via_trajectory(
         ) / T
     if not all(np.isfinite(x).all() for x in (position, velocity, acceleration)):
         raise ValueError(
-            f"t_via's shortest gap, {gaps.min():g} s, is too short for these vias: the "
-            "velocities or accelerations overflow"
+            f"t_via's shortest gap, {gaps.min():g} s, is too short for these vias (q_via up to "
+            f"{np.abs(q).max():.3g}): the positions, velocities or accelerations overflow"
         )
     return Trajectory(times, position, velocity, acceleration)

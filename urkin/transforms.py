@@ -182,7 +182,7 @@ def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R
     if np.any(det < 0):
         raise ValueError(f"{name} is a reflection, not a rotation: det({name}) = -1")
     if gram_error > tol or np.abs(det - 1.0).max(initial=0.0) > tol:
-        symbol = name if name.isidentifier() else "R"  # "the rotation part of T" reads as R
+        symbol = name if str(name).isidentifier() else "R"  # "the rotation part of T" reads as R
         raise ValueError(
             f"{name} is not a rotation matrix: its columns are not orthonormal "
             f"(max |{symbol}ᵀ{symbol} − I| = {gram_error:.3g}, tolerance {tol:g})"
@@ -651,7 +651,11 @@ def pose_error(
             i - i2,
         )
         frob = math.sqrt(a * a + b * b + c * c + d * d + e * e + f * f + g * g + h * h + i * i)
-        angle = 2.0 * math.asin(min(frob / (2.0 * math.sqrt(2.0)), 1.0))
+        half_sine = frob / (2.0 * math.sqrt(2.0))
+        if half_sine > _SIN_QUARTER_TURN:  # beyond π/2: atan2, as _angle_between does
+            angle = float(_wide_angle(A[:3, :3].T @ B[:3, :3]))
+        else:
+            angle = 2.0 * math.asin(half_sine)
         return np.float64(math.sqrt(x * x + y * y + z * z)), np.float64(angle)
     try:
         dp = A[..., :3, 3] - B[..., :3, 3]
@@ -692,6 +696,13 @@ def wrap_angles(q: ArrayLike, *, check: bool = True, out: np.ndarray | None = No
             raise ValueError("q contains infinity: an infinite angle has no wrapped value")
     else:
         angles = q
+    if out is not None and (
+        not isinstance(out, np.ndarray) or out.shape != np.shape(angles) or out.dtype != float
+    ):
+        raise ValueError(
+            f"out must be a float array of q's shape {np.shape(angles)}; got "
+            f"{getattr(out, 'dtype', type(out).__name__)} of shape {np.shape(out)}"
+        )
     # ceil((x − π)/2π) counts the turns to remove; −π lands on π exactly (the division by 2π
     # is kept rather than a multiplication by 1/2π, which is not exact at x = −π)
     exact = None
@@ -703,6 +714,13 @@ def wrap_angles(q: ArrayLike, *, check: bool = True, out: np.ndarray | None = No
     turns = np.ceil((angles - np.pi) / (2.0 * np.pi))
     turns *= 2.0 * np.pi
     wrapped = np.subtract(angles, turns, out=out)
+    # just above −π, (x − π) rounds to −2π and the turn added overshoots π by an ulp
+    high = wrapped > np.pi
+    if high.any():
+        if isinstance(wrapped, np.ndarray):
+            np.subtract(wrapped, 2.0 * np.pi, out=wrapped, where=high)
+        else:  # one angle, as a numpy scalar
+            wrapped = wrapped - 2.0 * np.pi
     if exact is not None:
         if isinstance(wrapped, np.ndarray):
             np.copyto(wrapped, exact, where=far)
@@ -865,7 +883,9 @@ def rotation_to_rpy(R: ArrayLike) -> np.ndarray:
     cos_roll = -sy * M[..., 0, 1] + cy * M[..., 1, 1]
     sin_roll = sp * (cy * M[..., 0, 1] + sy * M[..., 1, 1]) + cp * M[..., 2, 1]
     roll = np.arctan2(sin_roll, cos_roll)
-    return np.stack([roll, pitch, yaw], axis=-1)
+    rpy = np.stack([roll, pitch, yaw], axis=-1)
+    rpy[..., ::2][rpy[..., ::2] == -np.pi] = np.pi  # roll and yaw in (−π, π]
+    return rpy
 
 
 def _twist(V: ArrayLike, name: str) -> np.ndarray:
