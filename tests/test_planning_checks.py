@@ -525,3 +525,31 @@ def test_resolutions_that_would_take_too_many_samples_are_refused_by_name():
             call()
     with pytest.raises(ValueError, match=r"to finest = 1e-300 m .* use a larger finest"):
         planning.certify_edges(model, planning.Scene(), qa, qb, finest=1e-300)
+
+
+@pytest.mark.parametrize("offset", [1e5, 5e5, 9e5])
+def test_checks_stay_exact_far_from_the_origin(offset):
+    """A robot 9e5 m out among obstacles beside it: 0.1 mm of overlap is a collision and 0.1 mm
+    of gap is free, for every kind of obstacle (small ones culled, large ones tested densely),
+    one configuration or a stack (squared distances are taken of differences, and the cull's
+    expansion is written about its obstacles' middle, not the origin)."""
+    T = np.eye(4)
+    T[:3, 3] = [offset, offset, 0.0]
+    model = planning.SphereModel.from_rows(
+        urkin.robot("ur5").with_base(T), [[6, 0, 0, 0, 0.05]], pairs=np.zeros((0, 2), int)
+    )
+    q = np.zeros(6)
+    c = model.place(q)[0]
+    x = np.array([1.0, 0.0, 0.0])
+    for gap in (-1e-4, 1e-4):
+        for scene in (
+            planning.Scene(spheres=[planning.Sphere(c + (0.15 + gap) * x, 0.1)]),
+            planning.Scene(cylinders=[planning.Cylinder(c + (0.45 + gap) * x, [0, 0, 1], 0.4, 1)]),
+            planning.Scene(
+                cylinders=[planning.Cylinder(c + (0.1 + gap) * x, [0, 0, 1], 0.05, 0.1)]
+            ),
+            planning.Scene(boxes=[planning.Box(c + (0.1 + gap) * x, [0.1, 0.1, 0.1])]),
+            planning.Scene(boxes=[planning.Box(c + (0.55 + gap) * x, [1.0, 1.0, 1.0])]),
+        ):
+            assert planning.is_free(model, scene, q) == (gap > 0)
+            assert np.all(planning.is_free(model, scene, np.tile(q, (50, 1))) == (gap > 0))

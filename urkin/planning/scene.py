@@ -44,8 +44,19 @@ def _nonzero(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return rows, flat
 
 
+#: The largest radius (m) of a ball :meth:`Scene._touches` is asked about, for the bound of
+#: its cull's round-off (a model's spheres are at most 2 m, grown by an edge check's margins).
+_MAX_BALL = 4.0
+
 #: Entries from which :func:`_nonzero` searches flat (measured: the two cost alike at 800).
 _FLAT_SEARCH = 1024
+
+
+def _offsets(Pt: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    """Points ``Pt`` (3, M) less each of ``centres`` (K, 3): (K, 3, M).  Differences first,
+    then squares: far from the origin an expansion ``|p|² − 2 p·c + |c|²`` would lose the
+    millimetres to round-off (at 5e5 m, 0.6 mm)."""
+    return Pt[None, :, :] - centres[:, :, None]
 
 
 def _squares(Pt: np.ndarray) -> np.ndarray:
@@ -301,23 +312,27 @@ class Scene:
             "_small",
             np.concatenate([small_box, small_cyl, np.arange(len(cap_m))]).astype(np.intp),
         )
+        # the cull's expansion in coordinates about the culled obstacles' middle, whose
+        # round-off, for a ball touching one of them, is bounded by their spread (not by how
+        # far from the origin the scene is): the slack its test allows
+        origin = centres.mean(axis=0) if len(centres) else np.zeros(3)
+        local = centres - origin
+        self._set("_small_origin", origin.reshape(3, 1))
         self._set(
             "_small_rows",
             np.vstack(
                 [
-                    -2.0 * centres.T,
+                    -2.0 * local.T,
                     -2.0 * radii,
                     np.ones(len(radii)),
-                    np.sum(centres**2, axis=1) - radii**2,
+                    np.sum(local**2, axis=1) - radii**2,
                 ]
             )
             .reshape(6, -1)
             .T,
         )
-        # the terms of squared distances that do not depend on the point
-        self._set("_cyl_ca", np.einsum("ci,ci->c", self._cyl_c, self._cyl_a))
-        self._set("_cyl_c2", np.einsum("ci,ci->c", self._cyl_c, self._cyl_c))
-        self._set("_sph_c2", np.einsum("ci,ci->c", self._sph_c, self._sph_c))
+        spread = np.max(np.linalg.norm(local, axis=1) + radii, initial=0.0) + _MAX_BALL
+        object.__setattr__(self, "_small_slack", 1e-9 + 64 * 2.3e-16 * spread**2)
 
     def _set(self, name: str, value: np.ndarray) -> None:
         value = np.ascontiguousarray(value, dtype=float)
@@ -380,14 +395,15 @@ class Scene:
             S += L[2 * B :]
             hit = (S <= r2).any(axis=0)
         if len(self._small):
-            # |p − c|² − (r + R)² as one product: [−2c, −2R, 1, |c|² − R²]·[p, r, |p|² − r², 1]
+            # |p − c|² − (r + R)² as one product: [−2c, −2R, 1, |c|² − R²]·[p, r, |p|² − r², 1],
+            # p and c about _small_origin
             A = np.empty((6, M))
-            A[:3] = Pt
+            np.subtract(Pt, self._small_origin, out=A[:3])
             A[3] = r
-            A[4] = _squares(Pt)
+            A[4] = _squares(A[:3])
             A[4] -= r2
             A[5] = 1.0
-            k, m = _nonzero(self._small_rows @ A <= 1e-9)  # round-off of the expansion
+            k, m = _nonzero(self._small_rows @ A <= self._small_slack)
             if len(m):
                 kind, index = self._small_kind[k], self._small[k]
                 tests = (self._touch_boxes, self._touch_cylinders, self._touch_capsules)
@@ -396,21 +412,20 @@ class Scene:
                     if pick.any():
                         mm = m[pick]
                         hit[mm[test(Pt[:, mm].T, r[mm], index[pick])]] = True
-        if len(self._big_cyl) or self.spheres:
-            p2 = _squares(Pt)
         if len(self._big_cyl):
-            c, a = self._cyl_c[self._big_cyl], self._cyl_a[self._big_cyl]
-            t = a @ Pt - self._cyl_ca[self._big_cyl, None]
-            d2 = p2 - 2.0 * (c @ Pt) + self._cyl_c2[self._big_cyl, None]
-            u = np.sqrt(np.maximum(d2 - t * t, 0.0)) - self._cyl_r[self._big_cyl, None]
+            k = self._big_cyl
+            D = _offsets(Pt, self._cyl_c[k])
+            t = np.einsum("ki,kim->km", self._cyl_a[k], D)  # along the axis
+            u = np.sqrt(np.maximum(np.einsum("kim,kim->km", D, D) - t * t, 0.0))
+            u -= self._cyl_r[k, None]
             np.maximum(u, 0.0, out=u)
-            v = np.abs(t) - self._cyl_h[self._big_cyl, None]
+            v = np.abs(t) - self._cyl_h[k, None]
             np.maximum(v, 0.0, out=v)
             hit |= (u * u + v * v <= r2).any(axis=0)
         if self.spheres:
-            d2 = p2 - 2.0 * (self._sph_c @ Pt) + self._sph_c2[:, None]
+            D = _offsets(Pt, self._sph_c)
             reach = r + self._sph_r[:, None]
-            hit |= (d2 <= reach * reach).any(axis=0)
+            hit |= (np.einsum("kim,kim->km", D, D) <= reach * reach).any(axis=0)
         return hit
 
     def _gaps2(self, P: np.ndarray) -> np.ndarray:
@@ -433,19 +448,18 @@ class Scene:
             S = L[:B] + L[B : 2 * B]
             S += L[2 * B :]
             gaps.append(S.min(axis=0))
-        if self.cylinders or self.spheres:
-            p2 = _dot(P, P)
         if self.cylinders:
-            t = self._cyl_a @ Pt - self._cyl_ca[:, None]
-            d2 = p2 - 2.0 * (self._cyl_c @ Pt) + self._cyl_c2[:, None]
-            u = np.sqrt(np.maximum(d2 - t * t, 0.0)) - self._cyl_r[:, None]
+            D = _offsets(Pt, self._cyl_c)
+            t = np.einsum("ki,kim->km", self._cyl_a, D)
+            u = np.sqrt(np.maximum(np.einsum("kim,kim->km", D, D) - t * t, 0.0))
+            u -= self._cyl_r[:, None]
             np.maximum(u, 0.0, out=u)
             v = np.abs(t) - self._cyl_h[:, None]
             np.maximum(v, 0.0, out=v)
             gaps.append((u * u + v * v).min(axis=0))
         if self.spheres:
-            d2 = p2 - 2.0 * (self._sph_c @ Pt) + self._sph_c2[:, None]
-            e = np.sqrt(np.maximum(d2, 0.0)) - self._sph_r[:, None]
+            D = _offsets(Pt, self._sph_c)
+            e = np.sqrt(np.einsum("kim,kim->km", D, D)) - self._sph_r[:, None]
             np.maximum(e, 0.0, out=e)
             gaps.append((e * e).min(axis=0))
         if self.capsules:
