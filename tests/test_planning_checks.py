@@ -553,3 +553,12 @@ def test_checks_stay_exact_far_from_the_origin(offset):
         ):
             assert planning.is_free(model, scene, q) == (gap > 0)
             assert np.all(planning.is_free(model, scene, np.tile(q, (50, 1))) == (gap > 0))
+
+
+def test_a_box_rotation_a_little_off_orthonormal_is_made_a_rotation():
+    """check_rotation accepts 1e-6 of error; used as it is, Rᵀ would not undo R and a face 5e4
+    m from the centre would move by centimetres."""
+    box = planning.Box([0, 0, 0], [1e5, 1e5, 1e5], np.diag([1.0, 1.0, 1 + 4.9e-7]))
+    np.testing.assert_allclose(box.rotation.T @ box.rotation, np.eye(3), atol=1e-15)
+    R = urkin.transforms.rot_z(0.3)
+    assert np.array_equal(planning.Box([0, 0, 0], [1, 1, 1], R).rotation, R)  # kept as given

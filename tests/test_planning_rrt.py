@@ -1,5 +1,7 @@
 """RRT-Connect and shortcutting: every returned edge re-checked finer, seeded, honest failures."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -294,3 +296,16 @@ def test_a_detour_passes_an_obstacle_on_the_edge_with_both_edges_proven():
     assert (
         planning.rrt._detour(MODEL, blocked, a, b, np.random.default_rng(0), lower, upper) is None
     )
+
+
+def test_a_pose_goal_is_reached_where_the_limits_need_a_whole_turn_of_its_solution():
+    """Joint 1 limited to 4.5 … 6 rad: the closed-form solution −1.0 rad is reached as 5.28."""
+    arm = dataclasses.replace(
+        urkin.robot("ur5"), joint_limits=((4.5, 6.0),) + ((-2 * np.pi, 2 * np.pi),) * 5
+    )
+    model = planning.sphere_model(arm)
+    T = urkin.fk(arm, [5.28, -1.2, 1.2, -1.6, -1.57, 0.3])
+    plan = planning.rrt_connect(model, planning.Scene(), [5.0, -1.2, 1.2, -1.6, -1.57, 0.0], T)
+    assert plan.success
+    assert 4.5 <= plan.path[-1][0] <= 6.0
+    assert np.abs(urkin.fk(arm, plan.path[-1]) - T).max() < 1e-12

@@ -47,6 +47,7 @@ from urkin.planning.checks import (
 )
 from urkin.planning.scene import Scene, _dot
 from urkin.planning.spheres import SphereModel
+from urkin.transforms import wrap_angles
 
 __all__ = ["Plan", "rrt_connect", "shortcut"]
 
@@ -90,7 +91,10 @@ def _limits(model: SphereModel) -> tuple[np.ndarray, np.ndarray]:
     return limits[:, 0], limits[:, 1]
 
 
-def _goal_configurations(model: SphereModel, goals: ArrayLike) -> np.ndarray:
+def _goal_configurations(
+    model: SphereModel, goals: ArrayLike, q_start: np.ndarray
+) -> tuple[np.ndarray, bool]:
+    """The goal configurations (K, 6), and whether they are a pose's solutions."""
     array = real(goals, "goals")
     if array.size == 0:
         raise ValueError(f"goals: no goal given (an empty array of shape {array.shape})")
@@ -101,9 +105,22 @@ def _goal_configurations(model: SphereModel, goals: ArrayLike) -> np.ndarray:
         if len(solutions) == 0:
             why = ik_closest(model.robot, array, np.zeros(6)).reason
             raise ValueError(f"goals: the pose has no inverse kinematics solution: {why}")
-        return np.asarray(solutions, dtype=float).reshape(-1, 6)
+        return _turned_into_limits(model, np.asarray(solutions, dtype=float), q_start), True
     Q, _, _ = _joints(goals, "goals")
-    return Q.reshape(-1, 6).copy()
+    return Q.reshape(-1, 6).copy(), False
+
+
+def _turned_into_limits(model: SphereModel, Q: np.ndarray, q_start: np.ndarray) -> np.ndarray:
+    """A pose's solutions (K, 6), in (−π, π], with each joint outside its limits turned by
+    whole turns to the equivalent angle nearest the start that is inside them, where one is
+    (a joint limited to 4.5 … 6 rad reaches the solution −1.0 as 5.28)."""
+    lower, upper = _limits(model)
+    turn = 2 * np.pi
+    near = q_start + wrap_angles(Q - q_start, check=False)
+    near -= turn * np.maximum(np.ceil((near - upper) / turn), 0.0)
+    near += turn * np.maximum(np.ceil((lower - near) / turn), 0.0)
+    outside = (Q < lower) | (Q > upper)
+    return np.where(outside & (near >= lower) & (near <= upper), near, Q)
 
 
 def rrt_connect(
@@ -176,10 +193,10 @@ def rrt_connect(
     _within(q_start, lower, upper, "start")
     if _collides(model, scene, q_start[None])[0]:
         raise ValueError(f"start is in collision: {_offence(model, scene, q_start)}")
-    G = _goal_configurations(model, goals)
+    G, pose = _goal_configurations(model, goals, q_start)
     inside = np.all((G >= lower) & (G <= upper), axis=1)
     if not inside.any():
-        _within(G[0], lower, upper, "goals[0]")
+        _within(G[0], lower, upper, "the pose's solution 0" if pose else "goals[0]")
     free = inside & ~_collides(model, scene, G)
     if not free.any():
         first = int(np.flatnonzero(inside)[0])

@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._inputs import real, unit
-from urkin.transforms import check_rotation
+from urkin.transforms import check_rotation, orthonormalize
 
 #: Boxes with a bounding ball at most this wide (m) are broad-phased in Scene._touches.
 _SMALL = 0.3
@@ -129,6 +129,13 @@ class Box:
             raise ValueError(f"box size must be three positive edge lengths (m); got {size}")
         object.__setattr__(self, "size", size)
         R = np.eye(3) if self.rotation is None else check_rotation(self.rotation, name="rotation")
+        if R.shape != (3, 3):
+            raise ValueError(f"rotation must be one rotation matrix (3, 3); got shape {R.shape}")
+        # the checks use Rᵀ as the inverse: a matrix 1e-6 from orthonormal (which
+        # check_rotation accepts) would move a point 1e5 m from the centre by 0.1 m, so one
+        # further than round-off from orthonormal is replaced by its nearest rotation
+        if np.abs(R.T @ R - np.eye(3)).max() > 1e-15:
+            R = orthonormalize(R)
         object.__setattr__(self, "rotation", R)
 
 
