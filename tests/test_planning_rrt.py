@@ -309,3 +309,31 @@ def test_a_pose_goal_is_reached_where_the_limits_need_a_whole_turn_of_its_soluti
     assert plan.success
     assert 4.5 <= plan.path[-1][0] <= 6.0
     assert np.abs(urkin.fk(arm, plan.path[-1]) - T).max() < 1e-12
+
+
+def test_a_step_too_small_to_plan_with_is_refused():
+    with pytest.raises(ValueError, match=r"step must be at least 0\.001 rad"):
+        planning.rrt_connect(MODEL, planning.Scene(), np.zeros(6), np.full(6, 0.1), step=1e-7)
+
+
+def test_pick_and_place_checks_its_options_and_start_before_planning():
+    from urkin.transforms import make_transform
+
+    ur3 = urkin.robot("ur3").with_tool(make_transform(p=[0, 0, 0.1]))
+    model = planning.sphere_model(ur3).with_tool_spheres([[0, 0, -0.05]], 0.02)
+    table = planning.Block.standing("table", [1.2, 1.2, 0.03], 0, 0, bottom=-0.03)
+    world = planning.World(ur3, model, table, [planning.Block.standing("A", [0.05] * 3, 0.3, 0.1)])
+    q_start = [0, -1.8, 1.6, -1.37, -1.5708, 0]
+    move = [("A", 0.25, -0.15)]
+    for options, error in (
+        ({"seed": None}, TypeError),
+        ({"seed": -1}, ValueError),
+        ({"seed": 1.5}, ValueError),
+        ({"max_iterations": 0}, ValueError),
+    ):
+        with pytest.raises(error, match=next(iter(options))):
+            planning.pick_and_place(world, move, q_start, **options)
+    with pytest.raises(ValueError, match=r"q_start must be one configuration"):
+        planning.pick_and_place(world, move, np.zeros((2, 6)))
+    with pytest.raises(ValueError, match=r"q_start must be one configuration"):
+        planning.validate_goal(world, move[0], q_start=np.zeros((2, 6)))

@@ -400,3 +400,22 @@ def test_every_sphere_placed_at_once_is_where_place_puts_it(rng, n):
         placed = _place_all(model, planning.spheres._frames(arm, Q))  # (n, 3, S)
         expected = model.place(Q)  # (n, S, 3)
         np.testing.assert_allclose(placed.transpose(0, 2, 1), expected, atol=1e-14)
+
+
+def test_hand_built_models_refuse_far_centres_bad_names_and_bad_sphere_indices():
+    arm = urkin.robot("ur5")
+    with pytest.raises(ValueError, match="centre must lie within 5 m"):
+        planning.SphereModel.from_rows(arm, [[6, 0, 0, 1e300, 0.05]])
+    with pytest.raises(ValueError, match="centres must lie within 5 m"):
+        planning.sphere_model(arm).with_tool_spheres([[0, 0, 1e6]], 0.05)
+    rows = [[6, 0, 0, 0, 0.05], [6, 0, 0, 0.1, 0.05]]
+    for names in (5, "ab", [1, 2]):
+        with pytest.raises(TypeError, match="names must be a list of strings"):
+            planning.SphereModel.from_rows(arm, rows, names=names)
+    model = planning.sphere_model(arm)
+    for only in ([100], [-1]):
+        with pytest.raises(ValueError, match="only must hold sphere indices from 0"):
+            planning.self_pairs(model, only=only)
+    for only in ([0.9], [True], [[1, 2]]):
+        with pytest.raises(ValueError, match="only must be sphere indices"):
+            planning.self_pairs(model, only=only)

@@ -74,6 +74,14 @@ def _range_error(largest: float, name: str) -> ValueError:
     )
 
 
+def _one_configuration(q: ArrayLike, name: str) -> np.ndarray:
+    """One checked configuration (6,), a fresh array, or an error naming ``name``."""
+    array, lead, _ = _joints(q, name)
+    if lead != ():
+        raise ValueError(f"{name} must be one configuration, shape (6,); got shape {np.shape(q)}")
+    return array[0].copy()
+
+
 def _joints(
     q: ArrayLike, name: str = "q", *, complex_ok: bool = False
 ) -> tuple[np.ndarray, tuple[int, ...], list[float] | None]:

@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike
 
 from urkin._inputs import positive, real
 from urkin.analytic_ik import ik_analytic, ik_closest
-from urkin.kinematics import _joints
+from urkin.kinematics import _joints, _one_configuration
 from urkin.planning.checks import (
     FINEST,
     RESOLUTION,
@@ -153,7 +153,7 @@ def rrt_connect(
     time_limit : float, optional
         Seconds before giving up (checked once per iteration).
     step : float
-        Longest edge of the trees, radians (the largest joint change).
+        Longest edge of the trees, radians (the largest joint change), at least 1e-3.
     resolution : float
         Edge-check resolution, metres (see :func:`urkin.planning.edges_free`).
     simplify : bool
@@ -186,10 +186,7 @@ def rrt_connect(
     _check(model, scene)
     _check_options(seed, max_iterations, time_limit, step)
     lower, upper = _limits(model)
-    q_start, lead, _ = _joints(start, "start")
-    if lead != ():
-        raise ValueError(f"start must be one configuration, shape (6,); got {np.shape(start)}")
-    q_start = q_start[0].copy()
+    q_start = _one_configuration(start, "start")
     _within(q_start, lower, upper, "start")
     if _collides(model, scene, q_start[None])[0]:
         raise ValueError(f"start is in collision: {_offence(model, scene, q_start)}")
@@ -361,6 +358,15 @@ def _check_options(seed, max_iterations, time_limit, step) -> None:
     if time_limit is not None:
         positive(time_limit, "time_limit", zero_ok=True, what="seconds (0 or more) or None")
     positive(step, "step", what="a positive angle (rad)")
+    if step < _MIN_STEP:
+        raise ValueError(
+            f"step must be at least {_MIN_STEP:g} rad (a connect adds a node every step: "
+            f"smaller steps fill memory before they find anything); got {step!r}"
+        )
+
+
+#: The shortest tree edge rrt_connect takes (rad).
+_MIN_STEP = 1e-3
 
 
 #: What a seed must be (the messages of the option checks).

@@ -382,6 +382,12 @@ class SphereModel:
                 f"rows[{bad}]: the frame must be an integer 0 … 7 (DH frames 0 … 6, 7 the tool "
                 f"frame); got {frames[bad]:g}"
             )
+        far = np.flatnonzero(np.abs(table[:, 1:4]).max(axis=1) > _MAX_OFFSET)
+        if len(far):
+            raise ValueError(
+                f"rows[{far[0]}]: the centre must lie within {_MAX_OFFSET:g} m of its frame (the "
+                f"coordinates are in metres); got {table[far[0], 1:4].tolist()}"
+            )
         radii = table[:, 4].copy()
         if np.any(radii <= 0) or np.any(radii > 2.0):
             bad = int(np.flatnonzero((radii <= 0) | (radii > 2.0))[0])
@@ -391,6 +397,12 @@ class SphereModel:
         frames = frames.astype(np.intp)
         if names is None:
             names = _default_names(frames)
+        elif (
+            isinstance(names, (str, bytes))
+            or not isinstance(names, Sequence)
+            or not all(isinstance(name, str) for name in names)
+        ):
+            raise TypeError(f"names must be a list of strings, one per sphere; got {names!r:.60}")
         elif len(names) != len(frames):
             raise ValueError(f"names holds {len(names)} labels for {len(frames)} spheres")
         model = cls(
@@ -456,6 +468,11 @@ class SphereModel:
         c = c[None] if c.ndim == 1 else c
         if c.ndim != 2 or c.shape[1] != 3 or len(c) == 0:
             raise ValueError(f"centres must have shape (K, 3); got shape {np.shape(centres)}")
+        if np.abs(c).max(initial=0.0) > _MAX_OFFSET:
+            raise ValueError(
+                f"centres must lie within {_MAX_OFFSET:g} m of the tool frame (metres); got "
+                f"{np.abs(c).max():g}"
+            )
         r = real(radii, "radii")
         if r.ndim > 1 or (r.ndim == 1 and len(r) not in (1, len(c))):
             raise ValueError(
@@ -609,6 +626,10 @@ def _check_model(model: SphereModel) -> None:
         )
 
 
+#: How far from its frame's origin a sphere's centre may be (m): no arm link reaches further.
+_MAX_OFFSET = 5.0
+
+
 def self_pairs(model: SphereModel, only: ArrayLike | None = None) -> np.ndarray:
     """The self-collision pairs of ``model`` by the stated rule (module notes).
 
@@ -628,8 +649,16 @@ def self_pairs(model: SphereModel, only: ArrayLike | None = None) -> np.ndarray:
     i, j = np.triu_indices(len(model), k=1)
     keep = np.abs(link[i] - link[j]) >= 2
     if only is not None:
+        picked = np.asarray(only)
+        if picked.ndim > 1 or (picked.size and picked.dtype.kind not in "iu"):
+            raise ValueError(f"only must be sphere indices, a list of integers; got {only!r:.60}")
+        picked = picked.astype(np.intp)
+        if np.any((picked < 0) | (picked >= len(model))):
+            raise ValueError(
+                f"only must hold sphere indices from 0 to {len(model) - 1}; got {only!r:.60}"
+            )
         chosen = np.zeros(len(model), dtype=bool)
-        chosen[np.asarray(only, dtype=np.intp)] = True
+        chosen[picked] = True
         keep &= chosen[i] | chosen[j]
     i, j = i[keep], j[keep]
     if len(i) == 0:

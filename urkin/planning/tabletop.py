@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin.analytic_ik import ik_analytic, ik_closest
-from urkin.kinematics import _joints, fk
+from urkin.kinematics import _one_configuration, fk
 from urkin.planning.blocks import (
     Block,
     _grasp_at,
@@ -345,7 +345,7 @@ def validate_goal(
         z = max((top for top, _ in supports), default=table.top)
     placed = Block.standing(name, block.size, x, y, z, yaw)
     # reach with the tool pointing down
-    q_now = None if q_start is None else _joints(q_start, "q_start")[0].reshape(6)
+    q_now = None if q_start is None else _one_configuration(q_start, "q_start")
     yaw_now = 0.0 if q_now is None else tool_yaw(fk(world.robot, q_now))
     configurations = _place_configurations(world, placed, yaw_now)
     if len(configurations) == 0:

@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin.analytic_ik import ik_analytic
-from urkin.kinematics import _joints, fk
+from urkin.kinematics import _joints, _one_configuration, fk
 from urkin.planning.blocks import Block, _grasp_at, box_separation, grasp_yaws, tool_yaw
 from urkin.planning.checks import (
     RESOLUTION,
@@ -40,7 +40,7 @@ from urkin.planning.checks import (
     explain,
     is_free,
 )
-from urkin.planning.rrt import Plan, rrt_connect
+from urkin.planning.rrt import Plan, _check_options, rrt_connect
 from urkin.planning.scene import Scene
 from urkin.planning.spheres import SphereModel
 from urkin.planning.tabletop import TOUCH, Move, World, _inside, _support_of, validate_goal
@@ -289,8 +289,7 @@ def replay(
     world : World
         The blocks where the steps left them.
     """
-    q, _, _ = _joints(q_start, "q_start")
-    q = q.reshape(6).copy()
+    q = _one_configuration(q_start, "q_start")
     if isinstance(steps, (str, bytes)) or not isinstance(steps, Sequence):
         return False, f"steps must be a list of steps; got {type(steps).__name__}", world
     held: str | None = None
@@ -482,13 +481,13 @@ def pick_and_place(
     """
     if not isinstance(world, World):
         raise TypeError(f"world must be a planning.World; got {type(world).__name__}")
+    _check_options(seed, max_iterations, None, 0.5)  # rrt_connect's, before any move is planned
     if isinstance(moves, (str, bytes, Move)) or not isinstance(moves, Sequence):
         raise TypeError(
             "moves must be a sequence (list or tuple) of moves, each a planning.Move or "
             f"(block, x, y[, z[, yaw]]); got the {type(moves).__name__} {moves!r:.40}"
         )
-    q, _, _ = _joints(q_start, "q_start")
-    q = q.reshape(6).copy()
+    q = _one_configuration(q_start, "q_start")
     start = world
     phases: list[Phase] = []
     goals: list[Block] = []
