@@ -337,3 +337,12 @@ def test_pick_and_place_checks_its_options_and_start_before_planning():
         planning.pick_and_place(world, move, np.zeros((2, 6)))
     with pytest.raises(ValueError, match=r"q_start must be one configuration"):
         planning.validate_goal(world, move[0], q_start=np.zeros((2, 6)))
+
+
+def test_booleans_are_not_numbers_and_simplify_is_a_boolean():
+    with pytest.raises(TypeError, match="simplify must be True or False"):
+        planning.rrt_connect(MODEL, planning.Scene(), np.zeros(6), np.full(6, 0.1), simplify="no")
+    with pytest.raises(TypeError, match="booleans"):
+        planning.Cylinder([0, 0, 0], [0, 0, 1], True, 1.0)
+    with pytest.raises(TypeError, match="booleans"):
+        planning.is_free(MODEL, planning.Scene(), np.zeros(6, dtype=bool))

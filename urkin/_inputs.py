@@ -111,8 +111,10 @@ def real(x: Any, name: str, *, complex_ok: bool = False, finite: bool = True) ->
                 "accept complex joint angles, for complex-step derivatives)"
             )
         array = array.astype(complex, copy=False)
-    elif kind in "biuf":
+    elif kind in "iuf":
         array = array.astype(float, copy=False)
+    elif kind == "b":  # True is not 1 m, nor 1 rad
+        raise TypeError(f"{name} must be numbers; got booleans")
     else:
         what = type(x).__name__ if array.ndim == 0 else f"an array of {array.dtype}"
         raise TypeError(f"{name} must be numbers; got {what}")

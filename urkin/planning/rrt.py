@@ -185,6 +185,8 @@ def rrt_connect(
     t0 = time.perf_counter()
     _check(model, scene)
     _check_options(seed, max_iterations, time_limit, step)
+    if not isinstance(simplify, (bool, np.bool_)):
+        raise TypeError(f"simplify must be True or False; got {simplify!r:.40}")
     lower, upper = _limits(model)
     q_start = _one_configuration(start, "start")
     _within(q_start, lower, upper, "start")
