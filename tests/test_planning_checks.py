@@ -562,3 +562,23 @@ def test_a_box_rotation_a_little_off_orthonormal_is_made_a_rotation():
     np.testing.assert_allclose(box.rotation.T @ box.rotation, np.eye(3), atol=1e-15)
     R = urkin.transforms.rot_z(0.3)
     assert np.array_equal(planning.Box([0, 0, 0], [1, 1, 1], R).rotation, R)  # kept as given
+
+
+def test_explain_names_spheres_when_a_sphere_pair_of_two_tabulated_links_is_closest():
+    """The UR5's forearm and wrist 3 have a mesh table, and also a sphere pair (wrist 3's extra
+    sphere): explain names whichever of the two set the clearance."""
+    model = planning.sphere_model(urkin.robot("ur5"))
+    Q = urkin.robots.random_configurations(model.robot, 2000, seed=4)
+    c = planning.clearance(model, planning.Scene(), Q)
+    tabulated = [set(pair.frames) for pair in model.meshes]
+    by_spheres = [
+        k
+        for k in np.flatnonzero((c.other >= 0) & ~c.meshes)
+        if {model.frames[c.sphere[k]], model.frames[c.other[k]]} in tabulated
+    ]
+    assert by_spheres
+    for k in by_spheres[:5]:
+        text = planning.explain(model, planning.Scene(), Q[k])
+        assert "meshes" not in text and model.names[c.sphere[k]] in text
+    for k in np.flatnonzero(c.meshes)[:5]:
+        assert "meshes" in planning.explain(model, planning.Scene(), Q[k])

@@ -559,12 +559,16 @@ class Clearance:
         The obstacle's index in ``scene.names``, or −1 when the pair is two of the arm's spheres.
     other : ndarray of int
         The other sphere of a self pair, or −1.
+    meshes : ndarray of bool
+        Whether the pair is a tabulated mesh pair (``distance`` its lower bound), rather than
+        two spheres.
     """
 
     distance: np.ndarray
     sphere: np.ndarray
     obstacle: np.ndarray
     other: np.ndarray
+    meshes: np.ndarray
 
 
 def clearance(model: SphereModel, scene: Scene, q: ArrayLike) -> Clearance:
@@ -593,8 +597,9 @@ def clearance(model: SphereModel, scene: Scene, q: ArrayLike) -> Clearance:
     sphere = np.full(n, -1)
     obstacle = np.full(n, -1)
     other = np.full(n, -1)
+    meshes = np.zeros(n, dtype=bool)
     if not n:  # an empty stack
-        return Clearance(*(a.reshape(lead) for a in (best, sphere, obstacle, other)))
+        return Clearance(*(a.reshape(lead) for a in (best, sphere, obstacle, other, meshes)))
     W = model.place(Q)
     rows = np.arange(n)
     if len(scene) and len(model._moving):
@@ -625,7 +630,8 @@ def clearance(model: SphereModel, scene: Scene, q: ArrayLike) -> Clearance:
             sphere = np.where(closer, i[k // len(j)], sphere)
             other = np.where(closer, j[k % len(j)], other)
             obstacle = np.where(closer, -1, obstacle)
-    return Clearance(*(a.reshape(lead) for a in (best, sphere, obstacle, other)))
+            meshes |= closer
+    return Clearance(*(a.reshape(lead) for a in (best, sphere, obstacle, other, meshes)))
 
 
 def explain(model: SphereModel, scene: Scene, q: ArrayLike) -> str:
@@ -654,8 +660,8 @@ def explain(model: SphereModel, scene: Scene, q: ArrayLike) -> str:
         b = f"{kind} '{scene.names[int(c.obstacle)]}'"
     else:
         b = f"{model.names[int(c.other)]} (self-collision)"
-        pair = {model.frames[int(c.sphere)], model.frames[int(c.other)]}
-        if any(pair == set(meshes.frames) for meshes in model.meshes):
+        if c.meshes:  # a tabulated mesh pair's bound, named by the two links
+            pair = {model.frames[int(c.sphere)], model.frames[int(c.other)]}
             a, b = (FRAME_NAMES[f] for f in sorted(pair))
             if float(c.distance) <= 0:
                 return f"in collision: the {a} and {b} meshes may touch (self-collision)"
