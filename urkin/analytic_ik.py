@@ -424,6 +424,19 @@ def ik_analytic(
     return (q, keep) if return_mask else q
 
 
+def _whole_turns_into_limits(
+    q: np.ndarray, near: np.ndarray, lower: np.ndarray, upper: np.ndarray
+) -> np.ndarray:
+    """The whole-turn equivalent of each angle of ``q`` nearest ``near`` (broadcast), pushed
+    back inside ``[lower, upper]`` by as many whole turns as it takes (``near`` may be several
+    turns out).  Angles whose joint has no equivalent inside stay outside: test the result."""
+    turned = near + wrap_angles(q - near, check=False)
+    turn = 2 * np.pi
+    turned -= turn * np.maximum(np.ceil((turned - upper) / turn), 0.0)
+    turned += turn * np.maximum(np.ceil((lower - turned) / turn), 0.0)
+    return turned
+
+
 def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float = 1e-9) -> IKResult:
     """The closed-form solution nearest the current configuration, within the joint limits.
 
@@ -475,12 +488,7 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
     q, valid = _solve(poses, robot.lengths)
     lower = np.array([lo for lo, _ in robot.joint_limits])
     upper = np.array([hi for _, hi in robot.joint_limits])
-    # the 2π-equivalent of each angle nearest the current one, pushed back inside the limits by
-    # as many whole turns as it takes (a current angle may be several turns out)
-    shifted = current[:, None, :] + wrap_angles(q - current[:, None, :], check=False)
-    turn = 2 * np.pi
-    shifted -= turn * np.maximum(np.ceil((shifted - upper) / turn), 0.0)
-    shifted += turn * np.maximum(np.ceil((lower - shifted) / turn), 0.0)
+    shifted = _whole_turns_into_limits(q, current[:, None, :], lower, upper)
     inside = np.all((shifted >= lower) & (shifted <= upper), axis=-1) & valid
     distance = np.where(inside, np.linalg.norm(shifted - current[:, None, :], axis=-1), np.inf)
     best = np.argmin(distance, axis=1)

@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import functools
 import math
-import operator
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -299,12 +298,12 @@ def random_configurations(
     ((2, 3, 6), True)
     """
     arm = check_robot(robot)
-    try:
-        size = tuple(operator.index(n) for n in np.atleast_1d(np.asarray(shape, dtype=object)))
-    except TypeError:
-        size = (-1,)
-    if np.ndim(shape) > 1 or any(n < 0 for n in size):
+    sizes = np.atleast_1d(np.asarray(shape, dtype=object))
+    if np.ndim(shape) > 1 or not all(
+        isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 0 for n in sizes
+    ):
         raise ValueError(f"shape must be a non-negative integer or a tuple of them; got {shape!r}")
+    size = tuple(int(n) for n in sizes)
     if not isinstance(seed, np.random.Generator) and not (
         isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and seed >= 0
     ):

@@ -485,8 +485,6 @@ def time_scaling(kind: str, T: float, peak_speed: float | None = None) -> TimeSc
             raise ValueError(f"peak_speed is the trapezoid's; a {kind} time scaling has none")
         speed, acceleration = _PEAKS[kind]
         return _peaks(kind, T, speed / T, acceleration / T / T)  # T**2 could overflow
-    if kind != "trapezoid":
-        raise ValueError(f"kind must be 'cubic', 'quintic' or 'trapezoid'; got {kind!r}")
     v = 1.5 / T if peak_speed is None else _positive(peak_speed, "peak_speed")
     if not 1.0 < v * T <= 2.0:
         raise ValueError(
@@ -571,8 +569,6 @@ def minimum_time(
                 f"move would take longer than {sys.float_info.max:.3g} s"
             )
         return time_scaling(kind, T)
-    if kind != "trapezoid":
-        raise ValueError(f"kind must be 'cubic', 'quintic' or 'trapezoid'; got {kind!r}")
     if V * V >= A:  # the cruise speed is never reached: a triangle
         T = 2.0 / math.sqrt(A)
         return TimeScaling("trapezoid", T, 2.0 / T, A)

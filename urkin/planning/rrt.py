@@ -33,7 +33,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._inputs import positive, real
-from urkin.analytic_ik import ik_analytic, ik_closest
+from urkin.analytic_ik import _whole_turns_into_limits, ik_analytic, ik_closest
 from urkin.kinematics import _joints, _one_configuration
 from urkin.planning.checks import (
     FINEST,
@@ -47,7 +47,6 @@ from urkin.planning.checks import (
 )
 from urkin.planning.scene import Scene, _dot
 from urkin.planning.spheres import SphereModel
-from urkin.transforms import wrap_angles
 
 __all__ = ["Plan", "rrt_connect", "shortcut"]
 
@@ -115,10 +114,7 @@ def _turned_into_limits(model: SphereModel, Q: np.ndarray, q_start: np.ndarray) 
     whole turns to the equivalent angle nearest the start that is inside them, where one is
     (a joint limited to 4.5 … 6 rad reaches the solution −1.0 as 5.28)."""
     lower, upper = _limits(model)
-    turn = 2 * np.pi
-    near = q_start + wrap_angles(Q - q_start, check=False)
-    near -= turn * np.maximum(np.ceil((near - upper) / turn), 0.0)
-    near += turn * np.maximum(np.ceil((lower - near) / turn), 0.0)
+    near = _whole_turns_into_limits(Q, q_start, lower, upper)
     outside = (Q < lower) | (Q > upper)
     return np.where(outside & (near >= lower) & (near <= upper), near, Q)
 
