@@ -17,12 +17,13 @@ and a Robotiq 2F-85 gripper, mounted 0.9144 m up a pedestal.  This module turns 
   ``[height, radius]`` for cylinders about their pose's z axis), named by their ``id``;
 * a problem: the start's and the first goal constraint's six arm joints.
 
-A problem is *valid for urkin* when its start and goal are free under urkin's model: 695 of
-the 700 (with the forearm and wrist 2 tested on their spheres, urkin kept 553).  VAMP ships
-689 as valid: those free under its own spheres (:func:`vamp_model`, the spherized URDF's
-spheres with every pair on links neither the same nor adjacent, gives exactly that count);
-urkin's model refuses one of them, cage/100 (a forearm sphere 1 mm into a box that the mesh
-clears by 8 mm).  ``problems()`` returns every problem with ``reason`` saying why an invalid
+A problem is *valid for urkin* when its start and goal are free under urkin's model: 696 of
+the 700 (with every pair of links tested on their spheres, none on tabulated meshes, 652).
+VAMP ships 689 as valid: those free under its own spheres (:func:`vamp_model`, the spherized
+URDF's spheres with every pair on links neither the same nor adjacent, gives exactly that
+count); urkin's model accepts all of them (before its fit cut spheres by their reach, it
+refused cage/100: a forearm sphere 1 mm into a box that the mesh clears by 8 mm).
+``problems()`` returns every problem with ``reason`` saying why an invalid
 one is left out, and ``vamp_free``.
 """
 

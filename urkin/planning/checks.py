@@ -193,7 +193,7 @@ def _hits(
 
 
 #: Larger stacks are checked in blocks of this many configurations.  A block's arrays (every
-#: sphere of every configuration placed: 0.5 MB for 45 spheres) stay in the processor's cache
+#: sphere of every configuration placed: 0.6 MB for 51 spheres) stay in the processor's cache
 #: and are reused by the memory allocator; one pass over 10,000 configurations allocates
 #: arrays of several megabytes, which the allocator maps afresh from the system each time,
 #: and takes 1.3 times as long.
@@ -201,8 +201,8 @@ _BLOCK_ROWS = 512
 
 #: Stacks up to this many configurations are checked by :func:`_dense_hits`, when the model
 #: and scene are small: self-collision pairs plus moving spheres times obstacles at most
-#: ``_DENSE_WORK`` (a bare UR5 with 136 pairs and 41 moving spheres among 10 boxes: 546; with
-#: VAMP's gripper among MotionBenchMaker's 15 obstacles, 1,410, where culling pays even for
+#: ``_DENSE_WORK`` (a bare UR5 with 149 pairs and 47 moving spheres among 10 boxes: 619; with
+#: VAMP's gripper among MotionBenchMaker's 15 obstacles, 1,576, where culling pays even for
 #: one).
 _DENSE, _DENSE_WORK = 40, 700
 

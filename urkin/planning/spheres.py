@@ -15,7 +15,10 @@ Provenance of the fitted models
     (plus 0.5 mm).  A group is cut in two, across a principal axis, while that makes its
     sphere reach markedly less far beyond the link's surface (its *excess*: the mean, over
     points of the sphere, of how far outside the mesh they lie), until it is within 6 mm: a
-    tube becomes a row of slices hardly wider than the tube, a housing a few pieces.  A ball
+    tube becomes a row of slices hardly wider than the tube, a housing a few pieces.  A sphere
+    that still reaches more than 10 mm past the surface over a twentieth of its own (the 95th
+    percentile of those distances) is then cut by that measure while cuts pay (a slice across
+    a tube's flange, which refused a MotionBenchMaker goal whose mesh is 8 mm clear).  A ball
     holding a triangle's corners holds the whole triangle, so the spheres cover every point
     of the mesh surface; ``tests/test_planning_spheres.py`` checks it on fresh surface
     samples, the meshes placed by the URDF and the spheres by :func:`urkin.fk_frames`, at
@@ -37,9 +40,9 @@ Self-collision pairs
     faces, overlap where the links are clear: of random configurations, the spheres leave 60 %
     of the UR5's free of self-collision, the tables 70 % (UR10: 79 and 82 %; UR3: 59 and 66 %);
     of VAMP's 700 MotionBenchMaker UR5 problems (VAMP's gripper spheres on the flange), the
-    spheres put the start or goal of 49 in collision, the tables and spheres together 5 (three
-    by a tabled pair whose meshes are 0.1–2.4 mm apart, two by a sphere against a box; of the
-    689 that VAMP's own spheres leave free, one).  The other pairs of the fitted models are
+    spheres put the start or goal of 48 in collision, the tables and spheres together 4 (three
+    by a tabled pair whose meshes are 0.1–2.4 mm apart, one by a sphere 1 mm into a table;
+    none of the 689 that VAMP's own spheres leave free).  The other pairs of the fitted models are
     witnessed by the meshes: in 2,000 seeded random configurations, wherever two links that are
     not the same or adjacent came within 5 mm of each other, the two spheres holding the nearby
     points form a pair to test; pairs that overlapped in every one of 20,000 random
@@ -50,7 +53,7 @@ Self-collision pairs
     same or adjacent (frames ``i`` and ``i ± 1``; the tool frame is part of link 6), or, over
     20,000 random configurations within the joint limits (seed 0), they never came within 2 cm
     of each other (they cannot meet in practice) or always overlapped; it runs once per model (a
-    fifth of a second for 45 spheres).  Tool spheres added to a fitted model get their pairs by
+    fifth of a second for 50 spheres).  Tool spheres added to a fitted model get their pairs by
     this rule.
 """
 
