@@ -148,19 +148,17 @@ def fit_link(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     by their mean excess, then the spheres that reach far in many directions cut further by
     their reach."""
     excess = Excess(triangles)
-    done, todo = [], [(subdivide(triangles, MAX_EDGE), excess)]
+    done, todo = [], [(subdivide(triangles, MAX_EDGE), False)]
     while todo:
-        group, measure = todo.pop()
-        halves = _cut(group, measure, EXCESS) if measure is excess else None
-        if halves is None and measure is excess:  # done by the mean: its reach decides
-            measure = excess.reach
-            halves = _cut(group, measure, REACH)
-        elif halves is None:
-            halves = _cut(group, measure, REACH)
+        group, by_reach = todo.pop()
+        halves = None if by_reach else _cut(group, excess, EXCESS)
+        if halves is None:  # done by the mean (or cut by reach already): its reach decides
+            by_reach = True
+            halves = _cut(group, excess.reach, REACH)
         if halves is None:
             done.append(sphere_of(group))
         else:
-            todo += [(half, measure) for half in halves]
+            todo += [(half, by_reach) for half in halves]
     return np.array([c for c, _ in done]), np.array([r for _, r in done])
 
 
