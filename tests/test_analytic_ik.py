@@ -175,6 +175,49 @@ def test_exact_at_singular_poses(arm, family):
             assert distance_mod_2pi(s, q) < tol
 
 
+#: Distances (rad, or m for the shoulder) from each singular family.
+NEAR = (1e-3, 1e-5, 1e-7, 1e-9, 1e-10, 1e-11, 1e-12)
+
+
+def near_family(arm, family, distance, rng):
+    """A configuration ``distance`` off each singularity of ``family``: θ3 off 0 or π (elbow),
+    θ5 off 0 or π (wrist), the wrist point off the ``d4`` cylinder (shoulder)."""
+    q = on_family(arm, family, rng)
+    if "elbow" in family:
+        q[2] += rng.choice([-distance, distance])
+    if "wrist" in family:
+        q[4] += rng.choice([-distance, distance])
+    if "shoulder" in family:  # the planar reach a2 c2 + a3 c23 + d5 s234 = ±distance
+        reach = arm.a2 * np.cos(q[1]) + arm.a3 * np.cos(q[1] + q[2])
+        offset = rng.choice([-distance, distance])  # on_family keeps |reach| ≤ d5
+        q[3] = np.arcsin(np.clip((offset - reach) / arm.d5, -1.0, 1.0)) - q[1] - q[2]
+    return q
+
+
+@pytest.mark.parametrize("family", FAMILIES, ids=["+".join(f) for f in FAMILIES])
+def test_exact_near_singular_poses(arm, family):
+    """Just off each singular family, at 1e-3 … 1e-12, every pose keeps solutions and each
+    reaches it: to round-off, or within REACH_TOLERANCE where the shoulder's double root
+    (rounding of ε in the pose moves its offset by √ε) meets the elbow's or the wrist's; and
+    ik_closest finds one (no false "unreachable")."""
+    from urkin.analytic_ik import REACH_TOLERANCE
+
+    tol = REACH_TOLERANCE if "shoulder" in family and len(family) > 1 else 1e-12
+    for distance in NEAR:
+        rng = np.random.default_rng(zlib.crc32(f"{arm.name}{family}{distance}".encode()))
+        Q = np.array([near_family(arm, family, distance, rng) for _ in range(100)])
+        T = urkin.fk(arm, Q)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            solutions, mask = ik_analytic(arm, T, return_mask=True)
+        assert mask.any(axis=1).all(), f"a pose {distance:g} off lost every solution"
+        reached = urkin.fk(arm, solutions[mask])
+        assert np.abs(reached - np.repeat(T, mask.sum(axis=1), axis=0)).max() < tol
+        for i in range(0, 100, 25):  # the one-pose path finds as many
+            assert len(ik_analytic(arm, T[i])) == mask[i].sum()
+        assert ik_closest(arm, T, Q).success.all()
+
+
 def test_the_wrist_representatives_have_the_elbow_nearest_a_right_angle():
     # on a wrist-singular pose, θ234 moves joint 5 on a circle of radius d5 round the wrist
     # point; the planar reach ρ(θ234) sets cos θ3 = (ρ² − a2² − a3²) / (2 a2 a3)

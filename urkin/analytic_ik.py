@@ -28,6 +28,20 @@ Singular poses:
   right angle are returned in place of the two θ5 branches (see :func:`_representatives`);
 * **elbow** (``θ3 = 0`` or ``π``): a double root, by the same rule.
 
+Near them:
+
+* **near the wrist** (``sin θ5`` small but above the tolerance): θ234 and θ6 are told apart
+  only by the pose's entries of order ``sin θ5``, so each is known to about ``ε / sin θ5``
+  while ``θ234 ± θ6`` is exact.  Where the θ234 computed puts frame 3 a hair beyond the
+  elbow's reach, it is moved within that rounding (θ6 the other way) onto the border: an exact
+  solution, where the hair would otherwise drop the branch (``ε / sin θ5`` of 1e-7 rad moves
+  frame 3 by ``d5`` times that);
+* **near the shoulder** with the elbow stretched or folded: the wrist point's offset in the
+  arm's plane is a double root, known only to ``√ε``, and an elbow that misses by that much
+  is solved again from the offset in that range where it misses least.  Where two double
+  roots meet, solutions reach the pose within :data:`REACH_TOLERANCE` (elsewhere, to
+  round-off).
+
 A pose within :data:`REACH_TOLERANCE` outside the reachable set (inside the ``d4`` cylinder, or
 beyond full stretch or fold of the elbow) is taken as on its border: its solutions miss by at
 most that much.  Solutions equal to within :data:`DUPLICATE_TOLERANCE` (modulo 2π) are returned
@@ -91,13 +105,20 @@ def _wrap_one(angle: float) -> float:
 
 
 def _solve_one(
-    rows: list[list[float]], lengths: tuple[float, ...], misses: list[float] | None = None
+    rows: list[list[float]],
+    lengths: tuple[float, ...],
+    misses: list[float] | None = None,
+    root: float | None = None,
+    short: dict[int, float] | None = None,
 ) -> list[list[float] | None]:
     """The eight branches of one flange pose given as ``T.tolist()``, plain floats, no numpy:
     entry ``i`` is the solution of branch ``i`` (the row layout of :func:`ik_analytic` for a
     stack), or None where that branch has no solution or repeats an earlier one.
 
-    When given, ``misses`` collects how far the elbow falls short on each branch it drops."""
+    When given, ``misses`` collects how far the elbow falls short on each branch it drops, and
+    ``short`` how far (m) on each branch (by its first row) whose elbow misses its border,
+    dropped or not.
+    ``root`` replaces ``√((r − d4)(r + d4))`` (:func:`_shoulder_retry`)."""
     d1, a2, a3, d4, d5, d6 = lengths
     (xx, yx, zx, px), (xy, yy, zy, py), (xz, yz, zz, pz) = rows[0], rows[1], rows[2]
     wx, wy, wz = px - d6 * zx, py - d6 * zy, pz - d6 * zz
@@ -106,8 +127,14 @@ def _solve_one(
     found: list[list[float] | None] = [None] * 8
     if r - d4 < -REACH_TOLERANCE or r2 == 0.0 or r2 == math.inf:  # inf: a wrist at 1e154 m
         return found
-    gap = r - d4 if abs(r - d4) > _ROUNDOFF * (abs(px) + abs(py) + d6 + d4) else 0.0
-    root = math.sqrt(max(gap * (r + d4), 0.0))
+    retry = root is None
+    if root is None:
+        gap = r - d4 if abs(r - d4) > _ROUNDOFF * (abs(px) + abs(py) + d6 + d4) else 0.0
+        root = math.sqrt(max(gap * (r + d4), 0.0))
+    # the branches whose elbow misses its border, kept where the shoulder retry may fill them
+    missed: dict[int, float] | None = short
+    if missed is None and retry and root < _SHOULDER_NEAR:
+        missed = {}
     big, small = abs(a2) + abs(a3), abs(abs(a2) - abs(a3))
     two_a2a3 = 2.0 * a2 * a3
     # Rows can repeat only where two branches meet: at a wrist representative, or where the
@@ -151,10 +178,28 @@ def _solve_one(
                 )
             ex, ey = X - d5 * s234, Y + d5 * c234  # the origin of frame 3
             rho = math.hypot(ex, ey)
-            if rho - big > REACH_TOLERANCE or small - rho > REACH_TOLERANCE:
-                if misses is not None:
-                    misses.append(max(rho - big, small - rho))
-                continue
+            slot = 4 * branch + 2 * sign5
+            if rho > big or rho < small:  # beyond the elbow's reach, by a hair or for good
+                miss = rho - big if rho > big else small - rho
+                # frame 3 moves at most d5 · band (_split_shift): most branches stay out
+                if S > WRIST_TOLERANCE and d5 * 0.5 * REACH_TOLERANCE >= miss * S:
+                    spread = _shoulder_spread(px, py, r, root, d4, d6)
+                    band = min(_SPLIT + spread, 0.5 * min(miss, REACH_TOLERANCE)) / S
+                    border = big if rho > big else small
+                    shift = _split_shift(X, Y, q234, band, border, d5)
+                    if shift != 0.0:  # within θ234's rounding: onto the border
+                        q234 += shift
+                        q6 -= shift if C >= 0.0 else -shift  # θ234 ± θ6 stays
+                        s234, c234 = math.sin(q234), math.cos(q234)
+                        ex, ey = X - d5 * s234, Y + d5 * c234
+                        rho = math.hypot(ex, ey)
+                        miss = max(rho - big, small - rho)
+                if miss > _ROUNDOFF * big and missed is not None:
+                    missed[slot] = miss
+                if miss > REACH_TOLERANCE:
+                    if misses is not None:
+                        misses.append(miss)
+                    continue
             c3 = min(1.0, max(-1.0, (ex * ex + ey * ey - a2 * a2 - a3 * a3) / two_a2a3))
             stretch = big - rho if big - rho > _ROUNDOFF * big else 0.0
             fold = rho - small if rho - small > _ROUNDOFF * big else 0.0
@@ -162,7 +207,6 @@ def _solve_one(
             s3 = math.sqrt(product) / abs(two_a2a3)
             heading = math.atan2(ey, ex)
             q5, q6 = _wrap_one(q5), _wrap_one(q6)
-            slot = 4 * branch + 2 * sign5
             for elbow in (1.0, -1.0) if s3 > 0.0 else (1.0,):
                 q3 = math.atan2(elbow * s3, c3)
                 q2 = _wrap_one(heading - math.atan2(a3 * elbow * s3, a2 + a3 * c3))
@@ -174,7 +218,124 @@ def _solve_one(
                 suspect = True
     if len(shoulders) == 2 and abs(_wrap_one(shoulders[0] - shoulders[1])) < DUPLICATE_TOLERANCE:
         suspect = True
+    if missed and retry and _shoulder_retry(rows, lengths, root, r, found, missed):
+        suspect = True
     return _distinct_one(found) if suspect else found
+
+
+def _shoulder_rounding(px, py, r, d4, d6):
+    """How far rounding leaves ``root² = (r − d4)(r + d4)`` open: the wrist point's distance
+    from the ``d4`` cylinder is known to ``_ROUNDOFF (|px| + |py| + d6 + d4)`` (as ``gap``),
+    times ``r + d4``.  Floats or arrays."""
+    return _ROUNDOFF * (abs(px) + abs(py) + (d6 + d4)) * (r + d4)
+
+
+def _shoulder_range(px, py, r, root, d4, d6):
+    """The two ends of the range of ``root`` that rounding leaves open (floats)."""
+    delta = _shoulder_rounding(px, py, r, d4, d6)
+    return math.sqrt(max(root * root - delta, 0.0)), math.sqrt(root * root + delta)
+
+
+#: A shoulder whose ``root`` rounding leaves this far open (m) may hide a reachable elbow;
+#: it can only where ``root`` is below ``_SHOULDER_NEAR`` (m; the range is about
+#: ``1e-16 / root`` wide).
+_SHOULDER_OPEN, _SHOULDER_NEAR = 1e-12, 1e-3
+
+
+def _shoulder_retry(rows, lengths, root, r, found, missed) -> bool:
+    """Near the shoulder singularity, fill the branches ``missed`` (their elbow just out of
+    reach, dropped or on the reach tolerance: first row → miss) from the root, within
+    ``root``'s rounding range, where the elbow misses least (a golden-section search); whether
+    any branch was filled with an exact solution.
+
+    There ``root = √((r − d4)(r + d4))``, the wrist point's offset in the arm's plane, is a
+    double root: rounding of ``ε`` in ``r`` moves it by ``√ε``, and a solution from any root
+    in that range reaches the pose to about ``ε`` (the wrist point's distance from the base
+    axis is what changes, by as little as the rounding).  A stretched or folded elbow turns
+    the root's ``√ε`` into a miss of about as much: the right root in the range removes it."""
+    (_, _, _, px), (_, _, _, py) = rows[0], rows[1]
+    low, high = _shoulder_range(px, py, r, root, lengths[3], lengths[5])
+    if high - low < _SHOULDER_OPEN:
+        return False
+    exact = _ROUNDOFF * (abs(lengths[1]) + abs(lengths[2]))
+    changed = False
+    for slot in missed:
+        a, b = (-high if low == 0.0 else low), high
+        c, d = b - _GOLDEN * (b - a), a + _GOLDEN * (b - a)
+        fc, fd = _branch_miss(rows, lengths, slot, c), _branch_miss(rows, lengths, slot, d)
+        for _ in range(_GOLDEN_STEPS):
+            if min(fc[0], fd[0]) <= exact:
+                break
+            if fc[0] < fd[0]:
+                b, d, fd = d, c, fc
+                c = b - _GOLDEN * (b - a)
+                fc = _branch_miss(rows, lengths, slot, c)
+            else:
+                a, c, fc = c, d, fd
+                d = a + _GOLDEN * (b - a)
+                fd = _branch_miss(rows, lengths, slot, d)
+        best, where, solved = fc if fc[0] <= fd[0] else fd
+        if best <= exact and solved[where] is not None:
+            found[where], found[where + 1] = solved[where], solved[where + 1]
+            changed = True
+    return changed
+
+
+_GOLDEN, _GOLDEN_STEPS = (math.sqrt(5.0) - 1.0) / 2.0, 60
+
+
+def _branch_miss(rows, lengths, slot: int, x: float):
+    """How far the elbow of branch ``slot`` (its first row) misses with the shoulder offset
+    ``root = x`` (x < 0: the offset on the other side, the other θ1 branch, ``slot ^ 4``; inf
+    where it has no solution at all), that branch's row and the solutions."""
+    where = slot if x >= 0.0 else slot ^ 4
+    short: dict[int, float] = {}
+    solved = _solve_one(rows, lengths, root=abs(x), short=short)
+    if where in short:
+        return short[where], where, solved
+    return (0.0 if solved[where] is not None else math.inf), where, solved
+
+
+#: Near the wrist singularity θ234 and θ6 are told apart only by the pose's entries of order
+#: ``S = sin θ5`` (``A``, ``B``), each rounded by a few ulps and moved by θ1's own error, so
+#: each is known to about ``(_SPLIT + θ1's error) / S`` while ``θ234 ± θ6`` stays exact.
+_SPLIT = 64.0 * np.finfo(float).eps
+
+
+def _shoulder_spread(px, py, r, root, d4, d6):
+    """How far θ1 may be off from rounding (floats or arrays): with ``root²`` known to ``δ``
+    (:func:`_shoulder_rounding`), θ1 moves by about ``δ / (2 r root)``, and up to ``√δ / r``
+    on the cylinder."""
+    delta = _shoulder_rounding(px, py, r, d4, d6)
+    return delta / (r * (root + delta**0.5))
+
+
+def _split_shift(X: float, Y: float, q234: float, band: float, border: float, d5: float) -> float:
+    """The smallest change of θ234 within ``band`` that brings the origin of frame 3 (``d5``
+    from the wrist point ``(X, Y)`` in the arm's plane) to the distance ``border`` from the
+    shoulder (full stretch or full fold); 0.0 where none does.
+
+    Near the wrist singularity the computed θ234 can put frame 3 just out of the planar arm's
+    reach although the pose is reachable: moving θ234 within its rounding (and θ6 the other
+    way, which changes the pose by about ``S`` times the move, as little as the rounding did)
+    puts it back on the border, an exact solution, where leaving it would drop every branch
+    or miss by up to the reach tolerance.  The ``band`` is that rounding (``_SPLIT`` and θ1's
+    spread, over ``S``), and no more than makes the pose's error smaller than the miss it
+    removes (at most :data:`REACH_TOLERANCE`, a dropped branch's)."""
+    A = math.hypot(X, Y)
+    if A * d5 == 0.0:
+        return 0.0
+    # |frame 3|² = A² + d5² − 2 d5 A sin(θ234 − β), β the direction of the wrist point
+    sigma = (A * A + d5 * d5 - border * border) / (2.0 * d5 * A)
+    if not -1.0 <= sigma <= 1.0:
+        return 0.0
+    beta, half = math.atan2(Y, X), math.asin(sigma)
+    best = 0.0
+    for theta in (beta + half, beta + _PI - half):
+        shift = _wrap_one(theta - q234)
+        if abs(shift) <= band and (best == 0.0 or abs(shift) < abs(best)):
+            best = shift
+    return best
 
 
 def _representative_one(X: float, Y: float, which: float, a2, a3, d5) -> float:
@@ -222,6 +383,18 @@ def _representatives(X, Y, a2, a3, d5) -> np.ndarray:
     half = np.arcsin(np.clip(sigma, -1.0, 1.0))
     beta = np.arctan2(Y, X)
     return np.stack([beta + half, beta + np.pi - half], axis=-1)
+
+
+def _split_shifts(X, Y, q234, band, border, d5) -> np.ndarray:
+    """:func:`_split_shift` of arrays of the same shape."""
+    A = np.hypot(X, Y)
+    across = 2.0 * d5 * A
+    sigma = (A * A + d5 * d5 - border * border) / np.where(across != 0.0, across, np.inf)
+    ok = (across != 0.0) & (np.abs(sigma) <= 1.0)
+    beta, half = np.arctan2(Y, X), np.arcsin(np.clip(sigma, -1.0, 1.0))
+    shifts = wrap_angles(np.stack([beta + half, beta + np.pi - half]) - q234, check=False)
+    shift = np.where(np.abs(shifts[0]) <= np.abs(shifts[1]), shifts[0], shifts[1])
+    return np.where(ok & (np.abs(shift) <= band), shift, 0.0)
 
 
 def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
@@ -290,6 +463,27 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
     ey = Y + d5 * c234
     rho = np.hypot(ex, ey)
     big, small = abs(a2) + abs(a3), abs(abs(a2) - abs(a3))
+    miss = np.maximum(rho - big, small - rho)
+    # near the wrist singularity: onto the border within θ234's rounding (_split_shift), where
+    # frame 3, moving d5 · band at most, can get there
+    reach5 = (d5 * 0.5 * REACH_TOLERANCE) / np.where(wrist, np.inf, S)[:, None, :]
+    beyond = (miss > 0.0) & (miss <= reach5)
+    if beyond.any():
+        b, f, k = np.nonzero(beyond)
+        border = np.where(rho[b, f, k] > big, big, small)
+        spread = _shoulder_spread(px[k], py[k], r[k], root[k], d4, d6)
+        limit = 0.5 * np.minimum(miss[b, f, k], REACH_TOLERANCE)
+        band = np.minimum(_SPLIT + spread, limit) / S[b, k]
+        shift = _split_shifts(X[b, 0, k], Y[k], q234[b, f, k], band, border, d5)
+        moved = shift != 0.0
+        b, f, k, shift = b[moved], f[moved], k[moved], shift[moved]
+        q234[b, f, k] += shift
+        q6[b, f, k] -= np.where(C[b, k] >= 0.0, shift, -shift)  # θ234 ± θ6 stays
+        s234[b, f, k], c234[b, f, k] = np.sin(q234[b, f, k]), np.cos(q234[b, f, k])
+        ex[b, f, k] = X[b, 0, k] - d5 * s234[b, f, k]
+        ey[b, f, k] = Y[k] + d5 * c234[b, f, k]
+        rho[b, f, k] = np.hypot(ex[b, f, k], ey[b, f, k])
+        miss[b, f, k] = np.maximum(rho[b, f, k] - big, small - rho[b, f, k])
     reach3 = (rho - big <= REACH_TOLERANCE) & (small - rho <= REACH_TOLERANCE)
     two_a2a3 = 2.0 * a2 * a3
     c3 = np.clip((ex * ex + ey * ey - (a2 * a2 + a3 * a3)) / two_a2a3, -1.0, 1.0)
@@ -326,13 +520,27 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
         gap = np.abs(wrap_angles(pairs, check=False)).max(axis=-1)
         same = (gap < DUPLICATE_TOLERANCE) & kept[:, None, :] & np.tri(8, 8, -1, dtype=bool)
         keep[suspect] = kept & ~same.any(axis=-1)
+    # near the shoulder singularity, a branch whose elbow just misses: solved again pose by pose
+    # (_shoulder_retry searches the shoulder's rounding range; rare)
+    missed = (miss > _ROUNDOFF * big).any(axis=(0, 1)) & reach1[0] & (root < _SHOULDER_NEAR)
+    if missed.any():
+        delta = _shoulder_rounding(px, py, r, d4, d6)
+        low = np.sqrt(np.maximum(root * root - delta, 0.0))
+        retry = missed & (np.sqrt(root * root + delta) - low >= _SHOULDER_OPEN)
+        for i in np.flatnonzero(retry):
+            rows = [
+                found if found is not None else [np.nan] * 6
+                for found in _solve_one(T[i].tolist(), lengths)
+            ]
+            q[i] = rows
+            keep[i] = ~np.isnan(q[i, :, 0])
     return q, keep
 
 
 #: Stacks are solved in blocks of this many poses, which keeps temporaries in cache.
 _BLOCK = 1024
 #: Up to this many poses, a stack is solved pose by pose (bench/ik_analytic.py).
-_FEW = 9
+_FEW = 11
 
 
 def _solve(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
