@@ -279,3 +279,21 @@ def test_closest_reports_unreachable_poses():
     result = ik_closest(ur3, far, np.zeros(6))
     assert not result.success and "1.4031 m beyond the UR3" in result.reason
     assert np.isfinite(result.q).all()
+
+
+def test_a_pose_not_quite_rigid_is_solved_as_its_nearest_rotation():
+    """check_transform accepts rotations 1e-6 from orthonormal; no configuration reaches such
+    a matrix, so the solutions are those of its nearest rotation, exactly (one pose or a
+    stack), and ik_closest says how far the target is from a rotation when that is beyond
+    its tolerance."""
+    ur5 = urkin.robot("ur5")
+    q = np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.2])
+    T = urkin.fk(ur5, q)
+    scaled = T.copy()
+    scaled[:3, :3] *= 1 + 1e-7  # its nearest rotation is T's
+    for solutions in (ik_analytic(ur5, scaled), ik_analytic(ur5, scaled[None])[0]):
+        assert len(solutions) == 8
+        assert np.abs(urkin.fk(ur5, solutions) - T).max() < 1e-12
+    result = ik_closest(ur5, scaled, q)
+    assert not result.success and "from the nearest rotation matrix" in result.reason
+    assert ik_closest(ur5, np.round(T, 9), q).success  # 9 decimals: within tol = 1e-9

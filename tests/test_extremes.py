@@ -50,11 +50,31 @@ def test_random_configurations_of_limits_outside_pi_lie_within_them():
 
 
 @pytest.mark.parametrize(
-    ("shape", "seed"), [(-1, 0), ("2", 0), ((2, -1), 0), (2.5, 0), (2, -1), (2, True), (2, "x")]
+    ("shape", "seed", "error"),
+    [
+        (-1, 0, ValueError),
+        ((2, -1), 0, ValueError),
+        (2, -1, ValueError),
+        ("2", 0, TypeError),
+        (2.5, 0, TypeError),
+        (True, 0, TypeError),  # True is not 1
+        ((2, True), 0, TypeError),
+        (2, True, TypeError),
+        (2, "x", TypeError),
+    ],
 )
-def test_random_configurations_refuse_bad_shapes_and_seeds(shape, seed):
-    with pytest.raises(ValueError, match=r"shape|seed"):
-        random_configurations(UR5, shape, seed)
+def test_random_configurations_refuse_bad_shapes_and_seeds(shape, seed, error):
+    """Negative sizes and seeds are ValueErrors, wrong types (bools too) TypeErrors; each
+    names the argument.  random_rotations and random_transforms check alike."""
+    from urkin.transforms import random_rotations, random_transforms
+
+    for draw in (
+        lambda: random_configurations(UR5, shape, seed),
+        lambda: random_rotations(shape, seed),
+        lambda: random_transforms(shape, seed=seed),
+    ):
+        with pytest.raises(error, match=r"shape|seed"):
+            draw()
 
 
 def test_random_configurations_take_numpy_integers():

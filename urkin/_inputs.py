@@ -16,12 +16,23 @@ Batching rule (DESIGN §2)
 from __future__ import annotations
 
 import math
+import operator
 from numbers import Integral, Real
 from typing import Any
 
 import numpy as np
 
-__all__ = ["positive", "real", "shape_text", "unit", "unstack"]
+__all__ = [
+    "choice",
+    "flag",
+    "generator",
+    "positive",
+    "real",
+    "sample_shape",
+    "shape_text",
+    "unit",
+    "unstack",
+]
 
 
 def positive(
@@ -60,6 +71,75 @@ def positive(
     return value
 
 
+def choice(value: Any, name: str, options: tuple[str, ...]) -> str:
+    """``value`` if it is one of the strings ``options``; otherwise an error naming ``name``
+    and listing them: a TypeError for what is not a string (an array of names, None), a
+    ValueError for another string.
+
+    Examples
+    --------
+    >>> choice("log", "form", ("log", "cross"))
+    'log'
+    >>> choice("sin", "form", ("log", "cross"))
+    Traceback (most recent call last):
+    ...
+    ValueError: form must be one of 'log', 'cross'; got 'sin'
+    """
+    if type(value) is str and value in options:
+        return value
+    listed = ", ".join(map(repr, options))
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be one of {listed}; got {type(value).__name__} {value!r:.40}")
+    raise ValueError(f"{name} must be one of {listed}; got {value!r}")
+
+
+def flag(value: Any, name: str) -> bool:
+    """``value`` as a bool if it is True or False (numpy's too); otherwise a TypeError naming
+    ``name`` (None, a number, a string or an array is not a yes or no).
+
+    Examples
+    --------
+    >>> flag(True, "closed")
+    True
+    >>> flag("yes", "closed")
+    Traceback (most recent call last):
+    ...
+    TypeError: closed must be True or False; got str 'yes'
+    """
+    if value is True or value is False or isinstance(value, np.bool_):
+        return bool(value)
+    raise TypeError(f"{name} must be True or False; got {type(value).__name__} {value!r:.40}")
+
+
+def generator(seed: Any) -> np.random.Generator:
+    """``numpy.random.default_rng(seed)`` for an int ≥ 0 or a Generator (passed through), or
+    an error naming ``seed`` (a bool is not a seed: ``True`` would quietly be 1)."""
+    if isinstance(seed, np.random.Generator):
+        return seed
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
+        raise TypeError(
+            f"seed must be an int ≥ 0 or a numpy.random.Generator; got {type(seed).__name__}"
+        )
+    if seed < 0:
+        raise ValueError(f"seed must be an int ≥ 0 or a numpy.random.Generator; got {seed}")
+    return np.random.default_rng(seed)
+
+
+def sample_shape(shape: Any) -> tuple[int, ...]:
+    """``shape`` (an int or a tuple of ints ≥ 0, numpy integers too, no bools) as a tuple, or
+    an error naming it."""
+    items = (shape,) if isinstance(shape, (int, np.integer)) else shape
+    try:
+        if isinstance(items, (str, bytes)) or any(isinstance(n, (bool, np.bool_)) for n in items):
+            raise TypeError
+        size = tuple(operator.index(n) for n in items)
+    except TypeError:
+        raise TypeError(f"shape must be an int or a tuple of ints; got {shape!r}") from None
+    if any(n < 0 for n in size):
+        raise ValueError(f"shape must not be negative; got {shape!r}")
+    return size
+
+
 def shape_text(core: tuple[int, ...]) -> str:
     """``(4, 4) or (..., 4, 4)``: the shapes a stack of ``core`` items may have."""
     inner = ", ".join(map(str, core))
@@ -86,16 +166,26 @@ def real(x: Any, name: str, *, complex_ok: bool = False, finite: bool = True) ->
     ...
     ValueError: q contains NaN or infinity (entry 1)
     """
+    if isinstance(x, np.ma.MaskedArray) and np.ma.getmaskarray(x).any():
+        where = np.argwhere(np.ma.getmaskarray(x))[0]
+        raise ValueError(
+            f"{name} has masked entries ({_entry(where, x.ndim)}): a masked value is no number "
+            "(np.ma.filled gives one for each)"
+        )
     try:
         array = np.asarray(x)
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be numbers; got {type(x).__name__}") from exc
     kind = array.dtype.kind
-    if kind == "O" and any(item is None for item in array.flat):
-        raise TypeError(f"{name} must be numbers; got None" + (" in it" if array.ndim else ""))
     if kind == "O":
+        for item in array.flat:  # numpy would read None as NaN, True as 1 and "0.3" as 0.3
+            if item is None or isinstance(item, (bool, np.bool_, str, bytes)):
+                what = "None" if item is None else type(item).__name__
+                raise TypeError(f"{name} must be numbers; got {what}" + " in it" * array.ndim)
         try:
             array = array.astype(complex if complex_ok else float)
+        except OverflowError:
+            raise ValueError(f"{name} has a number beyond float range (±1.8e308)") from None
         except (TypeError, ValueError):
             raise TypeError(
                 f"{name} must be numbers; got {type(x).__name__} holding "
@@ -104,6 +194,16 @@ def real(x: Any, name: str, *, complex_ok: bool = False, finite: bool = True) ->
         kind = array.dtype.kind
         if kind == "c" and not np.any(array.imag):
             array, kind = array.real, "f"
+    if kind in "fc" and array.dtype.itemsize > (8 if kind == "f" else 16):
+        with np.errstate(over="ignore"):  # long double beyond float64: say so, not "infinity"
+            narrow = array.astype(complex if kind == "c" else float)
+        lost = np.isfinite(array) & ~np.isfinite(narrow)
+        if lost.any():
+            where = np.argwhere(lost)[0] if array.ndim else ()
+            raise ValueError(
+                f"{name} has a number beyond float range (±1.8e308) ({_entry(where, array.ndim)})"
+            )
+        array = narrow
     if kind == "c":
         if not complex_ok:
             raise TypeError(
@@ -122,9 +222,15 @@ def real(x: Any, name: str, *, complex_ok: bool = False, finite: bool = True) ->
         if array.ndim == 0:
             raise ValueError(f"{name} contains NaN or infinity ({array.item()})")
         where = np.argwhere(~np.isfinite(array))[0]
-        place = f"entry {tuple(int(i) for i in where)}" if array.ndim > 1 else f"entry {where[0]}"
-        raise ValueError(f"{name} contains NaN or infinity ({place})")
+        raise ValueError(f"{name} contains NaN or infinity ({_entry(where, array.ndim)})")
     return array
+
+
+def _entry(where, ndim: int) -> str:
+    """``entry 3`` or ``entry (1, 2)``: where an array's first offending entry is."""
+    if ndim == 0:
+        return "the value"
+    return f"entry {tuple(int(i) for i in where)}" if ndim > 1 else f"entry {int(where[0])}"
 
 
 def unit(vector: np.ndarray, name: str) -> np.ndarray:

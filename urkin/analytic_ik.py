@@ -55,11 +55,18 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import positive, real, unstack
-from urkin.ik_result import IKResult, no_solution_reason, verified
+from urkin._inputs import flag, positive, real, unstack
+from urkin.ik_result import (
+    RIGID_TOLERANCE,
+    IKResult,
+    nearest_rigid,
+    no_solution_reason,
+    skew_reason,
+    verified,
+)
 from urkin.kinematics import MAX_JOINT_ANGLE, _range_error, flange_pose
 from urkin.robots import Robot, check_robot
-from urkin.transforms import check_transform, wrap_angles
+from urkin.transforms import ROTATION_TOLERANCE, _checked_transform, _is_rotation_one, wrap_angles
 
 __all__ = [
     "DUPLICATE_TOLERANCE",
@@ -566,14 +573,17 @@ def _solve(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.nd
     return q, keep
 
 
-def _flange_poses(robot: Robot, poses: np.ndarray) -> tuple[np.ndarray, tuple[int, ...]]:
-    """Checked tool poses (..., 4, 4) as flange poses in DH frame 0, (N, 4, 4), and their
-    leading axes."""
+def _flange_poses(
+    robot: Robot, poses: np.ndarray, deviation: np.ndarray | None
+) -> tuple[np.ndarray, tuple[int, ...], np.ndarray]:
+    """Checked tool poses (..., 4, 4) (with their ``deviation`` from rigid, if measured) as the
+    flange poses in DH frame 0 of their nearest rigid poses (:func:`nearest_rigid`), (N, 4, 4);
+    their leading axes; and how far each rotation was moved to make it rigid (rad)."""
     lead = poses.shape[:-2]
-    poses = poses.reshape(-1, 4, 4)
+    poses, skew = nearest_rigid(poses.reshape(-1, 4, 4), deviation=deviation)
     if not robot._plain:
         poses = flange_pose(robot, poses, check=False)
-    return poses, lead
+    return poses, lead, skew
 
 
 def _why_not(robot: Robot, goal: np.ndarray, poses: np.ndarray, valid: np.ndarray, i: int) -> str:
@@ -593,7 +603,11 @@ def ik_analytic(
     ----------
     robot : Robot
     T : array_like, shape (4, 4) or (..., 4, 4)
-        Tool poses in the robot's base frame (flange poses unless the robot has a tool).
+        Tool poses in the robot's base frame (flange poses unless the robot has a tool).  A
+        rotation further than 1e-14 from orthonormal (``check_transform`` accepts 1e-6) is
+        solved as its nearest rotation (:func:`urkin.transforms.orthonormalize`): no
+        configuration reaches a matrix that is not a rotation, and the solutions reach the
+        nearest one exactly.
     return_mask : bool
         For a stack of poses, also return the (..., 8) boolean mask of the real rows.
 
@@ -622,7 +636,14 @@ def ik_analytic(
     """
     robot = check_robot(robot)
     _check_lengths(robot)
-    poses, lead = _flange_poses(robot, check_transform(T, name="T"))
+    return_mask = return_mask is not False and flag(return_mask, "return_mask")
+    goal, deviation = _checked_transform(T, ROTATION_TOLERANCE, "T")
+    if goal.ndim == 2 and robot._plain:  # the scalar fast path: one flange pose, rigid
+        rows = goal.tolist()
+        if _is_rotation_one(rows, RIGID_TOLERANCE):
+            found = [row for row in _solve_one(rows, robot.lengths) if row is not None]
+            return np.array(found) if found else np.empty((0, 6))
+    poses, lead, _ = _flange_poses(robot, goal, deviation)
     if lead == ():
         found = [row for row in _solve_one(poses[0].tolist(), robot.lengths) if row is not None]
         return np.array(found) if found else np.empty((0, 6))
@@ -681,8 +702,8 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
     robot = check_robot(robot)
     _check_lengths(robot)
     positive(tol, "tol")
-    goal = check_transform(T, name="T")
-    poses, lead = _flange_poses(robot, goal)
+    goal, deviation = _checked_transform(T, ROTATION_TOLERANCE, "T")
+    poses, lead, skew = _flange_poses(robot, goal, deviation)
     current = real(q_current, "q_current")
     if current.shape[-1:] != (6,) or current.shape[:-1] not in ((), lead):
         raise ValueError(
@@ -704,4 +725,6 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
     found = np.isfinite(distance[rows, best])
     chosen = np.where(found[:, None], shifted[rows, best], current)
     reasons = ["" if ok else _why_not(robot, goal, poses, valid, i) for i, ok in enumerate(found)]
+    for i in np.flatnonzero(found & (skew > tol)):
+        reasons[i] = skew_reason(skew[i], "tol", tol)
     return verified(robot, chosen, goal.reshape(-1, 4, 4), found, reasons, tol, tol, lead)

@@ -19,9 +19,23 @@ import numpy as np
 
 from urkin.kinematics import fk, flange_pose
 from urkin.robots import Robot
-from urkin.transforms import pose_error
+from urkin.transforms import _is_rotation_one, orthonormalize, pose_error, rotation_angle
 
-__all__ = ["IKResult", "no_solution_reason", "stacked", "unreachable", "verified"]
+__all__ = [
+    "RIGID_TOLERANCE",
+    "IKResult",
+    "nearest_rigid",
+    "no_solution_reason",
+    "skew_reason",
+    "stacked",
+    "unreachable",
+    "verified",
+]
+
+#: A target whose rotation is further than this from orthonormal (any entry of ``RᵀR − I``,
+#: or ``det R − 1``) is solved for its nearest rotation: no configuration reaches a matrix
+#: that is not a rotation.
+RIGID_TOLERANCE = 1e-14
 
 
 @dataclass
@@ -282,4 +296,36 @@ def _with_leading_axes(result: IKResult, lead: tuple[int, ...]) -> IKResult:
         result.iterations.reshape(lead),
         result.restarts.reshape(lead),
         shaped.reshape(lead).tolist(),
+    )
+
+
+def nearest_rigid(
+    goal: np.ndarray, tol: float = RIGID_TOLERANCE, deviation: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Checked target poses (N, 4, 4) with each rotation further than ``tol`` from orthonormal
+    replaced by its nearest rotation (:func:`~urkin.transforms.orthonormalize`), and the angle
+    (rad) each was moved by (0 for the others): the targets IK solves, and how far they are
+    from what was asked (a pose copied with a few decimals is off by about its last digit).
+    ``deviation`` (N,): each pose's deviation from a rotation, if the check measured it."""
+    if deviation is None:
+        rows = goal.tolist()
+        off = np.array([not _is_rotation_one(pose, tol) for pose in rows], dtype=bool)
+    else:
+        off = deviation.reshape(-1) > tol
+    skew = np.zeros(len(goal))
+    if not off.any():
+        return goal, skew
+    R = goal[:, :3, :3]
+    rigid = goal.copy()
+    rigid[off, :3, :3] = orthonormalize(R[off])
+    skew[off] = rotation_angle(R[off], rigid[off, :3, :3])
+    return rigid, skew
+
+
+def skew_reason(angle: float, tol_name: str, tol: float) -> str:
+    """Why a target ``angle`` rad from its nearest rotation fails a tolerance ``tol``."""
+    return (
+        f"the target's rotation is {angle:.2e} rad from the nearest rotation matrix, more than "
+        f"{tol_name} = {tol:g}: no configuration can match it (urkin.transforms.orthonormalize "
+        "gives the nearest rotation)"
     )

@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._generated import ur_kinematics as _gen
-from urkin._inputs import positive, real, unstack
+from urkin._inputs import choice, flag, positive, real, unstack
 from urkin.robots import Robot, check_robot
 from urkin.transforms import check_transform, inv_transform
 
@@ -334,11 +334,11 @@ def flange_pose(robot: Robot, T_world_tool: ArrayLike, *, check: bool = True) ->
     >>> bool(np.allclose(flange_pose(arm, fk(arm, q)), fk(urkin.robot("ur5"), q)))
     True
     """
-    if check:
+    if check is not False and flag(check, "check"):
         robot = check_robot(robot)
         T_world_tool = check_transform(T_world_tool, name="T_world_tool")
     if robot._plain:
-        return T_world_tool
+        return np.array(T_world_tool, dtype=float)  # a fresh array, never the caller's
     return inv_transform(robot.base) @ T_world_tool @ inv_transform(robot.tool)
 
 
@@ -450,8 +450,7 @@ def dh_transform(
            [ 0. ,  1. ,  0. ,  0.1],
            [ 0. ,  0. ,  0. ,  1. ]])
     """
-    if convention not in ("standard", "modified"):
-        raise ValueError(f"convention must be 'standard' or 'modified'; got {convention!r}")
+    choice(convention, "convention", ("standard", "modified"))
     values = [real(x, name) for x, name in ((theta, "theta"), (d, "d"), (a, "a"), (alpha, "alpha"))]
     try:
         th, dd, aa, al = np.broadcast_arrays(*values)
@@ -632,6 +631,7 @@ def manipulability(robot: Robot, q: ArrayLike, part: str = "full") -> np.ndarray
     >>> float(manipulability(ur5, [0, -np.pi / 2, 0, -np.pi / 2, 0, 0]))
     0.0
     """
+    choice(part, "part", ("full", "position"))
     J = jacobian(robot, check_joints(q))  # real angles only: complex ones are refused here
     if part == "full":
         return np.abs(np.linalg.det(J)) + 0.0

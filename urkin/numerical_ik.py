@@ -56,16 +56,21 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._generated import ur_kinematics as _gen
-from urkin._inputs import positive, real
-from urkin.ik_result import IKResult, stacked, unreachable, verified
+from urkin._inputs import choice, positive, real
+from urkin.ik_result import (
+    RIGID_TOLERANCE,
+    IKResult,
+    nearest_rigid,
+    skew_reason,
+    stacked,
+    unreachable,
+    verified,
+)
 from urkin.kinematics import _joints, fk, flange_pose, jacobian
 from urkin.robots import Robot, check_robot, random_configurations
 from urkin.transforms import (
-    _is_rotation_one,
     check_rotation,
     check_transform,
-    orthonormalize,
-    rotation_angle,
     rotation_parts,
     se3_log,
     skew,
@@ -109,8 +114,7 @@ def orientation_error(R_current: ArrayLike, R_target: ArrayLike, form: str = "lo
     >>> orientation_error(np.eye(3), rot_x(np.pi), form="cross") + 0.0  # blind at 180°
     array([0., 0., 0.])
     """
-    if form not in ("log", "cross"):
-        raise ValueError(f"orientation error form must be 'log' or 'cross'; got {form!r}")
+    choice(form, "form", ("log", "cross"))
     Rc = check_rotation(R_current, name="R_current")
     Rt = check_rotation(R_target, name="R_target")
     sin_axis, _, omega = rotation_parts(Rt @ np.swapaxes(Rc, -1, -2), check=False)
@@ -550,6 +554,11 @@ IK_METHODS = ("lm", "nr", "dls", "poe")
 def _rule(method: str | StepRule, damping: float) -> StepRule:
     if isinstance(method, StepRule):
         return method
+    if not isinstance(method, str):
+        raise TypeError(
+            f"method must be one of {', '.join(IK_METHODS)} or a StepRule; got "
+            f"{type(method).__name__}"
+        )
     if method == "lm":
         return LevenbergMarquardt()
     if method == "nr":
@@ -832,8 +841,7 @@ def ik(
     robot = check_robot(robot)
     positive(damping, "damping", zero_ok=True)
     rule = _rule(method, damping)
-    if orientation not in ("log", "cross"):
-        raise ValueError(f"orientation must be 'log' or 'cross'; got {orientation!r}")
+    choice(orientation, "orientation", ("log", "cross"))
     positive(tol_position, "tol_position")
     positive(tol_orientation, "tol_orientation")
     positive(max_iterations, "max_iterations", integer=True, zero_ok=True)
@@ -878,12 +886,7 @@ def ik(
             if robot._plain
             else Robot(robot.name, *robot.lengths, joint_limits=robot.joint_limits)
         )
-        if n == 1 and _is_rotation_one(goal[0].tolist(), min(1e-14, 0.1 * tol_orientation)):
-            rigid, skew_angle = goal, np.zeros(1)  # orthonormal already: no SVD
-        else:
-            rigid = goal.copy()
-            rigid[:, :3, :3] = orthonormalize(goal[:, :3, :3])
-            skew_angle = rotation_angle(goal[:, :3, :3], rigid[:, :3, :3])
+        rigid, skew_angle = nearest_rigid(goal, min(RIGID_TOLERANCE, 0.1 * tol_orientation))
         flange = flange_pose(robot, rigid, check=False)
         problem = _Problem(
             plain, flange[:, :3, 3], flange[:, :3, :3], orientation, tol_position, tol_orientation
@@ -910,11 +913,7 @@ def ik(
     else:
         skewed = np.flatnonzero(~bad & (skew_angle > tol_orientation))
     for i in skewed:
-        reasons[i] = (
-            f"the target's rotation is {skew_angle[i]:.2e} rad from the nearest rotation matrix, "
-            f"more than tol_orientation = {tol_orientation:g}: no configuration can match it "
-            "(urkin.transforms.orthonormalize gives the nearest rotation)"
-        )
+        reasons[i] = skew_reason(skew_angle[i], "tol_orientation", tol_orientation)
 
     def failure(i: int, position: float, rotation: float) -> str:
         blind = orientation == "cross" and rotation > 3.0

@@ -23,7 +23,7 @@ import functools
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import real
+from urkin._inputs import choice, real
 from urkin.kinematics import dh_transform, fk, fk_frames
 from urkin.robots import Robot
 from urkin.transforms import (
@@ -126,7 +126,12 @@ def space_screws(
     >>> S[:, 0]  # joint 1: the base z axis through the origin
     array([0., 0., 1., 0., 0., 0.])
     """
+    choice(convention, "convention", ("standard", "modified"))
     if isinstance(robot, Robot):
+        if convention != "standard":
+            raise ValueError(
+                "convention='modified' is for a DH table: a Robot's table is standard DH"
+            )
         frames = fk_frames(robot, np.zeros(6))
         axes, M = frames[:-1], fk(robot, np.zeros(6))
     else:

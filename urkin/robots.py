@@ -29,6 +29,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from urkin._inputs import generator, sample_shape
+
 __all__ = [
     "ALPHA_UR",
     "ROBOTS",
@@ -298,18 +300,9 @@ def random_configurations(
     ((2, 3, 6), True)
     """
     arm = check_robot(robot)
-    sizes = np.atleast_1d(np.asarray(shape, dtype=object))
-    if np.ndim(shape) > 1 or not all(
-        isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 0 for n in sizes
-    ):
-        raise ValueError(f"shape must be a non-negative integer or a tuple of them; got {shape!r}")
-    size = tuple(int(n) for n in sizes)
-    if not isinstance(seed, np.random.Generator) and not (
-        isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and seed >= 0
-    ):
-        raise ValueError(f"seed must be an integer ≥ 0 or a numpy Generator; got {seed!r}")
+    size = sample_shape(shape)
     lower, upper = _draw_limits(arm.joint_limits)
-    return np.random.default_rng(seed).uniform(lower, upper, (*size, 6))
+    return generator(seed).uniform(lower, upper, (*size, 6))
 
 
 @functools.lru_cache(maxsize=32)

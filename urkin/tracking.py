@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import positive, real
+from urkin._inputs import choice, positive, real
 from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import fk
 from urkin.numerical_ik import ik
@@ -212,8 +212,7 @@ def track(
     lower, upper = _limits(robot)
     if np.any(start < lower) or np.any(start > upper):
         raise ValueError("q0 is outside the robot's joint limits")
-    if method not in METHODS:
-        raise ValueError(f"method must be one of {', '.join(METHODS)}; got {method!r}")
+    choice(method, "method", METHODS)
     tol = float(positive(tol, "tol"))
     if method == "analytic":
         q, ok, failures = _analytic(robot, T, start)

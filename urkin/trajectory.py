@@ -44,7 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import positive, real, unit
+from urkin._inputs import flag, positive, real, unit
 from urkin.tracking import Tracking, track
 from urkin.transforms import check_rotation, so3_exp, so3_log
 
@@ -71,7 +71,7 @@ PLANES = {"xy": (0, 1), "yz": (1, 2), "zx": (2, 0)}
 
 
 def _point(x: ArrayLike, name: str) -> np.ndarray:
-    array = real(x, name)
+    array = np.array(real(x, name))  # a copy: a path keeps its own points
     if array.shape != (3,):
         raise ValueError(
             f"{name} must be a point (x, y, z) in metres, shape (3,); got {array.shape}"
@@ -234,7 +234,8 @@ def polyline(points: ArrayLike, closed: bool = False) -> Path:
     >>> polyline([[0, 0, 0], [0.3, 0, 0], [0.3, 0.4, 0]]).length
     0.7
     """
-    vertices = real(points, "points")
+    closed = flag(closed, "closed")
+    vertices = np.array(real(points, "points"))  # a copy: the path keeps its own corners
     if vertices.ndim != 2 or vertices.shape[1] != 3 or len(vertices) < 2:
         raise ValueError(f"points must have shape (K, 3) with K ≥ 2; got {vertices.shape}")
     if closed and np.array_equal(vertices[0], vertices[-1]):
@@ -375,8 +376,12 @@ def pose_path(
             "R_end is turned by π from R_start: the shorter way round is not unique; add an "
             "intermediate orientation"
         )
-    travelled = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(samples, axis=0), axis=1))]
+    with np.errstate(over="ignore", invalid="ignore"):  # hypot does not overflow its squares
+        d = np.diff(samples, axis=0)  # a difference or a sum still may: refused below
+        travelled = np.r_[0.0, np.cumsum(np.hypot(np.hypot(d[:, 0], d[:, 1]), d[:, 2]))]
     total = points.length if isinstance(points, Path) else travelled[-1]  # closed: back to start
+    if not (np.isfinite(travelled[-1]) and np.isfinite(total)):
+        raise ValueError("points: the path's length overflows a float (it is beyond 1e308 m)")
     if total > 0:
         fraction = travelled / total
     elif len(samples) > 1:  # a path that stays put: the turn spread over its samples

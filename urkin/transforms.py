@@ -15,12 +15,11 @@ Conventions
 from __future__ import annotations
 
 import math
-import operator
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from urkin._inputs import real, shape_text
+from urkin._inputs import flag, generator, real, sample_shape, shape_text
 
 __all__ = [
     "adjoint",
@@ -77,6 +76,11 @@ def _unchecked(x: ArrayLike, core: tuple[int, ...], name: str) -> np.ndarray:
     if array.ndim < len(core) or array.shape[array.ndim - len(core) :] != core:
         raise ValueError(f"{name} must have shape {shape_text(core)}; got {array.shape}")
     return array
+
+
+def _checking(check: bool) -> bool:
+    """The ``check=`` flag as a bool (False at no cost), or a TypeError naming it."""
+    return check is not False and flag(check, "check")
 
 
 def _tolerance(tol: float) -> float:
@@ -155,25 +159,23 @@ def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R
         if _is_rotation_one(R.tolist(), tol):
             return R  # the scalar fast path; anything else gets the full check's message
     array = _core(R, (3, 3), name)
-    # column by column (cheaper than a batched matmul and LU for stacks of small matrices)
+    _rotation_deviation(array, tol, name)
+    return array
+
+
+def _rotation_deviation(array: np.ndarray, tol: float, name: str) -> np.ndarray:
+    """Each matrix's largest deviation from a rotation, ``max(|RᵀR − I|, |det R − 1|)``
+    (shape ``array.shape[:-2]``), after the errors of :func:`check_rotation` for a reflection
+    or a deviation beyond ``tol``.  Column by column: cheaper than a batched matmul and LU for
+    stacks of small matrices."""
     x, y, z = array[..., :, 0], array[..., :, 1], array[..., :, 2]
 
     def dot(u, v):
         return u[..., 0] * v[..., 0] + u[..., 1] * v[..., 1] + u[..., 2] * v[..., 2]
 
-    gram_error = max(
-        (
-            np.abs(d - one).max(initial=0.0)
-            for d, one in (
-                (dot(x, x), 1.0),
-                (dot(y, y), 1.0),
-                (dot(z, z), 1.0),
-                (dot(x, y), 0.0),
-                (dot(x, z), 0.0),
-                (dot(y, z), 0.0),
-            )
-        ),
-    )
+    gram = np.abs(dot(x, x) - 1.0)
+    for d in (dot(y, y) - 1.0, dot(z, z) - 1.0, dot(x, y), dot(x, z), dot(y, z)):
+        gram = np.maximum(gram, np.abs(d))
     det = (
         x[..., 0] * (y[..., 1] * z[..., 2] - y[..., 2] * z[..., 1])
         - x[..., 1] * (y[..., 0] * z[..., 2] - y[..., 2] * z[..., 0])
@@ -181,13 +183,14 @@ def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R
     )
     if np.any(det < 0):
         raise ValueError(f"{name} is a reflection, not a rotation: det({name}) = -1")
+    gram_error = gram.max(initial=0.0)
     if gram_error > tol or np.abs(det - 1.0).max(initial=0.0) > tol:
         symbol = name if str(name).isidentifier() else "R"  # "the rotation part of T" reads as R
         raise ValueError(
             f"{name} is not a rotation matrix: its columns are not orthonormal "
             f"(max |{symbol}ᵀ{symbol} − I| = {gram_error:.3g}, tolerance {tol:g})"
         )
-    return array
+    return np.maximum(gram, np.abs(det - 1.0))
 
 
 def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "T") -> np.ndarray:
@@ -222,21 +225,28 @@ def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "
     ...
     ValueError: T must end in the row [0, 0, 0, 1]; got [0. 0. 0. 0.]
     """
+    return _checked_transform(T, tol, name)[0]
+
+
+def _checked_transform(T: ArrayLike, tol: float, name: str) -> tuple[np.ndarray, np.ndarray | None]:
+    """:func:`check_transform`, and each pose's deviation from a rotation
+    (:func:`_rotation_deviation`) where the full check measured it; None where the scalar fast
+    path accepted the poses."""
     tol = _tolerance(tol)
     if type(T) is np.ndarray and T.dtype == np.float64 and T.shape[-2:] == (4, 4):
         # the scalar fast path, for one pose or a few; anything else gets the full check
         if T.ndim == 2 and _is_transform_one(T.tolist(), tol):
-            return T
+            return T, None
         if T.ndim == 3 and len(T) <= 16 and all(_is_transform_one(t, tol) for t in T.tolist()):
-            return T
+            return T, None
     array = _core(T, (4, 4), name)
     bottom = array[..., 3, :]
     bad = np.abs(bottom - (0.0, 0.0, 0.0, 1.0)).max(axis=-1) > tol
     if np.any(bad):
         first = bottom[bad][0] if bottom.ndim > 1 else bottom
         raise ValueError(f"{name} must end in the row [0, 0, 0, 1]; got {first}")
-    check_rotation(array[..., :3, :3], tol=tol, name=f"the rotation part of {name}")
-    return array
+    rotation = array[..., :3, :3]
+    return array, _rotation_deviation(rotation, tol, f"the rotation part of {name}")
 
 
 #: Singular values below this fraction of the largest count as zero in :func:`orthonormalize`.
@@ -536,7 +546,7 @@ def rotation_parts(
     >>> float(angle), omega.round(12) + 0.0
     (0.5, array([0. , 0. , 0.5]))
     """
-    R = check_rotation(R) if check else _unchecked(R, (3, 3), "R")
+    R = check_rotation(R) if _checking(check) else _unchecked(R, (3, 3), "R")
     s = 0.5 * np.stack(
         [R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]],
         axis=-1,
@@ -633,8 +643,9 @@ def pose_error(
     >>> float(position), float(angle)
     (0.3, 1e-12)
     """
-    A = check_transform(T1, name="T1") if check else T1
-    B = check_transform(T2, name="T2") if check else T2
+    checking = _checking(check)
+    A = check_transform(T1, name="T1") if checking else T1
+    B = check_transform(T2, name="T2") if checking else T2
     if A.shape == B.shape == (4, 4):  # the scalar fast path
         (a, b, c, x), (d, e, f, y), (g, h, i, z), _ = A.tolist()
         (a2, b2, c2, x2), (d2, e2, f2, y2), (g2, h2, i2, z2), _ = B.tolist()
@@ -690,7 +701,8 @@ def wrap_angles(q: ArrayLike, *, check: bool = True, out: np.ndarray | None = No
     >>> wrap_angles([np.pi, -np.pi, 3 * np.pi / 2, 0.5])
     array([ 3.14159265,  3.14159265, -1.57079633,  0.5       ])
     """
-    if check:
+    checking = _checking(check)
+    if checking:
         angles = real(q, "q", finite=False)
         if np.isinf(angles).any():
             raise ValueError("q contains infinity: an infinite angle has no wrapped value")
@@ -706,7 +718,7 @@ def wrap_angles(q: ArrayLike, *, check: bool = True, out: np.ndarray | None = No
     # ceil((x − π)/2π) counts the turns to remove; −π lands on π exactly (the division by 2π
     # is kept rather than a multiplication by 1/2π, which is not exact at x = −π)
     exact = None
-    if check:  # before the subtraction, which may write over the angles (out=q)
+    if checking:  # before the subtraction, which may write over the angles (out=q)
         far = np.abs(angles) > _FEW_TURNS  # NaN is not: it stays NaN
         if far.any():  # numpy's sine and cosine reduce by the true π, to the last bit
             exact = np.arctan2(np.sin(angles), np.cos(angles))
@@ -733,30 +745,6 @@ def wrap_angles(q: ArrayLike, *, check: bool = True, out: np.ndarray | None = No
 #: true π (within, whole turns of the rounded 2π are removed, which loses at most about 5e-13
 #: rad there and keeps the interval's ends where that arithmetic puts them).
 _FEW_TURNS = 1024 * np.pi
-
-
-def _generator(seed: int | np.random.Generator) -> np.random.Generator:
-    """``numpy.random.default_rng(seed)``, or an error naming ``seed``."""
-    try:
-        return np.random.default_rng(seed)
-    except TypeError:
-        raise TypeError(
-            f"seed must be an int or a numpy.random.Generator; got {type(seed).__name__}"
-        ) from None
-    except ValueError as exc:
-        raise ValueError(f"seed must be an int ≥ 0 or a numpy.random.Generator: {exc}") from None
-
-
-def _sample_shape(shape: int | tuple[int, ...]) -> tuple[int, ...]:
-    """``shape`` as a tuple of ints ≥ 0 (numpy integers too), or an error naming it."""
-    items = (shape,) if isinstance(shape, (int, np.integer)) else shape
-    try:
-        size = tuple(operator.index(n) for n in items)
-    except TypeError:
-        raise TypeError(f"shape must be an int or a tuple of ints; got {shape!r}") from None
-    if any(n < 0 for n in size):
-        raise ValueError(f"shape must not be negative; got {shape!r}")
-    return size
 
 
 def random_rotations(
@@ -787,8 +775,8 @@ def random_rotations(
     >>> R.shape, float(np.abs(np.linalg.det(R) - 1).max()) < 1e-12
     ((1000, 3, 3), True)
     """
-    size = _sample_shape(shape)
-    rng = _generator(seed)
+    size = sample_shape(shape)
+    rng = generator(seed)
     quaternion = rng.normal(size=(*size, 4))
     quaternion /= np.linalg.norm(quaternion, axis=-1, keepdims=True)
     w, x, y, z = np.moveaxis(quaternion, -1, 0)
@@ -821,7 +809,7 @@ def random_transforms(
     half_side = real(radius, "radius")
     if half_side.ndim != 0 or half_side < 0.0:
         raise ValueError(f"radius must be one number ≥ 0; got {radius!r}")
-    rng = _generator(seed)
+    rng = generator(seed)
     R = random_rotations(shape, rng)
     T = np.zeros((*R.shape[:-2], 4, 4))
     T[..., :3, :3] = R
@@ -986,7 +974,7 @@ def se3_log(T: ArrayLike, *, check: bool = True) -> np.ndarray:
     >>> np.allclose(se3_log(se3_exp(V)), V)
     True
     """
-    T = check_transform(T) if check else _unchecked(T, (4, 4), "T")
+    T = check_transform(T) if _checking(check) else _unchecked(T, (4, 4), "T")
     p = T[..., :3, 3]
     _, theta, omega = rotation_parts(T[..., :3, :3], check=False)
     theta = theta[..., None, None]
@@ -1024,7 +1012,7 @@ def adjoint(T: ArrayLike, *, check: bool = True) -> np.ndarray:
     >>> np.allclose(twist_matrix(adjoint(T) @ V), T @ twist_matrix(V) @ inv_transform(T))
     True
     """
-    T = check_transform(T) if check else _unchecked(T, (4, 4), "T")
+    T = check_transform(T) if _checking(check) else _unchecked(T, (4, 4), "T")
     R, p = T[..., :3, :3], T[..., :3, 3]
     P = np.zeros((*T.shape[:-2], 3, 3))
     P[..., 0, 1], P[..., 0, 2] = -p[..., 2], p[..., 1]
