@@ -270,6 +270,30 @@ HOSTILE = {
     **{f"{name}_02.ipynb": (_lesson02(cells), {"2.2": 5}) for name, cells in _SABOTAGE.items()},
     **{name: (make, {}) for name, make in ODD_FILES.items()},
 }
+# urkin's closed-form flange position, which the checks of 2.7 hand out, as the answer to 2.3
+HOSTILE["route_wire_closed_form_02.ipynb"] = (
+    _lesson02(
+        {
+            "ur5_position": "def ur5_position(q):\n"
+            "    from urkin.course import wire\n"
+            "    return wire.ur_flange_position(urkin.robot('ur5').lengths, q)\n"
+        }
+    ),
+    {"2.3": 0},
+)
+# an answer forged as ten million empty lists: 30 MB of JSON, which would be twenty million
+# lists in the grader (over a gigabyte) if it read them
+HOSTILE["list_bomb_02.ipynb"] = (
+    _lesson02(
+        _fk(
+            "    import urkin.course.wire as w\n"
+            "    bomb, original = [[]] * 10_000_000, w.encode\n"
+            "    w.encode = lambda v, lenient=False, _depth=0: bomb if v is q else original(v)\n"
+            "    return q\n"
+        )
+    ),
+    {"2.2": 0},
+)
 # attacks that leave 2.2 correct apart from the attack keep at most its points; those that
 # break it get none
 for _name in (

@@ -407,3 +407,49 @@ def test_grade_options_are_checked_before_any_grading(tmp_path, capsys, option, 
     assert stop.value.code == 2
     assert message in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
+
+
+def test_names_that_look_alike_or_break_lines_stay_apart_and_on_one_line(tmp_path):
+    """A zero-width space, a Cyrillic а, a formula or a quote in front, a line break: each
+    row's ``file`` column (ASCII escapes) is its own, no invisible character reaches a
+    report, and a name cannot write lines of its own into the feedback."""
+    from urkin.course.grading.runner import SubmissionResult
+
+    names = [
+        "alice_02.ipynb",
+        "alice\u200b_02.ipynb",
+        "\u0430lice_02.ipynb",
+        "=1+1_02.ipynb",
+        "'=1+1_02.ipynb",
+        "x\n\nLesson 02: 29 / 29 points\u2028_02.ipynb",
+    ]
+    results = [SubmissionResult(n, n, "02", SEED, "error", "a test") for n in names]
+    out = write_reports(results, tmp_path / "grades")
+    with open(out / "gradebook.csv", encoding="utf-8", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    assert len({row["file"] for row in rows}) == len(names)
+    assert all(row["file"].isascii() and row["file"][0] in "'\"" for row in rows)
+    for path in [out / "gradebook.csv", *(out / "feedback").iterdir()]:
+        text = path.read_text(encoding="utf-8")
+        assert not {"\u200b", "\u2028"} & set(text)
+    fake = next(p for p in (out / "feedback").iterdir() if p.name.startswith("x"))
+    assert fake.read_text(encoding="utf-8").splitlines()[:3] == [
+        "# x??Lesson 02: 29 / 29 points?_02.ipynb",
+        "",
+        "Not graded: a test",
+    ]
+
+
+def test_without_namespaces_no_submission_sees_the_view_cache(tmp_path, monkeypatch):
+    """Unisolated (no user namespaces, or URKIN_NO_SANDBOX), a submission runs as the grader's
+    user and could rewrite its view of urkin: it gets one made for this run, never the
+    cache's, which later runs (isolated ones too) trust."""
+    monkeypatch.setenv("URKIN_NO_SANDBOX", "1")
+    monkeypatch.setenv("URKIN_CACHE", str(tmp_path / "cache"))
+    isolation.support.cache_clear()
+    try:
+        path = write(student_notebook("00"), tmp_path / "a_00.ipynb")
+        assert grade_notebook(path, seed=SEED, time_limit=TIME_LIMIT).status == "graded"
+        assert not (tmp_path / "cache" / "views").exists()
+    finally:
+        isolation.support.cache_clear()

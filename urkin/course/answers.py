@@ -333,8 +333,10 @@ class Answer:
                         ).body[0]
                     )
                 continue
-            if not isinstance(node, (ast.Import, ast.ImportFrom)) and (
-                resolver.refs(module, node) & self.hidden
+            if (
+                module.name not in _RUNTIME  # the grader's own modules keep every statement
+                and not isinstance(node, (ast.Import, ast.ImportFrom))
+                and resolver.refs(module, node) & self.hidden
             ):
                 continue  # a statement that would use a hidden name while importing
             body.append(node)

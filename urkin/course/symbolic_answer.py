@@ -34,8 +34,10 @@ from urkin.course.parsing import parse
 
 __all__ = ["MAX_TEXT", "Symbolic", "read"]
 
-#: Longest srepr text accepted (characters); a six-joint chain unsimplified is about 100 kB.
-MAX_TEXT = 8 * 2**20
+#: Longest srepr text accepted (characters).  A six-joint chain with generic twist angles,
+#: unsimplified, is about 140 kB (expanded, 170 kB); parsing costs about 0.35 kB of memory per
+#: character and 4 µs, so the limit also bounds what a hostile answer makes the grader do.
+MAX_TEXT = 512 * 2**10
 
 _FUNCTIONS = {
     "sin": np.sin,

@@ -32,12 +32,14 @@ __all__ = [
     "MAX_MESSAGE_BYTES",
     "Function",
     "Opaque",
+    "TooLarge",
     "WireError",
     "copy",
     "decode",
     "dumps",
     "encode",
     "loads",
+    "ur_flange_position",
 ]
 
 #: Largest message (one argument list or one answer) either side accepts, in bytes.
@@ -46,7 +48,11 @@ _MAX_DEPTH = 32
 _MAX_TEXT = 2000
 # Longest SymPy srepr text sent (= urkin.course.symbolic_answer.MAX_TEXT, which the trusted side
 # enforces; that module is not part of what a graded submission can import).
-MAX_SYMBOLIC_TEXT = 8 * 2**20
+MAX_SYMBOLIC_TEXT = 512 * 2**10
+#: Most JSON containers (lists and objects) and items (commas) in a message from a submission:
+#: 30 MB of ``[[],[],…]`` would otherwise be ten million lists in the grader, over a gigabyte.
+#: An honest answer of arrays is a few containers per array (their data is one string).
+MAX_CONTAINERS, MAX_ITEMS = 100_000, 1_000_000
 _DTYPES = {
     "bool",
     "int8",
@@ -67,6 +73,10 @@ _DTYPES = {
 
 class WireError(ValueError):
     """A value that cannot cross: too large, too deep, or malformed."""
+
+
+class TooLarge(WireError):
+    """A message too large to read: its bytes, or its lists and items."""
 
 
 @dataclass(frozen=True)
@@ -161,8 +171,11 @@ def _complex_flange_position(robot):
     return lambda q: fk(robot, _complex_kept(q))[:3, 3]
 
 
-def _ur_closed_form(lengths, q) -> np.ndarray:
-    """The closed-form flange position of a UR-type arm (UR's angles and sign convention)."""
+def ur_flange_position(lengths, q) -> np.ndarray:
+    """The closed-form flange position of a UR-type arm (UR's angles and sign convention),
+    which the checks of exercise 2.7 hand out as a candidate formula.  It is part of the
+    forward kinematics concept (:data:`urkin.course.concepts.FORWARD_KINEMATICS`): hidden
+    from the exercises that ask for it."""
     d1, a2, a3, d4, d5, d6 = (float(x) for x in lengths)
     q1, q2, q3, q4, q5, _ = np.asarray(q, dtype=float)
     c1, s1, c5, s5 = np.cos(q1), np.sin(q1), np.cos(q5), np.sin(q5)
@@ -178,7 +191,7 @@ def _ur_closed_form(lengths, q) -> np.ndarray:
 
 
 def _ur_position():
-    return lambda robot, q: _ur_closed_form(robot.lengths, q)
+    return lambda robot, q: ur_flange_position(robot.lengths, q)
 
 
 def _seed002_formula(report_angles=False):
@@ -195,7 +208,7 @@ def _folded_ur_position(joint):
     def formula(robot, q):
         q = np.array(q, dtype=float)
         q[joint] = np.arctan(np.tan(q[joint]))  # q_joint itself for |q_joint| < π/2 only
-        return _ur_closed_form(robot.lengths, q)
+        return ur_flange_position(robot.lengths, q)
 
     return formula
 
@@ -492,9 +505,17 @@ def dumps(message: Any) -> bytes:
 
 
 def loads(line: bytes) -> Any:
-    """Parse one line of JSON, refusing anything too large or malformed."""
+    """Parse one line of JSON, refusing anything too large or malformed: more than
+    :data:`MAX_MESSAGE_BYTES` bytes, or more than :data:`MAX_CONTAINERS` brackets or
+    :data:`MAX_ITEMS` commas (counted in the bytes, strings too: an upper bound, before any
+    object is built)."""
     if len(line) > MAX_MESSAGE_BYTES:
-        raise WireError("the message is too large")
+        raise TooLarge("the message is too large")
+    if line.count(b"[") + line.count(b"{") > MAX_CONTAINERS or line.count(b",") > MAX_ITEMS:
+        raise TooLarge(
+            f"the message holds more than {MAX_CONTAINERS:,} lists or {MAX_ITEMS:,} items: "
+            "send arrays, not nested lists"
+        )
     try:
         return json.loads(line)
     except (ValueError, RecursionError) as exc:

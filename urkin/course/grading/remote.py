@@ -137,18 +137,21 @@ class RemoteSubmission(Submission):
             self.process.end()
             self.process = None
 
-    def _end(self, status: str, message: str) -> SubmissionGone:
+    def _end(self, status: str, message: str, by_itself: bool = True) -> SubmissionGone:
+        """End the submission's process; ``by_itself``: a crash the process had (its exit is
+        described), not one the grader declares (an answer it refuses to read)."""
         code = None
+        by_itself = by_itself and status == "crashed"
         if self.process is not None:
-            if status == "crashed":  # it ended by itself: give it a moment to report how
+            if by_itself:  # it ended by itself: give it a moment to report how
                 try:
                     code = self.process.popen.wait(timeout=2)
                 except Exception:
                     code = None
             self._drain_stderr()
             ended = self.process.end()
-            code = ended if code is None and status == "crashed" else code
-        if status == "crashed" and code is not None:
+            code = ended if code is None and by_itself else code
+        if by_itself and code is not None:
             message += f": the process {exit_description(code)}"
         tail = self.stderr.decode(errors="replace").strip().splitlines()[-3:]
         fatal = [line for line in tail if "Error" in line or "Fatal" in line]
@@ -211,7 +214,9 @@ class RemoteSubmission(Submission):
                             raise self._end("crashed", "the process running the submission ended")
                         self._buffer += chunk
                         if len(self._buffer) > wire.MAX_MESSAGE_BYTES and b"\n" not in self._buffer:
-                            raise self._end("crashed", "the answer was larger than 32 MB")
+                            raise self._end(
+                                "crashed", "the answer was larger than 32 MB", by_itself=False
+                            )
                     elif chunk and len(self.stderr) < _STDERR_KEPT:
                         self.stderr += chunk[: _STDERR_KEPT - len(self.stderr)]
                     elif not chunk:
@@ -221,7 +226,10 @@ class RemoteSubmission(Submission):
         line, self._buffer = self._buffer.split(b"\n", 1)
         try:
             return wire.loads(line)
-        except wire.WireError:
+        except wire.TooLarge as exc:  # refused unread: it would cost the grader too much
+            why = f"the grader could not read the answer: {exc}"
+            raise self._end("crashed", why, by_itself=False) from None
+        except wire.WireError:  # garbage the process wrote itself: not a reply
             return None
 
     # ------------------------------------------------------------------------- Submission

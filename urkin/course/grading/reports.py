@@ -3,7 +3,9 @@
 Into the output folder:
 
 * ``gradebook.csv`` — one row per submission (even one that could not be graded): one column
-  per exercise, the total, the maximum, the status, the named mistakes and the reason;
+  per exercise, the total, the maximum, the status, the named mistakes, the reason, and the
+  file's name in ASCII (``ascii()``: two names that look alike, with a Cyrillic а or a
+  zero-width space, never share it);
 * ``feedback/<submission>.md`` — what the student reads: the score first, then each exercise's
   report (the failed input, expected and received values, the likely mistake); no test source;
 * ``results/<submission>.json`` — one Gradescope ``results.json`` per submission (and, when a
@@ -13,7 +15,8 @@ Into the output folder:
 Every file is written atomically (a temporary file renamed into place), the folder and its
 sub-folders must not be symbolic links, file names are made from the submission's name so
 that two submissions never share one, and text that came from a submission is cleaned of
-control characters and cannot start a spreadsheet formula.
+control, format (zero-width, bidirectional) and line-separator characters (a name, of every
+line break) and cannot start a spreadsheet formula.
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ import json
 import os
 import re
 import tempfile
+import unicodedata
 from pathlib import Path
 
 from urkin.course.grading.runner import SubmissionResult
@@ -31,18 +35,30 @@ from urkin.course.lessons import lessons
 
 __all__ = ["feedback_text", "gradescope_result", "report_names", "write_reports"]
 
-_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f\u202a-\u202e\u2066-\u2069]")
-
 
 def _clean(text: str) -> str:
-    """Text from a submission with control and bidirectional-override characters removed."""
-    return _CONTROL.sub("?", str(text)).replace("```", "'''")
+    """Text from a submission with every control, format (zero-width, bidirectional override)
+    and line- or paragraph-separator character but the newline replaced by ``?``."""
+    text = str(text)
+    if not text.isascii() or not text.isprintable():
+        text = "".join("?" if c != "\n" and unicodedata.category(c) in _UNSEEN else c for c in text)
+    return text.replace("```", "'''")
+
+
+#: Unicode categories a reader does not see as themselves: controls, format characters (the
+#: zero-width space, bidirectional overrides), line and paragraph separators, unassigned.
+_UNSEEN = frozenset({"Cc", "Cf", "Zl", "Zp", "Co", "Cn", "Cs"})
+
+
+def _name(text: str) -> str:
+    """A submission's name on one line: :func:`_clean`, and its newlines made ``?`` too."""
+    return _clean(text).replace("\n", "?")
 
 
 def _cell(text: str) -> str:
     """A spreadsheet cell that cannot start a formula."""
     text = _clean(text).replace("\n", " ")
-    return "'" + text if text[:1] in ("=", "+", "-", "@", "\t") else text
+    return "'" + text if text[:1] in ("=", "+", "-", "@", "\t", "\r") else text
 
 
 def report_names(results: list[SubmissionResult]) -> list[str]:
@@ -63,7 +79,7 @@ def report_names(results: list[SubmissionResult]) -> list[str]:
 
 def feedback_text(result: SubmissionResult) -> str:
     """What the student reads: the verdict first, then each exercise; never test source."""
-    lines = [f"# {_clean(result.name)}"]
+    lines = [f"# {_name(result.name)}"]
     if result.status != "graded":
         lines += ["", f"Not graded: {_clean(result.reason)}", "", f"Score: 0 / {result.points:g}"]
         return "\n".join(lines) + "\n"
@@ -136,7 +152,7 @@ def _gradebook(results: list[SubmissionResult]) -> str:
     buffer = io.StringIO()
     writer = csv.writer(buffer)
     writer.writerow(
-        ["submission", "lesson", *columns, "total", "max", "status", "mistakes", "reason"]
+        ["submission", "lesson", *columns, "total", "max", "status", "mistakes", "reason", "file"]
     )
     for r in results:
         earned = {e.exercise: f"{e.earned:g}" for e in r.exercises}
@@ -153,6 +169,7 @@ def _gradebook(results: list[SubmissionResult]) -> str:
                 r.status,
                 _cell("; ".join(r.mistakes)),
                 _cell(reason),
+                ascii(r.name),  # starts with a quote: never a formula
             ]
         )
     return buffer.getvalue()

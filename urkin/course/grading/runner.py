@@ -214,11 +214,14 @@ class Grader:
         shutil.rmtree(self._folder, ignore_errors=True)
 
     def _view(self, ex: Exercise) -> Path:
-        """The submission's view of urkin for ``ex``: from the cache, or written once."""
+        """The submission's view of urkin for ``ex``: from the cache, or written once.  Without
+        namespaces a submission could write into its view (it runs as the grader's user, and
+        the view is not mounted read-only): it then gets a view of this run only, never the
+        cache's, which later runs, isolated ones too, would trust."""
         with self._lock:
             if ex.id not in self._views:
                 answer = answer_for(ex)
-                cache = isolation.cache_folder()
+                cache = isolation.cache_folder() if self.support.namespaces else None
                 folder = cache / "views" / answer.key() if cache else None
                 if folder is None or not (folder / "urkin" / "__init__.py").exists():
                     fresh = Path(tempfile.mkdtemp(prefix="view-", dir=self._folder))
