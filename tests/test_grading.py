@@ -453,3 +453,26 @@ def test_without_namespaces_no_submission_sees_the_view_cache(tmp_path, monkeypa
         assert not (tmp_path / "cache" / "views").exists()
     finally:
         isolation.support.cache_clear()
+
+
+@pytest.mark.parametrize(
+    ("number", "exercise", "function", "body"),
+    [
+        ("00", "0.2", "base_link_pose", "return args[0]"),
+        ("04", "4.3", "jacobian_space", "return args[0]"),
+        ("04", "4.4", "jacobian_body", "return args[0]"),
+        ("04", "4.6", "manipulability", "return 0"),
+        ("06", "6.5", "damping_for_step", "return 1e300"),
+        ("09", "9.3", "path_is_free", "return True"),
+        ("09", "9.3", "path_is_free", "return 0"),
+    ],
+)
+def test_a_trivial_body_earns_nothing(tmp_path, number, exercise, function, body):
+    """Returning the argument, 0, True or a huge number passes a special case of some checks
+    (the Jacobian at q = 0 is the screw axes it is given): such checks are gated, and earn
+    their point only with the function's real answers."""
+    source = f"def {function}(*args, **kwargs):\n    {body}\n"
+    path = write(student_notebook(number, {function: source}), tmp_path / f"t_{number}.ipynb")
+    with Grader(SEED, TIME_LIMIT) as grader:
+        result = grader.grade(path, exercises=[exercise])
+    assert result.exercise(exercise).earned == 0

@@ -360,7 +360,7 @@ WRONG = [
         "wrong side",
         "def base_link_pose(T_base_tool):\n"
         "    return T_base_tool @ np.diag([-1.0, -1.0, 1.0, 1.0])\n",
-        points=1,
+        points=0,
         mistake="wrong side",
     ),
     Variant(
@@ -370,7 +370,7 @@ WRONG = [
         "    T = T_base_tool.copy()\n"
         "    T[:, :2] *= -1\n"
         "    return T\n",
-        points=1,
+        points=0,
         mistake="wrong side",
     ),
     Variant(
@@ -379,14 +379,14 @@ WRONG = [
         "def base_link_pose(T_base_tool):\n"
         "    Rz = urkin.transforms.make_transform(urkin.transforms.rot_z(np.pi / 2))\n"
         "    return Rz @ T_base_tool\n",
-        points=1,
+        points=0,
         mistake="π/2 instead of π",
     ),
     Variant(
         "0.2",
         "unchanged",
         "def base_link_pose(T_base_tool):\n    return T_base_tool\n",
-        points=1,
+        points=0,
         mistake="unchanged",
     ),
     Variant(
@@ -396,7 +396,7 @@ WRONG = [
         "    c, s = np.cos(180), np.sin(180)\n"
         "    Rz = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])\n"
         "    return Rz @ T_base_tool\n",
-        points=1,
+        points=0,
         mistake="180",
     ),
     Variant(
@@ -422,7 +422,7 @@ WRONG = [
         "    T = np.array(T_base_tool, dtype=float)\n"
         "    T[:2, 3] *= -1\n"
         "    return T\n",
-        points=1,
+        points=0,
         mistake="only the position",
     ),
     Variant(
@@ -432,7 +432,7 @@ WRONG = [
         "    T = np.array(T_base_tool, dtype=float)\n"
         "    T[:3, :3] = np.diag([-1.0, -1.0, 1.0]) @ T[:3, :3]\n"
         "    return T\n",
-        points=1,
+        points=0,
         mistake="only the orientation",
     ),
     Variant(

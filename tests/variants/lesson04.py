@@ -625,14 +625,14 @@ WRONG = [
         "4.6",
         "no square root",
         "def manipulability(J):\n    return max(np.linalg.det(J @ J.T), 0.0)\n",
-        points=1,
+        points=0,
         mistake="without the square root",
     ),
     Variant(
         "4.6",
         "det J",
         "def manipulability(J):\n    return np.linalg.det(J)\n",
-        points=1,
+        points=0,
         mistake="absolute value",
     ),
     # ------------------------------------------------------------------------------ 4.3
@@ -647,14 +647,14 @@ WRONG = [
         "4.3",
         "the home axes",
         "def jacobian_space(S, q):\n    return np.array(S, dtype=float)\n",
-        points=1,
+        points=0,
         mistake="home axis",
     ),
     Variant(
         "4.3",
         "product on the left",
         _JS.replace("T = T @ se3_exp(S[:, i] * q[i])", "T = se3_exp(S[:, i] * q[i]) @ T"),
-        points=1,
+        points=0,
         mistake="on the left",
     ),
     Variant(
@@ -668,7 +668,7 @@ WRONG = [
         "4.4",
         "exponentials of +B q",
         _JB.replace("se3_exp(-B[:, i] * q[i])", "se3_exp(B[:, i] * q[i])"),
-        points=1,
+        points=0,
         mistake="+B_k q_k",
     ),
     Variant(

@@ -795,7 +795,7 @@ def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
         points=0,
     ),
     Variant(
-        "6.5", "the 1/2 forgotten", _damping("np.linalg.norm(e) / max_step"), 1, "forgot the 1/2"
+        "6.5", "the 1/2 forgotten", _damping("np.linalg.norm(e) / max_step"), 0, "forgot the 1/2"
     ),
     Variant(
         "6.5",

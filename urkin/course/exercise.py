@@ -48,13 +48,17 @@ class Check:
 
     A check that only reads the student's code (``reads_code``: "no matrix inverse", "a closed
     form") earns its points only when another check of the exercise earned some: a stub
-    has no matrix products either.
+    has no matrix products either.  A ``gated`` check, one of a special case a trivial body
+    passes (the Jacobian at q = 0 is the screw axes it is given; a manipulability of 0 at a
+    singularity; ``True`` for a free path), earns its points only when another check of the
+    answers earned some: returning the argument, 0 or True earns nothing.
     """
 
     description: str
     points: float
     run: Callable[[Submission, np.random.Generator], None]
     reads_code: bool = False
+    gated: bool = False
 
 
 @dataclass(frozen=True)
@@ -268,11 +272,14 @@ def run_exercise(ex: Exercise, submission: Submission, seed: int = VISIBLE_SEED)
         except Exception as exc:  # an answer so odd that judging it failed: no points, no crash
             other_failure = True
             outcome.message = f"the answer could not be judged ({type(exc).__name__}: {exc})"
-    if not any(c.earned for c, d in zip(result.checks, ex.checks) if not d.reads_code):
-        for c, d in zip(result.checks, ex.checks):
-            if d.reads_code and c.earned:
-                c.earned = 0.0
-                c.message = "earns its points once the function gives right answers"
+    # what reads code needs a check of the answers; a gated check, another one
+    answered = [c for c, d in zip(result.checks, ex.checks) if c.earned and not d.reads_code]
+    for c, d in zip(result.checks, ex.checks):
+        if c.earned and (
+            (d.reads_code and not answered) or (d.gated and not any(o is not c for o in answered))
+        ):
+            c.earned = 0.0
+            c.message = "earns its points once the function gives right answers"
     result.earned = float(sum(c.earned for c in result.checks))
     if forbidden is not None:
         result.status, result.message, result.earned = "forbidden", forbidden, 0.0

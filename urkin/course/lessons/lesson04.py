@@ -655,6 +655,7 @@ def _twist_jacobian_exercise(exercise_id: str, form: str) -> Exercise:
                 + " column never moves",
                 1,
                 partial(_twist_jacobian_home, form),
+                gated=True,  # returning the screw axes passes too
             ),
             Check(
                 "matches the Jacobian for UR arms and arms of 2 to 7 joints",
@@ -2020,7 +2021,9 @@ LESSON = Lesson(
             checks=(
                 Check("√det(J Jᵀ) for matrices of several shapes", 2, _man_random),
                 Check("|det J| for a square J, whatever its sign", 1, _man_square_sign),
-                Check("0, not NaN, at the elbow and wrist singularities", 1, _man_singular),
+                Check(
+                    "0, not NaN, at the elbow and wrist singularities", 1, _man_singular, gated=True
+                ),
             ),
             answer=concepts.SINGULARITIES,
         ),

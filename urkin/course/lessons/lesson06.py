@@ -1397,6 +1397,7 @@ LESSON = Lesson(
                     "equal to λ",
                     1,
                     _damping_bound,
+                    gated=True,  # a huge λ passes too
                 ),
                 Check("e = 0 gives λ = 0; bad max_step or e raise ValueError", 1, _damping_edges),
             ),

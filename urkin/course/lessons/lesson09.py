@@ -805,12 +805,16 @@ LESSON = Lesson(
                     _paths_edges,
                 ),
                 Check(
-                    "a waypoint in collision: the start, the goal, one between", 1, _paths_waypoints
+                    "a waypoint in collision: the start, the goal, one between",
+                    1,
+                    _paths_waypoints,
+                    gated=True,  # "never free" passes too
                 ),
                 Check(
                     "no more than twice the samples the resolution needs",
                     1,
                     _paths_budget,
+                    gated=True,  # "always free" asks for no sample
                 ),
             ),
             answer=(checks,),
