@@ -219,10 +219,10 @@ def rrt_connect(
     while path is None and iterations < max_iterations:
         if time_limit is not None and time.perf_counter() - t0 > time_limit:
             break
-        a, near, q_new, free = draws.next(trees, max_iterations - iterations)
+        a, near, q_new, free_end, speeds = draws.next(trees, max_iterations - iterations)
         b = trees[1] if a is trees[0] else trees[0]
         iterations += 1
-        if not free:
+        if not free_end or not _edge(model, scene, a.nodes[near], q_new, resolution, speeds):
             continue
         new = a.add(q_new, near)
         link = _connect(model, scene, b, q_new, step, resolution)
@@ -391,14 +391,20 @@ def _towards(q_from: np.ndarray, q_to: np.ndarray, step: float) -> np.ndarray:
     return np.where(far, q_from + delta * scale, q_to)
 
 
+def _edge(model, scene, qa, qb, resolution, speeds=None) -> bool:
+    """Whether the edge between two free configurations is free (``speeds``: its
+    :func:`~urkin.planning.checks._travel`, if known)."""
+    A, B = qa[None], qb[None]
+    travel = _travels(model, A, B, resolution) if speeds is None else speeds[None]
+    return bool(_edges_free(model, scene, A, B, travel, resolution, known=2)[0])
+
+
 class _Draws:
     """The random targets of the coming iterations, drawn a block at a time, with each one's
     new node (``step`` from the nearest node of the tree that will extend towards it) and the
-    middle of its edge checked for collision in one batch, and the edges of the free ones in
-    one more: one check of many configurations costs little more than one of one, and an
-    edge in a batch a fraction of an edge alone (MotionBenchMaker's UR5 problems: the single
-    extension edges took a quarter of the planning time, at about 0.5 ms each).  The edges of
-    the draws left when the trees meet are checked for nothing; the blocks start small.
+    middle of its edge checked for collision in one batch, and the speed bounds of the free
+    ones' edges found in one more: most extensions fail at their new node or along their
+    edge, and one check of many configurations costs little more than one of one.
 
     Which tree extends in each iteration of a block (:func:`_extending`) is decided when the
     block is drawn, from the trees' sizes then: the balance of the trees is kept a block late
@@ -407,7 +413,7 @@ class _Draws:
     balance rule's threshold; each was then placed and checked alone, and the problems took
     1.2–1.6 times as long.)  When a draw comes up whose tree grew since it was drawn, all that
     tree's queued draws are searched again among its new nodes only, and those with a
-    nearer node have their new nodes and edges checked again, in one batch."""
+    nearer node have their new nodes placed and checked again, in one batch."""
 
     def __init__(self, model, scene, rng, lower, upper, step, resolution) -> None:
         self.model, self.scene, self.rng = model, scene, rng
@@ -433,23 +439,24 @@ class _Draws:
             if mine.any():
                 near[mine] = tree.nearest(targets[mine])
                 starts[mine] = tree.nodes[near[mine]]
-        new, free = self._placed(starts, targets)
+        new, free, speeds = self._placed(starts, targets)
         self.queue = [
-            (tree, tree.count, target, int(k), q, bool(f))
-            for tree, target, k, q, f in zip(extends, targets, near, new, free)
+            (tree, tree.count, target, int(k), q, bool(f), v)
+            for tree, target, k, q, f, v in zip(extends, targets, near, new, free, speeds)
         ][::-1]
 
     def _placed(self, starts: np.ndarray, targets: np.ndarray) -> tuple:
-        """The new nodes ``step`` from ``starts`` towards ``targets`` (K, 6) and whether each
-        extension is free: its new node and the middle of its edge first
-        (:func:`_ends_blocked`), then the edges of those, all in one batched edge check."""
+        """The new nodes ``step`` from ``starts`` towards ``targets`` (K, 6), whether each is
+        free (:func:`_ends_blocked`) and the speed bounds of the free ones' edges (None for
+        the others), each found in one batch."""
         new = _towards(starts, targets, self.step)
         free = ~_ends_blocked(self.model, self.scene, starts, new)
+        speeds: list[np.ndarray | None] = [None] * len(new)
         if free.any():
-            A, B = starts[free], new[free]
-            travel = _travels(self.model, A, B, self.resolution)
-            free[free] = _edges_free(self.model, self.scene, A, B, travel, self.resolution, known=2)
-        return new, free
+            found = _travels(self.model, starts[free], new[free], self.resolution)
+            for k, row in zip(np.flatnonzero(free), found):
+                speeds[k] = row
+        return new, free, speeds
 
     def _refresh(self, tree: _Tree) -> None:
         """Search ``tree``'s queued draws, drawn before it grew, again among its new nodes;
@@ -469,27 +476,29 @@ class _Draws:
             self.queue[k] = (tree, tree.count, *entry[2:])
         if nearer.any():
             near[nearer] = first + best[nearer]
-            new, free = self._placed(tree.nodes[near[nearer]], targets[nearer])
+            new, free, speeds = self._placed(tree.nodes[near[nearer]], targets[nearer])
             for n, k in enumerate(np.flatnonzero(nearer)):
-                self.queue[mine[k]] = (
+                t = mine[k]
+                self.queue[t] = (
                     tree,
                     tree.count,
                     targets[k],
                     int(near[k]),
                     new[n],
                     bool(free[n]),
+                    speeds[n],
                 )
 
     def next(self, trees: list[_Tree], left: int) -> tuple:
-        """The tree that extends, its node nearest the target, the new node, and whether the
-        extension (the new node and the edge to it) is free."""
+        """The tree that extends, its node nearest the target, the new node, whether it is
+        free and the speed bounds of the edge between them (None if not known)."""
         if not self.queue:
             self._fill(trees, left)
         tree, count = self.queue[-1][:2]
         if tree.count > count:  # grown since drawn: are new nodes nearer?
             self._refresh(tree)
-        tree, _, _, near, q_new, free = self.queue.pop()
-        return tree, near, q_new, free
+        tree, _, _, near, q_new, free, speeds = self.queue.pop()
+        return tree, near, q_new, free, speeds
 
 
 def _ends_blocked(model, scene, starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
