@@ -238,9 +238,9 @@ def _shoulder_rounding(px, py, r, d4, d6):
 
 
 def _shoulder_range(px, py, r, root, d4, d6):
-    """The two ends of the range of ``root`` that rounding leaves open (floats)."""
+    """The two ends of the range of ``root`` that rounding leaves open (floats or arrays)."""
     delta = _shoulder_rounding(px, py, r, d4, d6)
-    return math.sqrt(max(root * root - delta, 0.0)), math.sqrt(root * root + delta)
+    return np.sqrt(np.maximum(root * root - delta, 0.0)), np.sqrt(root * root + delta)
 
 
 #: A shoulder whose ``root`` rounding leaves this far open (m) may hide a reachable elbow;
@@ -261,7 +261,7 @@ def _shoulder_retry(rows, lengths, root, r, found, missed) -> bool:
     axis is what changes, by as little as the rounding).  A stretched or folded elbow turns
     the root's ``√ε`` into a miss of about as much: the right root in the range removes it."""
     (_, _, _, px), (_, _, _, py) = rows[0], rows[1]
-    low, high = _shoulder_range(px, py, r, root, lengths[3], lengths[5])
+    low, high = (float(x) for x in _shoulder_range(px, py, r, root, lengths[3], lengths[5]))
     if high - low < _SHOULDER_OPEN:
         return False
     exact = _ROUNDOFF * (abs(lengths[1]) + abs(lengths[2]))
@@ -531,9 +531,8 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
     # (_shoulder_retry searches the shoulder's rounding range; rare)
     missed = (miss > _ROUNDOFF * big).any(axis=(0, 1)) & reach1[0] & (root < _SHOULDER_NEAR)
     if missed.any():
-        delta = _shoulder_rounding(px, py, r, d4, d6)
-        low = np.sqrt(np.maximum(root * root - delta, 0.0))
-        retry = missed & (np.sqrt(root * root + delta) - low >= _SHOULDER_OPEN)
+        low, high = _shoulder_range(px, py, r, root, d4, d6)
+        retry = missed & (high - low >= _SHOULDER_OPEN)
         for i in np.flatnonzero(retry):
             rows = [
                 found if found is not None else [np.nan] * 6

@@ -19,7 +19,13 @@ import numpy as np
 
 from urkin.kinematics import fk, flange_pose
 from urkin.robots import Robot
-from urkin.transforms import _is_rotation_one, orthonormalize, pose_error, rotation_angle
+from urkin.transforms import (
+    _is_rotation_one,
+    _rotation_deviation,
+    orthonormalize,
+    pose_error,
+    rotation_angle,
+)
 
 __all__ = [
     "RIGID_TOLERANCE",
@@ -307,10 +313,11 @@ def nearest_rigid(
     (rad) each was moved by (0 for the others): the targets IK solves, and how far they are
     from what was asked (a pose copied with a few decimals is off by about its last digit).
     ``deviation`` (N,): each pose's deviation from a rotation, if the check measured it."""
-    if deviation is None:
-        rows = goal.tolist()
-        off = np.array([not _is_rotation_one(pose, tol) for pose in rows], dtype=bool)
+    if deviation is None and len(goal) == 1:  # one pose: its floats, no array operation
+        off = np.array([not _is_rotation_one(goal[0].tolist(), tol)])
     else:
+        if deviation is None:  # checked poses: no error raised here
+            deviation = _rotation_deviation(goal[:, :3, :3], math.inf, "target")
         off = deviation.reshape(-1) > tol
     skew = np.zeros(len(goal))
     if not off.any():
