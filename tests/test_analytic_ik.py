@@ -75,6 +75,26 @@ def test_consistency_single_and_batched_agree(solved):
         np.testing.assert_allclose(single, solutions[i][mask[i]], atol=0)
 
 
+@pytest.mark.parametrize("count", [2, 13, 14, 40])
+def test_small_stacks_agree_with_single_calls(count):
+    """A stack of a few poses (solved pose by pose) or more (in columns) gives each pose the
+    rows one call gives it, NaN rows where the mask is False, singular poses included."""
+    arm = urkin.robot("ur5")
+    rng = np.random.default_rng(count)
+    Q = rng.uniform(-np.pi, np.pi, (count, 6))
+    Q[0, 4] = 0.0  # on the wrist singularity
+    Q[1, 2] = np.pi  # elbow stretched
+    T = urkin.fk(arm, Q)
+    solutions, mask = ik_analytic(arm, T, return_mask=True)
+    assert solutions.shape == (count, 8, 6) and mask.shape == (count, 8)
+    assert np.isnan(solutions[~mask]).all() and not np.isnan(solutions[mask]).any()
+    np.testing.assert_array_equal(ik_analytic(arm, T), solutions)
+    for i in range(count):
+        single = ik_analytic(arm, T[i])
+        assert len(single) == mask[i].sum()
+        np.testing.assert_allclose(single, solutions[i][mask[i]], atol=1e-12)
+
+
 def test_completeness_numerical_search_finds_nothing_else():
     # many random starts of the numerical solver: every solution it finds is an analytic one
     ur5 = urkin.robot("ur5")

@@ -404,10 +404,10 @@ def _split_shifts(X, Y, q234, band, border, d5) -> np.ndarray:
     return np.where(ok & (np.abs(shift) <= band), shift, 0.0)
 
 
-def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
-    """All eight branches for flange poses ``T`` (N, 4, 4): solutions (N, 8, 6), row ``i``
-    the branch of bits (θ1 branch, θ5 sign, θ3 sign), and the (N, 8) mask of the real,
-    distinct ones.
+def _solve_stack(T: np.ndarray, lengths: tuple[float, ...], out: np.ndarray) -> np.ndarray:
+    """All eight branches for flange poses ``T`` (N, 4, 4): writes the solutions into ``out``
+    (N, 8, 6), row ``i`` the branch of bits (θ1 branch, θ5 sign, θ3 sign), NaN where there is
+    none, and returns the (N, 8) mask of the real, distinct ones.
 
     The same steps as :func:`_solve_one`, on whole columns: every intermediate has the
     branches in front and the poses last, ``(2, …, N)``, so each numpy operation runs over
@@ -500,23 +500,33 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
     heading = np.arctan2(ey, ex)
     q3 = np.arctan2(s3, c3)  # elbow +; elbow − is −q3
     lean = np.arctan2(a3 * s3, a2 + a3 * c3)
-    q = np.empty((6, 2, 2, 2, n))  # joint, θ1 branch, θ5 sign, θ3 sign, pose
-    q[0] = q1[:, None, None, :]
-    q[1, :, :, 0], q[1, :, :, 1] = heading - lean, heading + lean
-    q[2, :, :, 0], q[2, :, :, 1] = q3, -q3
-    q[3] = q234[:, :, None, :] - q[1] - q[2]
-    q[4] = q5[:, :, None, :]
-    q[5] = q6[:, :, None, :]
-    wrap_angles(q, check=False, out=q)
+    # θ1 (an arctangent) and ±θ3, ±θ5 (arctangents in [0, π]) are within [−π, π]: only −π
+    # moves (to π, as wrap_angles does); θ2, θ4 and θ6 may be off by turns (wrapped below)
+    minus3 = -q3
+    for angles in (q1, minus3, q5):
+        np.copyto(angles, np.pi, where=angles == -np.pi)
+    # branch-major, the joints before the poses: the (48, n) transpose into ``out`` is then
+    # its (n, 8, 6) layout, a plain 2-D copy
+    grid = np.empty((2, 2, 2, 6, n))  # θ1 branch, θ5 sign, θ3 sign, joint, pose
+    grid[..., 0, :] = q1[:, None, None, :]
+    grid[:, :, 0, 1], grid[:, :, 1, 1] = heading - lean, heading + lean
+    grid[:, :, 0, 2], grid[:, :, 1, 2] = q3, minus3
+    grid[..., 3, :] = q234[:, :, None, :] - grid[..., 1, :] - grid[..., 2, :]
+    grid[..., 4, :] = q5[:, :, None, :]
+    grid[..., 5, :] = q6[:, :, None, :]
+    odd = grid[..., 1::2, :]
+    wrap_angles(odd, check=False, out=odd)
     keep = np.empty((2, 2, 2, n), dtype=bool)
     keep[...] = (reach1 & reach3)[:, :, None, :]
     keep[1] &= root > 0.0  # the θ1 branches merge
     keep[:, :, 1] &= s3 > 0.0  # θ3 = 0 or π: a double root
-    q = np.ascontiguousarray(q.reshape(6, 8, n).transpose(2, 1, 0))
+    np.copyto(grid, np.nan, where=~keep[:, :, :, None, :])  # no solution: a row of NaN
+    q = out
+    np.copyto(q.reshape(n, 48), grid.reshape(48, n).T)
     keep = np.ascontiguousarray(keep.reshape(8, n).T)
     # Rows can repeat only where two branches meet (see _solve_one): compare all pairs there.
     suspect = wrist.any(axis=0)
-    shoulder_gap = np.abs(wrap_angles(q[:, 0, 0] - q[:, 4, 0], check=False))
+    shoulder_gap = np.abs(wrap_angles(q1[0] - q1[1], check=False))
     elbow_gap = np.abs(wrap_angles(2.0 * q3, check=False))
     suspect |= (root > 0.0) & (shoulder_gap < DUPLICATE_TOLERANCE)
     suspect |= ((s3 > 0.0) & (elbow_gap < DUPLICATE_TOLERANCE)).any(axis=(0, 1))
@@ -526,7 +536,9 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
         pairs = rows[:, :, None, :] - rows[:, None, :, :]
         gap = np.abs(wrap_angles(pairs, check=False)).max(axis=-1)
         same = (gap < DUPLICATE_TOLERANCE) & kept[:, None, :] & np.tri(8, 8, -1, dtype=bool)
-        keep[suspect] = kept & ~same.any(axis=-1)
+        kept &= ~same.any(axis=-1)
+        keep[suspect] = kept
+        q[suspect] = np.where(kept[..., None], rows, np.nan)
     # near the shoulder singularity, a branch whose elbow just misses: solved again pose by pose
     # (_shoulder_retry searches the shoulder's rounding range; rare)
     missed = (miss > _ROUNDOFF * big).any(axis=(0, 1)) & reach1[0] & (root < _SHOULDER_NEAR)
@@ -540,35 +552,39 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray,
             ]
             q[i] = rows
             keep[i] = ~np.isnan(q[i, :, 0])
-    return q, keep
+    return keep
 
 
 #: Stacks are solved in blocks of this many poses, which keeps temporaries in cache.
-_BLOCK = 1024
+_BLOCK = 1000
 #: Up to this many poses, a stack is solved pose by pose (bench/ik_analytic.py).
-_FEW = 11
+_FEW = 13
+
+
+def _solve_few(poses: list[list[list[float]]], lengths: tuple[float, ...]) -> np.ndarray:
+    """:func:`_solve_one` of each pose given as ``T.tolist()``: (N, 8, 6), NaN rows where a
+    branch has no solution or repeats one."""
+    nan, flat = [math.nan] * 6, []
+    for pose in poses:
+        for row in _solve_one(pose, lengths):
+            flat += nan if row is None else row
+    return np.array(flat).reshape(len(poses), 8, 6)  # one flat list: a third of a nested one's cost
 
 
 def _solve(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_solve_stack` block by block, without floating-point warnings (out-of-reach
-    poses are expected)."""
+    poses are expected): (N, 8, 6) branches, rows of NaN where the (N, 8) mask is False."""
     n = len(T)
     if n == 0:
         return np.empty((0, 8, 6)), np.empty((0, 8), dtype=bool)
     if n <= _FEW:  # a few poses: the one-pose code, pose by pose, beats the stack's fixed cost
-        nan = [math.nan] * 6
-        q = np.array(
-            [
-                [nan if row is None else row for row in _solve_one(pose, lengths)]
-                for pose in T.tolist()
-            ]
-        )
+        q = _solve_few(T.tolist(), lengths)
         return q, ~np.isnan(q[..., 0])
     q, keep = np.empty((n, 8, 6)), np.empty((n, 8), dtype=bool)
     with np.errstate(invalid="ignore", divide="ignore"):
         for start in range(0, n, _BLOCK):
             block = slice(start, start + _BLOCK)
-            q[block], keep[block] = _solve_stack(T[block], lengths)
+            keep[block] = _solve_stack(T[block], lengths, q[block])
     return q, keep
 
 
@@ -642,12 +658,16 @@ def ik_analytic(
         if _is_rotation_one(rows, RIGID_TOLERANCE):
             found = [row for row in _solve_one(rows, robot.lengths) if row is not None]
             return np.array(found) if found else np.empty((0, 6))
+    if goal.ndim == 3 and len(goal) <= _FEW and robot._plain:  # a few flange poses, rigid
+        rows = goal.tolist()
+        if all(_is_rotation_one(pose, RIGID_TOLERANCE) for pose in rows):
+            q = _solve_few(rows, robot.lengths)
+            return (q, ~np.isnan(q[..., 0])) if return_mask else q
     poses, lead, _ = _flange_poses(robot, goal, deviation)
     if lead == ():
         found = [row for row in _solve_one(poses[0].tolist(), robot.lengths) if row is not None]
         return np.array(found) if found else np.empty((0, 6))
-    q, keep = _solve(poses, robot.lengths)
-    q[~keep] = np.nan
+    q, keep = _solve(poses, robot.lengths)  # rows of NaN where keep is False
     q, keep = unstack(q, lead), unstack(keep, lead)
     return (q, keep) if return_mask else q
 

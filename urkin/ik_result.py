@@ -313,8 +313,8 @@ def nearest_rigid(
     (rad) each was moved by (0 for the others): the targets IK solves, and how far they are
     from what was asked (a pose copied with a few decimals is off by about its last digit).
     ``deviation`` (N,): each pose's deviation from a rotation, if the check measured it."""
-    if deviation is None and len(goal) == 1:  # one pose: its floats, no array operation
-        off = np.array([not _is_rotation_one(goal[0].tolist(), tol)])
+    if deviation is None and len(goal) <= 16:  # a few poses: their floats, pose by pose
+        off = np.array([not _is_rotation_one(rows, tol) for rows in goal.tolist()], dtype=bool)
     else:
         if deviation is None:  # checked poses: no error raised here
             deviation = _rotation_deviation(goal[:, :3, :3], math.inf, "target")
