@@ -196,8 +196,10 @@ def _hits(
 #: sphere of every configuration placed: 0.6 MB for 51 spheres) stay in the processor's cache
 #: and are reused by the memory allocator; one pass over 10,000 configurations allocates
 #: arrays of several megabytes, which the allocator maps afresh from the system each time,
-#: and takes 1.3 times as long.
-_BLOCK_ROWS = 512
+#: and takes 1.3 times as long.  Not a power of two: with rows 4 kB apart, the transposes of
+#: a block compete for the same cache sets (bench/planning.py's batch of 10,000: 4.50 µs per
+#: configuration with 512, 4.14 with 500).
+_BLOCK_ROWS = 500
 
 #: Stacks up to this many configurations are checked by :func:`_dense_hits`, when the model
 #: and scene are small: self-collision pairs plus moving spheres times obstacles at most
