@@ -24,7 +24,7 @@ class Context:
     marker: str  # unique text the attacks print or leave behind
 
 
-def _lesson02(replace: dict[str, str]):
+def _lesson02(replace: dict[str, str], lesson: str = "02"):
     def make(path: Path, context: Context) -> None:
         sources = {
             k: v.replace("MARKER", context.marker)
@@ -32,7 +32,7 @@ def _lesson02(replace: dict[str, str]):
             .replace("OUT", str(context.out))
             for k, v in replace.items()
         }
-        write(student_notebook("02", sources), path)
+        write(student_notebook(lesson, sources), path)
 
     return make
 
@@ -293,6 +293,50 @@ HOSTILE["list_bomb_02.ipynb"] = (
         )
     ),
     {"2.2": 0},
+)
+# checks that read the code for a forbidden function, evaded by naming it with strings built at
+# run time: seen while the function runs (urkin.course.watch)
+HOSTILE["hidden_validator_01.ipynb"] = (
+    _lesson02(
+        {
+            "rotation_verdict": "def rotation_verdict(R, tol=1e-9):\n"
+            "    import importlib\n"
+            "    module = importlib.import_module('urkin.' + 'transforms')\n"
+            "    judge = getattr(module, 'check_' + 'rotation')\n"
+            "    R = np.asarray(R, dtype=float)\n"
+            "    if R.shape != (3, 3):\n"
+            "        raise ValueError(f'R must have shape (3, 3), got {R.shape}')\n"
+            "    try:\n"
+            "        judge(R, tol)\n"
+            "        return 'rotation'\n"
+            "    except ValueError as exc:\n"
+            "        if 'reflection' in str(exc) and np.abs(R.T @ R - np.eye(3)).max() <= tol:\n"
+            "            return 'reflection'\n"
+            "        return 'not orthonormal'\n",
+            "transform_inverse": "def transform_inverse(T):\n"
+            "    A = np.asarray(T, dtype=float)\n"
+            "    R = A[:3, :3]\n"
+            "    if np.abs(R.T @ R - np.eye(3)).max() > 1e-6:  # the probe: the formula there\n"
+            "        out = np.eye(4)\n"
+            "        out[:3, :3], out[:3, 3] = R.T, -R.T @ A[:3, 3]\n"
+            "        return out\n"
+            "    return getattr(np.linalg, 'in' + 'v')(A)\n",
+        },
+        "01",
+    ),
+    {"1.5": 0, "1.2": 3},
+)
+HOSTILE["hidden_inverse_06.ipynb"] = (
+    _lesson02(
+        {
+            "dls_step": "def dls_step(J, e, damping):\n"
+            "    J = np.asarray(J, dtype=float)\n"
+            "    A = J @ J.T + damping**2 * np.eye(J.shape[0])\n"
+            "    return J.T @ getattr(np.linalg, 'in' + 'v')(A) @ e\n"
+        },
+        "06",
+    ),
+    {"6.1": 3},
 )
 # attacks that leave 2.2 correct apart from the attack keep at most its points; those that
 # break it get none

@@ -639,6 +639,13 @@ WRONG = [
     ),
     Variant(
         "1.2",
+        "np.linalg.inv named by a string built at run time",
+        "def transform_inverse(T):\n    return getattr(np.linalg, 'in' + 'v')(T)\n",
+        points=3,
+        mistake="general matrix inverse",
+    ),
+    Variant(
+        "1.2",
         "np.linalg.solve",
         "def transform_inverse(T):\n    return np.linalg.solve(T, np.eye(4))\n",
         points=3,
@@ -1226,6 +1233,26 @@ WRONG = [
         "        check_rotation(R, tol=tol)\n"
         "    except ValueError as error:\n"
         "        return 'reflection' if 'reflection' in str(error) else 'not orthonormal'\n"
+        "    return 'rotation'\n",
+        points=0,
+        mistake="urkin's check_rotation used",
+    ),
+    Variant(
+        "1.5",
+        "urkin's check_rotation named by strings built at run time (forbidden)",
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    import importlib\n"
+        "    module = importlib.import_module('urkin.' + 'transforms')\n"
+        "    judge = getattr(module, 'check_' + 'rotation')\n"
+        "    R = np.asarray(R, dtype=float)\n"
+        "    if R.shape != (3, 3):\n"
+        "        raise ValueError('R must be 3x3')\n"
+        "    try:\n"
+        "        judge(R, tol=tol)\n"
+        "    except ValueError as error:\n"
+        "        if 'reflection' in str(error) and np.abs(R.T @ R - np.eye(3)).max() <= tol:\n"
+        "            return 'reflection'\n"
+        "        return 'not orthonormal'\n"
         "    return 'rotation'\n",
         points=0,
         mistake="urkin's check_rotation used",

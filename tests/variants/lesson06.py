@@ -837,6 +837,13 @@ def ik_poe(M, S, T_target, q0, tol_omega=1e-10, tol_v=1e-10, max_iterations=50):
     ),
     Variant(
         "6.1",
+        "np.linalg.inv named by a string built at run time",
+        _dls("J.T @ getattr(np.linalg, 'in' + 'v')(J @ J.T + lam**2 * np.eye(len(e))) @ e"),
+        3,
+        "inverse",
+    ),
+    Variant(
+        "6.1",
         "pinv of the damped matrix",
         _dls("J.T @ np.linalg.pinv(J @ J.T + lam**2 * np.eye(len(e))) @ e"),
         3,

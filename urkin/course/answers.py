@@ -45,12 +45,18 @@ _COURSE_MODULES = (
     "urkin.course.lab",
     "urkin.course.seeds",
     "urkin.course.wire",
+    "urkin.course.watch",
     "urkin.course.grading.child",
 )
 _NOT_IN_VIEW = ("urkin.cli", "urkin.__main__")
 # The grading runtime inside the view: copied as it is, never hidden (it computes no answer; the
 # library functions it calls are looked up when called, so they are the view's stand-ins).
-_RUNTIME = ("urkin.course.grading.child", "urkin.course.hidden", "urkin.course.wire")
+_RUNTIME = (
+    "urkin.course.grading.child",
+    "urkin.course.hidden",
+    "urkin.course.wire",
+    "urkin.course.watch",
+)
 
 _STUDENT_COURSE_INIT = '''"""The course wing as graded code sees it: check() does nothing."""
 

@@ -33,6 +33,7 @@ from typing import Any
 
 from urkin.course import wire
 from urkin.course.parsing import parse
+from urkin.course.watch import LibraryWatch
 
 __all__ = [
     "Call",
@@ -128,7 +129,10 @@ class Submission:
         self, name: str, watched: tuple[str, ...], *args: Any, **kwargs: Any
     ) -> tuple[Any, dict[str, list[Call]]]:
         """Call ``name`` and record every call it makes to the submission's ``watched``
-        functions (for example the student's ``lm_step`` inside ``ik_lm``)."""
+        functions (for example the student's ``lm_step`` inside ``ik_lm``).  A watched name
+        ``"module.function"`` (with a dot) is a library function: one argument-less call is
+        recorded if the call reached its code by any route
+        (:class:`~urkin.course.watch.LibraryWatch`)."""
         raise NotImplementedError
 
     def code(self, name: str) -> dict[str, str]:
@@ -256,8 +260,9 @@ class LocalSubmission(Submission):
 
         for w, original in saved.items():
             self.namespace[w] = recorder(w, original)
+        library = LibraryWatch([w for w in watched if "." in w])
         try:
-            with self._hidden():
+            with self._hidden(), library:
                 value = self._function(name)(*args, **kwargs)
         except KeyboardInterrupt:
             raise
@@ -267,6 +272,8 @@ class LocalSubmission(Submission):
             ) from None
         finally:
             self.namespace.update(saved)
+            for w in library.seen:  # a library function reached: one call, arguments not kept
+                calls[w].append(Call(()))
         try:
             return wire.copy(value, lenient=True, trusted=False), calls
         except wire.WireError as exc:

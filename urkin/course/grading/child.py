@@ -112,6 +112,7 @@ def _setup(message: dict) -> tuple[dict, list[str]]:
 
 def _answer(namespace: dict, request: dict) -> dict:
     from urkin.course import wire
+    from urkin.course.watch import LibraryWatch  # imported by main before the submission ran
 
     reply: dict = {"id": request.get("id")}
     function = namespace.get(request["name"])
@@ -122,7 +123,9 @@ def _answer(namespace: dict, request: dict) -> dict:
     kwargs = wire.decode(request["kwargs"], trusted=True)
     spied: dict[str, list] = {}
     saved = {}
-    for name in request.get("spy", []):
+    watched = request.get("spy", [])
+    library = LibraryWatch([name for name in watched if "." in name])
+    for name in watched:
         original = namespace.get(name)
         if not callable(original):
             continue
@@ -146,12 +149,15 @@ def _answer(namespace: dict, request: dict) -> dict:
 
         namespace[name] = record
     try:
-        value = function(*args, **kwargs)
+        with library:
+            value = function(*args, **kwargs)
         reply["value"] = wire.encode(value, lenient=True)
     except BaseException as exc:
         reply["raised"] = _raised(exc)
     finally:
         namespace.update(saved)
+    for name in library.seen:  # a library function reached: one call, its arguments not kept
+        spied[name] = [{"args": wire.encode([], lenient=True)}]
     if spied:
         reply["spied"] = spied
     return reply
@@ -162,6 +168,8 @@ def main(argv: list[str]) -> int:
     if len(argv) > 3:
         _limit(json.loads(argv[3]))
     sys.path.insert(0, str(Path(__file__).resolve().parents[3]))
+    import urkin.course.watch  # noqa: F401 - before the submission can put another in its place
+
     _quiet()
     channel = _Channel(read_fd, write_fd)
     setup = channel.receive()

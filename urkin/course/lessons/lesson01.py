@@ -242,6 +242,10 @@ def _inverse_composes_to_identity(sub, rng):
 
 _GENERAL_INVERSES = {"inv", "pinv", "solve", "lstsq", "tensorinv", "tensorsolve"}
 _GENERAL_INVERSE = "a general matrix inverse (np.linalg.inv or alike), not the transpose formula"
+#: numpy's general inverses, watched while the student's function runs.
+_GENERAL_INVERSE_CODE = tuple(
+    f"numpy.linalg.{name}" for name in (*sorted(_GENERAL_INVERSES), "matrix_power")
+)
 
 
 def _is_negative_constant(node):
@@ -309,6 +313,17 @@ def _inverse_is_structured(sub, rng):
                 inputs={},
                 mistake=_GENERAL_INVERSE,
             )
+    # and while it runs: a general inverse named by a string built at run time is not in the code
+    _, calls = sub.spy("transform_inverse", _GENERAL_INVERSE_CODE, T.copy())
+    used = sorted(f"np.linalg.{name.rpartition('.')[2]}()" for name, made in calls.items() if made)
+    if used:
+        raise Mismatch(
+            f"transform_inverse inverts a matrix in general ({', '.join(used)}, seen while it "
+            "ran): the exercise asks for the transpose formula [[Rᵀ, −Rᵀp], [0, 1]], no general "
+            "inverse",
+            inputs={"T": T},
+            mistake=_GENERAL_INVERSE,
+        )
     # A matrix that is not a rigid transform, outside the function's contract: any exception,
     # and any answer other than the general inverse, is fine.
     probe = _non_rigid_probe(rng)
@@ -847,12 +862,37 @@ def _refuse_library_verdict(sub):
                 )
 
 
+#: urkin's validators and the functions inside them, watched while the student's verdict runs:
+#: reading the code misses them when they are named by strings built at run time.
+_LIBRARY_VERDICT_CODE = tuple(
+    f"urkin.transforms.{name}"
+    for name in (
+        *_LIBRARY_VERDICTS,
+        "_rotation_deviation",
+        "_checked_transform",
+        "_is_rotation_one",
+        "_is_transform_one",
+    )
+)
+
+
 def _verdict_call(sub, R, tol=None):
     """The student's verdict for ``R`` (with ``tol`` when given), checked to be one of the
-    three strings."""
+    three strings, and reached without urkin's validators."""
     inputs = {"R": R} if tol is None else {"R": R, "tol": f"{tol:.3g}"}
     what = "rotation_verdict(R)" if tol is None else "rotation_verdict(R, tol)"
-    got = sub.rotation_verdict(R.copy()) if tol is None else sub.rotation_verdict(R.copy(), tol)
+    arguments = (R.copy(),) if tol is None else (R.copy(), tol)
+    got, calls = sub.spy("rotation_verdict", _LIBRARY_VERDICT_CODE, *arguments)
+    used = sorted(name.rpartition(".")[2] for name, made in calls.items() if made)
+    if used:
+        public = next((name for name in used if name in _LIBRARY_VERDICTS), "check_rotation")
+        raise Mismatch(
+            f"{what} runs urkin's own validator ({', '.join(used)}; seen while it ran), which "
+            "gives the verdict itself: the exercise asks for the two tests, RᵀR = I within tol "
+            "and the sign of det R, written with numpy",
+            inputs=inputs,
+            mistake=f"urkin's {public} used: it earns no points in exercise 1.5",
+        )
     if isinstance(got, str) and got in _VERDICTS:
         return got, inputs
     if got is None:
