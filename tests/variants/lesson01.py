@@ -1259,6 +1259,25 @@ WRONG = [
     ),
     Variant(
         "1.5",
+        "urkin's check_rotation with the grader's watch switched off (forbidden)",
+        "def rotation_verdict(R, tol=1e-9):\n"
+        "    import sys\n"
+        "    sys.setprofile(None)\n"
+        "    R = np.asarray(R, dtype=float)\n"
+        "    if R.shape != (3, 3):\n"
+        "        raise ValueError('R must be 3x3')\n"
+        "    try:\n"
+        "        getattr(urkin.transforms, 'check_' + 'rotation')(R, tol=tol)\n"
+        "    except ValueError as error:\n"
+        "        if 'reflection' in str(error) and np.abs(R.T @ R - np.eye(3)).max() <= tol:\n"
+        "            return 'reflection'\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation'\n",
+        points=0,
+        mistake="urkin's check_rotation used",
+    ),
+    Variant(
+        "1.5",
         "urkin.transforms.check_transform on a padded matrix (forbidden)",
         "def rotation_verdict(R, tol=1e-9):\n"
         "    R = np.asarray(R, dtype=float)\n"
