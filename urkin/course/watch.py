@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import importlib
 import sys
+import threading
 from collections.abc import Iterable
 from types import FrameType
 
@@ -51,7 +52,7 @@ class LibraryWatch:
             if code is not None:
                 self.codes[code] = name
         self.seen: set[str] = set()
-        self._previous = None
+        self._previous: tuple = (None, None)
 
     def _hook(self, frame: FrameType, event: str, arg: object) -> None:
         if event == "call":
@@ -61,13 +62,15 @@ class LibraryWatch:
 
     def __enter__(self) -> LibraryWatch:
         if self.codes:
-            self._previous = sys.getprofile()
+            self._previous = sys.getprofile(), threading.getprofile()
             self._installed = self._hook  # one bound method, to recognise it afterwards
             sys.setprofile(self._installed)
+            threading.setprofile(self._installed)  # threads the call starts are watched too
         return self
 
     def __exit__(self, *exc: object) -> None:
         if self.codes:
             if sys.getprofile() is not self._installed:
                 self.seen.update(self.codes.values())
-            sys.setprofile(self._previous)
+            sys.setprofile(self._previous[0])
+            threading.setprofile(self._previous[1])
