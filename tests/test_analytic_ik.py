@@ -89,6 +89,11 @@ def test_small_stacks_agree_with_single_calls(count):
     assert solutions.shape == (count, 8, 6) and mask.shape == (count, 8)
     assert np.isnan(solutions[~mask]).all() and not np.isnan(solutions[mask]).any()
     np.testing.assert_array_equal(ik_analytic(arm, T), solutions)
+    assert mask.any(axis=1).all()
+    for row in np.flatnonzero(mask.ravel()):  # each reaches its pose, by the independent product
+        np.testing.assert_allclose(
+            dh_fk(OFFICIAL_DH[arm.name], solutions.reshape(-1, 6)[row]), T[row // 8], atol=1e-9
+        )
     for i in range(count):
         single = ik_analytic(arm, T[i])
         assert len(single) == mask[i].sum()

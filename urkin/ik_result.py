@@ -20,6 +20,7 @@ import numpy as np
 from urkin.kinematics import fk, flange_pose
 from urkin.robots import Robot
 from urkin.transforms import (
+    _FEW_POSES,
     _is_rotation_one,
     _rotation_deviation,
     orthonormalize,
@@ -313,7 +314,7 @@ def nearest_rigid(
     (rad) each was moved by (0 for the others): the targets IK solves, and how far they are
     from what was asked (a pose copied with a few decimals is off by about its last digit).
     ``deviation`` (N,): each pose's deviation from a rotation, if the check measured it."""
-    if deviation is None and len(goal) <= 16:  # a few poses: their floats, pose by pose
+    if deviation is None and len(goal) <= _FEW_POSES:  # a few poses: their floats, one by one
         off = np.array([not _is_rotation_one(rows, tol) for rows in goal.tolist()], dtype=bool)
     else:
         if deviation is None:  # checked poses: no error raised here

@@ -239,6 +239,10 @@ def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "
     return _checked_transform(T, tol, name)[0]
 
 
+#: Up to this many poses, a stack is checked pose by pose on Python floats (fewer operations
+#: than the array test's forty).
+_FEW_POSES = 16
+
 _BOTTOM = np.array([0.0, 0.0, 0.0, 1.0])
 _BOTTOM.setflags(write=False)
 
@@ -252,8 +256,9 @@ def _checked_transform(T: ArrayLike, tol: float, name: str) -> tuple[np.ndarray,
         # the scalar fast path, for one pose or a few; anything else gets the full check
         if T.ndim == 2 and _is_transform_one(T.tolist(), tol):
             return T, None
-        if T.ndim == 3 and len(T) <= 16 and all(_is_transform_one(t, tol) for t in T.tolist()):
-            return T, None
+        if T.ndim == 3 and len(T) <= _FEW_POSES:
+            if all(_is_transform_one(t, tol) for t in T.tolist()):
+                return T, None
     array = _core(T, (4, 4), name)
     bottom = array[..., 3, :]
     if np.abs(bottom - _BOTTOM).max(initial=0.0) > tol:  # one pass; the row-wise one to name it

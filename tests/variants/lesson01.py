@@ -497,6 +497,24 @@ def rotation_distance(R1, R2):
     ),
 ]
 
+
+def _judged_by(prelude: str) -> str:
+    """A rotation_verdict that asks urkin's validator ``judge`` (bound by ``prelude``) for the
+    verdict: what exercise 1.5 forbids, however the validator is reached."""
+    return (
+        "def rotation_verdict(R, tol=1e-9):\n" + prelude + "    R = np.asarray(R, dtype=float)\n"
+        "    if R.shape != (3, 3):\n"
+        "        raise ValueError('R must be 3x3')\n"
+        "    try:\n"
+        "        judge(R, tol=tol)\n"
+        "    except ValueError as error:\n"
+        "        if 'reflection' in str(error) and np.abs(R.T @ R - np.eye(3)).max() <= tol:\n"
+        "            return 'reflection'\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation'\n"
+    )
+
+
 WRONG = [
     # ------------------------------------------------------------------------ 1.1 rot_z
     Variant(
@@ -1240,39 +1258,22 @@ WRONG = [
     Variant(
         "1.5",
         "urkin's check_rotation named by strings built at run time (forbidden)",
-        "def rotation_verdict(R, tol=1e-9):\n"
-        "    import importlib\n"
-        "    module = importlib.import_module('urkin.' + 'transforms')\n"
-        "    judge = getattr(module, 'check_' + 'rotation')\n"
-        "    R = np.asarray(R, dtype=float)\n"
-        "    if R.shape != (3, 3):\n"
-        "        raise ValueError('R must be 3x3')\n"
-        "    try:\n"
-        "        judge(R, tol=tol)\n"
-        "    except ValueError as error:\n"
-        "        if 'reflection' in str(error) and np.abs(R.T @ R - np.eye(3)).max() <= tol:\n"
-        "            return 'reflection'\n"
-        "        return 'not orthonormal'\n"
-        "    return 'rotation'\n",
+        _judged_by(
+            "    import importlib\n"
+            "    module = importlib.import_module('urkin.' + 'transforms')\n"
+            "    judge = getattr(module, 'check_' + 'rotation')\n"
+        ),
         points=0,
         mistake="urkin's check_rotation used",
     ),
     Variant(
         "1.5",
         "urkin's check_rotation with the grader's watch switched off (forbidden)",
-        "def rotation_verdict(R, tol=1e-9):\n"
-        "    import sys\n"
-        "    sys.setprofile(None)\n"
-        "    R = np.asarray(R, dtype=float)\n"
-        "    if R.shape != (3, 3):\n"
-        "        raise ValueError('R must be 3x3')\n"
-        "    try:\n"
-        "        getattr(urkin.transforms, 'check_' + 'rotation')(R, tol=tol)\n"
-        "    except ValueError as error:\n"
-        "        if 'reflection' in str(error) and np.abs(R.T @ R - np.eye(3)).max() <= tol:\n"
-        "            return 'reflection'\n"
-        "        return 'not orthonormal'\n"
-        "    return 'rotation'\n",
+        _judged_by(
+            "    import sys\n"
+            "    sys.setprofile(None)\n"
+            "    judge = getattr(urkin.transforms, 'check_' + 'rotation')\n"
+        ),
         points=0,
         mistake="urkin's check_rotation used",
     ),

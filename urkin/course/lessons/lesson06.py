@@ -105,12 +105,14 @@ def _step_inputs(J, e, damping, name: str) -> dict:
     return {"J": J, "e": e, "lam" if name == "dls_step" else "mu": damping}
 
 
-def _call_step(sub, J, e, damping, name: str) -> np.ndarray:
-    """The student's step as an (n,) array, or a Mismatch that names the seeds' mistakes."""
+def _call_step(sub, J, e, damping, name: str, watched: tuple[str, ...] = ()):
+    """The student's step as an (n,) array, or a Mismatch that names the seeds' mistakes, and
+    which of the ``watched`` library functions it reached
+    (:meth:`~urkin.course.submission.Submission.spy`)."""
     inputs = _step_inputs(J, e, damping, name)
     what = f"{name}(J, e, {'lam' if name == 'dls_step' else 'mu'})"
     try:
-        value = sub.call(name, J.copy(), e.copy(), damping)
+        value, calls = sub.spy(name, watched, J.copy(), e.copy(), damping)
     except StudentRaised as exc:
         mistake = _raised_mistake(exc, J, name)
         if mistake is None:
@@ -143,7 +145,7 @@ def _call_step(sub, J, e, damping, name: str) -> np.ndarray:
                 got=array,
                 mistake="returns the matrix Jᵀ(JJᵀ + λ²I)⁻¹ instead of the step: apply it to e",
             )
-    return as_array(value, (n,), what, inputs)
+    return as_array(value, (n,), what, inputs), sorted(w for w, made in calls.items() if made)
 
 
 def _step_atol(got, A, expected, atol: float) -> float:
@@ -189,7 +191,7 @@ def _dls_matches(sub, rng):
     for rows, cols in (*_SHAPES, odd):
         J = _random_jacobian(rng, rows, cols)
         e, lam = rng.normal(size=rows), rng.uniform(0.05, 0.5)
-        got = _call_step(sub, J, e, lam, "dls_step")
+        got, _ = _call_step(sub, J, e, lam, "dls_step")
         expected = _dls_expected(J, e, lam)
         compare(
             got,
@@ -204,7 +206,7 @@ def _dls_matches(sub, rng):
 def _dls_at_singularities(sub, rng):
     for rows in (6, 3):
         J, e, lam = _random_jacobian(rng, rows, singular=True), rng.normal(size=rows), 0.01
-        got = _call_step(sub, J, e, lam, "dls_step")
+        got, _ = _call_step(sub, J, e, lam, "dls_step")
         expected = _dls_expected(J, e, lam)
         compare(
             got,
@@ -248,7 +250,8 @@ def _solves(name: str, svd_too: bool):
     def run(sub, rng):
         # the code counts only for a working step (a stub or a constant has no inverse either)
         J, e, damping = _random_jacobian(rng, 6), rng.normal(size=6), rng.uniform(0.05, 0.5)
-        got = _call_step(sub, J, e, damping, name)
+        watched = _INVERSE_CODE + (("numpy.linalg.svd",) if svd_too else ())
+        got, seen = _call_step(sub, J, e, damping, name, watched)
         if name == "dls_step":
             A, expected = _dls_matrix(J, damping), _dls_expected(J, e, damping)
         else:
@@ -264,11 +267,9 @@ def _solves(name: str, svd_too: bool):
             (function, sorted(set(_inverses_in(source, svd_too))))
             for function, source in sub.code(name).items()
         ]
-        # and while it runs: an inverse named by a string built at run time is not in the code
-        watched = _INVERSE_CODE + (("numpy.linalg.svd",) if svd_too else ())
-        _, calls = sub.spy(name, watched, J.copy(), e.copy(), damping)
-        seen = sorted(f"{w.rpartition('.')[2]}()" for w, made in calls.items() if made)
-        found_in.append((f"{name} (seen while it ran)", seen))
+        # and while it ran: an inverse named by a string built at run time is not in the code
+        reached = [f"{w.rpartition('.')[2]}()" for w in seen]
+        found_in.append((f"{name} (seen while it ran)", reached))
         for function, found in found_in:
             if not found:
                 continue
@@ -321,7 +322,7 @@ def _lm_matches(sub, rng):
     for rows, cols in ((6, 6), (6, 6), (6, 6), (3, 6), odd):
         J = _random_jacobian(rng, rows, cols)
         e, mu = rng.normal(size=rows), 10 ** rng.uniform(-4, 0)
-        got = _call_step(sub, J, e, mu, "lm_step")
+        got, _ = _call_step(sub, J, e, mu, "lm_step")
         expected = _lm_expected(J, e, mu)
         compare(
             got,
@@ -337,7 +338,7 @@ def _lm_is_dls(sub, rng):
     # (JᵀJ + μI)⁻¹Jᵀ = Jᵀ(JJᵀ + μI)⁻¹: Levenberg–Marquardt's step is the DLS step with λ² = μ
     for rows in (6, 3):
         J, e, mu = _random_jacobian(rng, rows, singular=True), rng.normal(size=rows), 1e-3
-        got = _call_step(sub, J, e, mu, "lm_step")
+        got, _ = _call_step(sub, J, e, mu, "lm_step")
         expected = _dls_expected(J, e, np.sqrt(mu))
         compare(
             got,
