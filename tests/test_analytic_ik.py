@@ -9,6 +9,7 @@ import pytest
 
 import urkin
 from tests.reference import OFFICIAL_DH, dh_fk
+from tests.singular_poses import FAMILIES, NEAR, near_family, on_family
 from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import singularity_factors
 from urkin.transforms import wrap_angles
@@ -143,33 +144,6 @@ def test_strictness_out_of_reach_poses_have_no_solutions():
 # ---------------------------------------------------------------------------- singular poses
 
 
-def on_family(arm, family, rng, q=None):
-    q = rng.uniform(-np.pi, np.pi, 6) if q is None else q.copy()
-    if "elbow" in family:
-        q[2] = rng.choice([0.0, np.pi])
-    if "wrist" in family:
-        q[4] = rng.choice([0.0, np.pi])
-    if "shoulder" in family:
-        for _ in range(1000):
-            reach = arm.a2 * np.cos(q[1]) + arm.a3 * np.cos(q[1] + q[2])
-            if abs(reach) <= arm.d5:
-                break
-            q[1] = rng.uniform(-np.pi, np.pi)
-        q[3] = np.arcsin(-reach / arm.d5) - q[1] - q[2]
-    return q
-
-
-FAMILIES = [
-    ("shoulder",),
-    ("wrist",),
-    ("elbow",),
-    ("shoulder", "wrist"),
-    ("shoulder", "elbow"),
-    ("elbow", "wrist"),
-    ("shoulder", "elbow", "wrist"),
-]
-
-
 @pytest.mark.parametrize("family", FAMILIES, ids=["+".join(f) for f in FAMILIES])
 def test_exact_at_singular_poses(arm, family):
     rng = np.random.default_rng(zlib.crc32(f"{arm.name}{family}".encode()))
@@ -198,25 +172,6 @@ def test_exact_at_singular_poses(arm, family):
             assert distance_mod_2pi(s[:, [0, 4]], q[[0, 4]]) < tol
         else:
             assert distance_mod_2pi(s, q) < tol
-
-
-#: Distances (rad, or m for the shoulder) from each singular family.
-NEAR = (1e-3, 1e-5, 1e-7, 1e-9, 1e-10, 1e-11, 1e-12)
-
-
-def near_family(arm, family, distance, rng):
-    """A configuration ``distance`` off each singularity of ``family``: θ3 off 0 or π (elbow),
-    θ5 off 0 or π (wrist), the wrist point off the ``d4`` cylinder (shoulder)."""
-    q = on_family(arm, family, rng)
-    if "elbow" in family:
-        q[2] += rng.choice([-distance, distance])
-    if "wrist" in family:
-        q[4] += rng.choice([-distance, distance])
-    if "shoulder" in family:  # the planar reach a2 c2 + a3 c23 + d5 s234 = ±distance
-        reach = arm.a2 * np.cos(q[1]) + arm.a3 * np.cos(q[1] + q[2])
-        offset = rng.choice([-distance, distance])  # on_family keeps |reach| ≤ d5
-        q[3] = np.arcsin(np.clip((offset - reach) / arm.d5, -1.0, 1.0)) - q[1] - q[2]
-    return q
 
 
 @pytest.mark.parametrize("family", FAMILIES, ids=["+".join(f) for f in FAMILIES])
