@@ -137,6 +137,24 @@ def test_targets_near_singular_families_are_solved(family):
             assert max(pose_error(OFFICIAL_DH["UR5"], result.q, T)) <= 1e-10 * 1.0000001
 
 
+def test_a_stall_near_a_singular_solution_ends_in_a_step_not_a_restart():
+    """The wrist point 6e-5 m off the shoulder singularity: from 0.05 rad away the damped steps
+    stall 5e-7 m short.  With restarts allowed the core steps along the weakest direction and
+    arrives without one; with max_restarts=0 the rule runs alone and the failure says how far
+    it got."""
+    ur5 = urkin.robot("ur5")
+    q = np.array([1.3051131120389492, 0.32859834696325496, 2.1434857807772936,
+                  -0.9244280494519286, 3.082802010297441, -2.044079749274399])  # fmt: skip
+    assert abs(urkin.kinematics.singularity_factors(ur5, q)[0]) < 1e-4
+    T = dh_fk(OFFICIAL_DH["UR5"], q)
+    alone = urkin.ik(ur5, T, q + 0.05, max_restarts=0)
+    assert not alone.success and 1e-7 < alone.residual < 1e-6
+    assert alone.reason.startswith("did not converge: after 0 restarts")
+    helped = urkin.ik(ur5, T, q + 0.05, max_restarts=1)
+    assert helped.success and helped.restarts == 0
+    assert max(pose_error(OFFICIAL_DH["UR5"], helped.q, T)) <= 1e-10 * 1.0000001
+
+
 def test_the_cross_product_error_is_blind_at_180_degrees():
     R = rpy_to_rotation([0.3, -0.4, 1.1])
     k = np.array([2.0, -1.0, 2.0]) / 3.0
