@@ -597,9 +597,9 @@ def _stalled(attempt, since_progress, given_up, patience: int, max_iterations: i
 #: An attempt that stalls (or runs out of iterations) with a residual below _SINGULAR_BELOW
 #: (metres and radians) tries a step along the Jacobian's weakest direction
 #: (:func:`_singular_steps`) before it restarts, if it is its first or the attempt's best has
-#: improved since the last (by _PROGRESS); the step is taken if its residual is below
-#: _SINGULAR_BELOW too (the damped steps after it put back what it changed in the other
-#: directions).
+#: improved since the last (by _PROGRESS); the step is taken, as one iteration, if its
+#: residual is below _SINGULAR_BELOW too (the damped steps after it put back what it changed
+#: in the other directions).
 _SINGULAR_BELOW = 1e-3
 
 
@@ -615,9 +615,9 @@ def _singular_steps(problem, rows, Q: np.ndarray, J: np.ndarray, e: np.ndarray) 
     than the error left, so a damped step declines it and stalls.  Here the quadratic is
     fitted from the errors at ``q ± s v`` (``s = √|a0|``, and once more at ``s = |t|`` when
     its root ``t`` lies beyond ``2s``), the configuration moves to its root nearest 0 (to its
-    vertex when it has none; at most 1 rad), and :data:`_CORRECTIONS`
-    least-squares steps in the other directions (σ left out) put back what the move changed
-    there.  The caller keeps the trial only if it lowers the error."""
+    vertex when it has none; at most 1 rad), and :data:`_CORRECTIONS` least-squares steps in
+    the other directions (σ left out) put back what the move changed there.  The caller keeps
+    a trial within _SINGULAR_BELOW of its target, as one iteration."""
     m = J.shape[-2]
     U, S, Vt = np.linalg.svd(J)
     u, v = U[..., m - 1], Vt[..., m - 1, :]  # (k, m), (k, 6)
@@ -941,8 +941,8 @@ def ik(
     max_restarts : int
         Restarts from random configurations (drawn from ``seed``) before giving up.  A pose
         whose only two solutions lie close together (the arm nearly stretched) is found from
-        about one random start in four: with 30, every one of 1,000,000 random reachable UR5
-        poses is solved (bench/ik_success.py), with 20 all but 33.  With 0, one attempt of
+        about one random start in four: with 30, all but 2 of 1,000,000 random reachable UR5
+        poses are solved (bench/ik_success.py), with 20 all but 33.  With 0, one attempt of
         the step rule alone: no restart, and no step along the Jacobian's weakest direction
         (see the module notes).
     max_step : float, optional
