@@ -626,8 +626,9 @@ def _singular_steps(problem, rows, Q: np.ndarray, J: np.ndarray, e: np.ndarray) 
     t = _quadratic_root(problem, rows, Q, u, v, a0, s)
     far = np.abs(t) > 2.0 * s  # far beyond the probes: fitted again where it landed
     if far.any():
-        s = np.where(far, np.abs(t), s)
-        t = np.where(far, _quadratic_root(problem, rows, Q, u, v, a0, s), t)
+        t[far] = _quadratic_root(
+            problem, rows[far], Q[far], u[far], v[far], a0[far], np.abs(t[far])
+        )
     Q = problem.wrap(Q + t[:, None] * v)
     for _ in range(_CORRECTIONS):
         e = problem.evaluate(Q, rows)[1]
