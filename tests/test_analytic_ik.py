@@ -12,7 +12,7 @@ from tests.reference import OFFICIAL_DH, dh_fk
 from tests.singular_poses import FAMILIES, NEAR, near_family, on_family
 from urkin.analytic_ik import ik_analytic, ik_closest
 from urkin.kinematics import singularity_factors
-from urkin.transforms import wrap_angles
+from urkin.transforms import pose_error, wrap_angles
 
 N_RANDOM = 10_000
 
@@ -250,6 +250,30 @@ def test_closest_is_the_nearest_2pi_equivalent_within_the_limits():
         assert result.success
         assert np.linalg.norm(result.q - current) == pytest.approx(nearest, abs=1e-9)
         assert np.all(np.abs(result.q) <= 2 * np.pi)
+
+
+@pytest.mark.parametrize("name", ["ur3", "ur5", "ur5e", "ur10e"])
+@pytest.mark.parametrize("q5", [0.0, 1e-14, np.pi, -np.pi + 1e-14])
+def test_closest_at_the_wrist_singularity_is_the_member_nearest_the_current(name, q5):
+    """With sin θ5 = 0 a one-parameter family reaches the pose and ik_analytic returns two
+    representatives per shoulder; ik_closest must still return the member nearest the current
+    configuration: the current one itself when it is exact, one nearby when it is a hair off
+    (not a representative with joints 4 and 6 turned by radians)."""
+    arm = urkin.robot(name)
+    rng = np.random.default_rng(12)
+    Q = rng.uniform(-np.pi, np.pi, (40, 6))
+    Q[:, 2] = rng.choice([-1, 1], 40) * rng.uniform(0.3, 2.5, 40)  # an elbow well bent
+    Q[:, 4] = q5
+    T = urkin.fk(arm, Q)
+    for rows in (slice(0, 1), slice(0, 3), slice(None)):  # one pose, a few, a stack
+        exact = ik_closest(arm, T[rows], Q[rows])
+        assert np.all(exact.success)
+        assert np.abs(wrap_angles(exact.q - Q[rows])).max() < 1e-9
+        near = ik_closest(arm, T[rows], Q[rows] + 1e-3)
+        assert np.all(near.success)
+        assert np.linalg.norm(wrap_angles(near.q - Q[rows]), axis=-1).max() < 0.02
+        position, angle = pose_error(urkin.fk(arm, near.q), T[rows])
+        assert position.max() < 1e-9 and angle.max() < 1e-9
 
 
 def test_closest_reports_unreachable_poses():

@@ -279,3 +279,51 @@ def test_drawing_functions_name_bad_arguments():
                 call()
     finally:
         plt.close("all")
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        (  # stacks that do not broadcast: urkin's message, not numpy's
+            lambda: urkin.numerical_ik.orientation_error(
+                tf.random_rotations(2, 0), tf.random_rotations(3, 1)
+            ),
+            ValueError,
+            "R_current and R_target must be rotations of matching stacks",
+        ),
+        # check=False is for float arrays of poses; anything else is checked anyway
+        (lambda: tf.pose_error(np.eye(3), np.eye(3), check=False), ValueError, "T1 must have"),
+        (lambda: tf.pose_error(T, [[1, 2]], check=False), ValueError, "T2 must have"),
+        (lambda: tf.wrap_angles(["a"], check=False), TypeError, "q must be numbers"),
+        # a ragged list: its rows have different lengths (not "must be numbers")
+        (lambda: urkin.fk(UR5, [[0] * 6, [0] * 5]), ValueError, "q must be a regular array"),
+        (lambda: tf.so3_exp([[1, 2, 3], [1, 2]]), ValueError, "rows have different lengths"),
+        # DH lengths: any real number but a bool, by name
+        (lambda: urkin.Robot("arm", True, -0.4, -0.4, 0.1, 0.1, 0.1), TypeError, "d1 must be a"),
+        (lambda: urkin.Robot("arm", 0.1, "x", -0.4, 0.1, 0.1, 0.1), TypeError, "a2 must be a"),
+        (lambda: urkin.Robot("arm", 0.1, -0.4, np.nan, 0.1, 0.1, 0.1), ValueError, "a3 must be"),
+        # a scalar home pose or screw list reports its own shape, ()
+        (lambda: poe.fk_space(1.0, S0, Q), ValueError, "M must have shape (4, 4); got ()"),
+        (lambda: poe.fk_space(M0, 1.0, Q), ValueError, "got ()"),
+        (lambda: poe.space_screws(np.zeros((0, 3))), ValueError, "at least one"),
+        (lambda: urkin.ik_closest(UR5, T, np.zeros(5)), ValueError, "shape (6,) for T"),
+        (
+            lambda: tj.line((-1e308, 0, 0), (1e308, 0, 0)),
+            ValueError,
+            "points 0 and 1 are too far apart",
+        ),
+    ],
+)
+def test_audited_inputs_get_errors_that_name_them(call, error, message):
+    with pytest.raises(error) as raised:
+        call()
+    assert message in str(raised.value)
+
+
+def test_numeric_scalars_are_lengths_and_far_targets_warn_nothing():
+    arm = urkin.Robot("arm", np.float32(0.1), np.int64(0), -0.4, 0.1, 0.1, 0.1)
+    assert all(type(x) is float for x in (arm.d1, arm.a2)) and arm.d1 == float(np.float32(0.1))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow warning on the way to the reason
+        result = urkin.ik(UR5, [1e300, 0.0, 0.0])
+    assert not result.success and "1e+300 m beyond the UR5's reach" in result.reason

@@ -65,6 +65,47 @@ def test_numerical_methods_track_warm_started(method):
     assert position.max() < 1e-9 and angle.max() < 1e-9
 
 
+@pytest.mark.parametrize("robot", [UR3, UR5, urkin.robot("ur5e")])
+def test_a_path_through_the_wrist_singularity_keeps_its_branch(robot):
+    """θ5 passes through 0 (one sample exactly on it), then the tool turns about its axis with
+    θ5 = 0 (a run of singular samples): ik_analytic's representatives there would swing
+    joints 4 and 6 by radians and back; the track continues smoothly, through every sample."""
+    through = np.tile([0.4, -1.3, 1.2, -0.6, 0.0, 0.2], (61, 1))
+    through[:, 4] = np.linspace(0.3, -0.3, 61)
+    through[30, 4] = 0.0
+    turning = np.tile([0.4, -1.3, 1.2, -0.6, 0.0, 0.2], (41, 1))
+    turning[:, 5] = np.linspace(0.2, 1.0, 41)
+    for Q in (through, turning, turning[::-1]):
+        poses = urkin.fk(robot, Q)
+        result = tj.track(robot, poses, Q[0])
+        assert result.ok.all(), result.failures
+        np.testing.assert_allclose(result.q, Q, atol=1e-9)
+        assert len(result.report.jumps) == 0
+        started_off = tj.track(robot, poses, Q[0] + 0.05)  # q0 a little off the path
+        assert started_off.ok.all()
+        assert np.abs(np.diff(started_off.q, axis=0)).max() < 0.05
+
+
+@pytest.mark.parametrize("method", ["lm", "nr", "dls", "poe"])
+def test_numerical_tracks_continue_across_pi_without_a_turn(method):
+    """ik wraps its solutions into (−π, π]; a track continues each joint by the equivalent
+    nearest the previous sample (joint 1 here goes from 3.0 to 3.3 rad)."""
+    Q = np.tile([3.0, -1.2, 1.4, -0.6, 1.1, 0.2], (31, 1))
+    Q[:, 0] = np.linspace(3.0, 3.3, 31)
+    result = tj.track(UR5, urkin.fk(UR5, Q), Q[0], method=method)
+    assert result.ok.all(), result.failures
+    np.testing.assert_allclose(result.q, Q, atol=1e-8)
+    assert len(result.report.jumps) == 0
+    # past +2π the joint would wind beyond its limit: the track stops there and says so
+    Q = np.tile([6.0, -1.2, 1.4, -0.6, 1.1, 0.2], (31, 1))
+    Q[:, 0] = np.linspace(6.0, 6.6, 31)
+    result = tj.track(UR5, urkin.fk(UR5, Q), Q[0], method=method)
+    assert result.ok[: int(np.argmax(Q[:, 0] > 2 * np.pi))].all()
+    assert not result.ok[Q[:, 0] > 2 * np.pi + 0.02].any()
+    assert np.abs(result.q).max() <= 2 * np.pi
+    assert all("joint 1 would turn past its limit" in why for why in result.failures.values())
+
+
 def test_a_sample_out_of_reach_leaves_the_arm_where_it_was_and_says_why():
     points = tj.line((0.3, 0.1, 0.3), (0.9, 0.1, 0.3)).points(0.01)  # UR3 reaches ~0.5 m
     there = np.r_[points, points[::-1]]  # out and back

@@ -174,7 +174,13 @@ def real(x: Any, name: str, *, complex_ok: bool = False, finite: bool = True) ->
         )
     try:
         array = np.asarray(x)
-    except (TypeError, ValueError) as exc:
+    except ValueError as exc:
+        if "inhomogeneous" in str(exc):  # nested sequences of different lengths
+            raise ValueError(
+                f"{name} must be a regular array of numbers: its rows have different lengths"
+            ) from None
+        raise TypeError(f"{name} must be numbers; got {type(x).__name__}") from exc
+    except TypeError as exc:
         raise TypeError(f"{name} must be numbers; got {type(x).__name__}") from exc
     kind = array.dtype.kind
     if kind == "O":

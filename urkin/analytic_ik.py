@@ -117,6 +117,7 @@ def _solve_one(
     misses: list[float] | None = None,
     root: float | None = None,
     short: dict[int, float] | None = None,
+    prefer: float | None = None,
 ) -> list[list[float] | None]:
     """The eight branches of one flange pose given as ``T.tolist()``, plain floats, no numpy:
     entry ``i`` is the solution of branch ``i`` (the row layout of :func:`ik_analytic` for a
@@ -125,7 +126,9 @@ def _solve_one(
     When given, ``misses`` collects how far the elbow falls short on each branch it drops, and
     ``short`` how far (m) on each branch (by its first row) whose elbow misses its border,
     dropped or not.
-    ``root`` replaces ``√((r − d4)(r + d4))`` (:func:`_shoulder_retry`)."""
+    ``root`` replaces ``√((r − d4)(r + d4))`` (:func:`_shoulder_retry`).  ``prefer``: at the
+    wrist singularity, the θ234 of the family member returned (both θ5 branches; one row where
+    its elbow reaches), in place of the two representatives."""
     d1, a2, a3, d4, d5, d6 = lengths
     (xx, yx, zx, px), (xy, yy, zy, py), (xz, yz, zz, pz) = rows[0], rows[1], rows[2]
     wx, wy, wz = px - d6 * zx, py - d6 * zy, pz - d6 * zz
@@ -175,7 +178,7 @@ def _solve_one(
             else:
                 suspect = True
                 q5 = math.atan2(S, C)
-                q234 = _representative_one(X, Y, flip, a2, a3, d5)
+                q234 = _representative_one(X, Y, flip, a2, a3, d5) if prefer is None else prefer
                 s234, c234 = math.sin(q234), math.cos(q234)
                 x4 = (c1 * c234, s1 * c234, s234)
                 sign = 1.0 if C >= 0.0 else -1.0
@@ -189,18 +192,20 @@ def _solve_one(
             if rho > big or rho < small:  # beyond the elbow's reach, by a hair or for good
                 miss = rho - big if rho > big else small - rho
                 # frame 3 moves at most d5 · band (_split_shift): most branches stay out
+                border, shift = (big if rho > big else small), 0.0
                 if S > WRIST_TOLERANCE and d5 * 0.5 * REACH_TOLERANCE >= miss * S:
                     spread = _shoulder_spread(px, py, r, root, d4, d6)
                     band = min(_SPLIT + spread, 0.5 * min(miss, REACH_TOLERANCE)) / S
-                    border = big if rho > big else small
                     shift = _split_shift(X, Y, q234, band, border, d5)
-                    if shift != 0.0:  # within θ234's rounding: onto the border
-                        q234 += shift
-                        q6 -= shift if C >= 0.0 else -shift  # θ234 ± θ6 stays
-                        s234, c234 = math.sin(q234), math.cos(q234)
-                        ex, ey = X - d5 * s234, Y + d5 * c234
-                        rho = math.hypot(ex, ey)
-                        miss = max(rho - big, small - rho)
+                elif S <= WRIST_TOLERANCE and prefer is not None:  # the nearest member that reaches
+                    shift = _split_shift(X, Y, q234, _PI, border, d5)
+                if shift != 0.0:  # within θ234's rounding (or its family): onto the border
+                    q234 += shift
+                    q6 -= shift if C >= 0.0 else -shift  # θ234 ± θ6 stays
+                    s234, c234 = math.sin(q234), math.cos(q234)
+                    ex, ey = X - d5 * s234, Y + d5 * c234
+                    rho = math.hypot(ex, ey)
+                    miss = max(rho - big, small - rho)
                 if miss > _ROUNDOFF * big and missed is not None:
                     missed[slot] = miss
                 if miss > REACH_TOLERANCE:
@@ -404,10 +409,13 @@ def _split_shifts(X, Y, q234, band, border, d5) -> np.ndarray:
     return np.where(ok & (np.abs(shift) <= band), shift, 0.0)
 
 
-def _solve_stack(T: np.ndarray, lengths: tuple[float, ...], out: np.ndarray) -> np.ndarray:
+def _solve_stack(
+    T: np.ndarray, lengths: tuple[float, ...], out: np.ndarray, prefer: np.ndarray | None = None
+) -> np.ndarray:
     """All eight branches for flange poses ``T`` (N, 4, 4): writes the solutions into ``out``
     (N, 8, 6), row ``i`` the branch of bits (θ1 branch, θ5 sign, θ3 sign), NaN where there is
-    none, and returns the (N, 8) mask of the real, distinct ones.
+    none, and returns the (N, 8) mask of the real, distinct ones.  ``prefer`` (N,): at the
+    wrist singularity, each pose's θ234 of the family member returned (:func:`_solve_one`).
 
     The same steps as :func:`_solve_one`, on whole columns: every intermediate has the
     branches in front and the poses last, ``(2, …, N)``, so each numpy operation runs over
@@ -457,7 +465,10 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...], out: np.ndarray) -> 
     X = X[:, None, :]
     if wrist.any():
         branch, pose = np.nonzero(wrist)
-        rep = _representatives(X[branch, 0, pose], Y[pose], a2, a3, d5)  # (k, 2)
+        if prefer is None:
+            rep = _representatives(X[branch, 0, pose], Y[pose], a2, a3, d5)  # (k, 2)
+        else:
+            rep = np.repeat(prefer[pose, None], 2, axis=1)
         cr, sr = np.cos(rep), np.sin(rep)
         cos1, sin1 = c1[branch, pose][:, None], s1[branch, pose][:, None]
         dot_x = (cos1 * xx[pose, None] + sin1 * xy[pose, None]) * cr + xz[pose, None] * sr
@@ -474,6 +485,8 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...], out: np.ndarray) -> 
     # near the wrist singularity: onto the border within θ234's rounding (_split_shift), where
     # frame 3, moving d5 · band at most, can get there
     reach5 = (d5 * 0.5 * REACH_TOLERANCE) / np.where(wrist, np.inf, S)[:, None, :]
+    if prefer is not None:  # at the wrist singularity: the nearest member that reaches
+        reach5 = np.where(wrist[:, None, :], np.inf, reach5)
     beyond = (miss > 0.0) & (miss <= reach5)
     if beyond.any():
         b, f, k = np.nonzero(beyond)
@@ -481,6 +494,8 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...], out: np.ndarray) -> 
         spread = _shoulder_spread(px[k], py[k], r[k], root[k], d4, d6)
         limit = 0.5 * np.minimum(miss[b, f, k], REACH_TOLERANCE)
         band = np.minimum(_SPLIT + spread, limit) / S[b, k]
+        if prefer is not None:
+            band = np.where(wrist[b, k], np.pi, band)
         shift = _split_shifts(X[b, 0, k], Y[k], q234[b, f, k], band, border, d5)
         moved = shift != 0.0
         b, f, k, shift = b[moved], f[moved], k[moved], shift[moved]
@@ -548,7 +563,9 @@ def _solve_stack(T: np.ndarray, lengths: tuple[float, ...], out: np.ndarray) -> 
         for i in np.flatnonzero(retry):
             rows = [
                 found if found is not None else [np.nan] * 6
-                for found in _solve_one(T[i].tolist(), lengths)
+                for found in _solve_one(
+                    T[i].tolist(), lengths, prefer=None if prefer is None else float(prefer[i])
+                )
             ]
             q[i] = rows
             keep[i] = ~np.isnan(q[i, :, 0])
@@ -561,30 +578,37 @@ _BLOCK = 1000
 _FEW = 13
 
 
-def _solve_few(poses: list[list[list[float]]], lengths: tuple[float, ...]) -> np.ndarray:
-    """:func:`_solve_one` of each pose given as ``T.tolist()``: (N, 8, 6), NaN rows where a
-    branch has no solution or repeats one."""
+def _solve_few(
+    poses: list[list[list[float]]], lengths: tuple[float, ...], prefer: list[float] | None = None
+) -> np.ndarray:
+    """:func:`_solve_one` of each pose given as ``T.tolist()`` (with its ``prefer``, if given):
+    (N, 8, 6), NaN rows where a branch has no solution or repeats one."""
     nan, flat = [math.nan] * 6, []
-    for pose in poses:
-        for row in _solve_one(pose, lengths):
+    for i, pose in enumerate(poses):
+        for row in _solve_one(pose, lengths, prefer=None if prefer is None else prefer[i]):
             flat += nan if row is None else row
     return np.array(flat).reshape(len(poses), 8, 6)  # one flat list: a third of a nested one's cost
 
 
-def _solve(T: np.ndarray, lengths: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
+def _solve(
+    T: np.ndarray, lengths: tuple[float, ...], prefer: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_solve_stack` block by block, without floating-point warnings (out-of-reach
-    poses are expected): (N, 8, 6) branches, rows of NaN where the (N, 8) mask is False."""
+    poses are expected): (N, 8, 6) branches, rows of NaN where the (N, 8) mask is False.
+    ``prefer`` (N,): the θ234 to take at the wrist singularity (:func:`_solve_one`)."""
     n = len(T)
     if n == 0:
         return np.empty((0, 8, 6)), np.empty((0, 8), dtype=bool)
     if n <= _FEW:  # a few poses: the one-pose code, pose by pose, beats the stack's fixed cost
-        q = _solve_few(T.tolist(), lengths)
+        q = _solve_few(T.tolist(), lengths, None if prefer is None else prefer.tolist())
         return q, ~np.isnan(q[..., 0])
     q, keep = np.empty((n, 8, 6)), np.empty((n, 8), dtype=bool)
     with np.errstate(invalid="ignore", divide="ignore"):
         for start in range(0, n, _BLOCK):
             block = slice(start, start + _BLOCK)
-            keep[block] = _solve_stack(T[block], lengths, q[block])
+            keep[block] = _solve_stack(
+                T[block], lengths, q[block], None if prefer is None else prefer[block]
+            )
     return q, keep
 
 
@@ -599,6 +623,15 @@ def _flange_poses(
     if not robot._plain:
         poses = flange_pose(robot, poses, check=False)
     return poses, lead, skew
+
+
+def _members(robot: Robot, T: np.ndarray, prefer: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`ik_analytic` of checked tool poses ``T`` (K, 4, 4) with, at the wrist singularity,
+    the family member whose ``θ2 + θ3 + θ4`` is ``prefer`` (K,) (or, where its elbow does not
+    reach, the nearest that does) in place of the two representatives: (K, 8, 6) rows, NaN
+    where the (K, 8) mask is False.  What a path through the singularity continues with."""
+    poses, _, _ = _flange_poses(robot, T, None)
+    return _solve(poses, robot.lengths, prefer)
 
 
 def _why_not(robot: Robot, goal: np.ndarray, poses: np.ndarray, valid: np.ndarray, i: int) -> str:
@@ -726,14 +759,26 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
     current = real(q_current, "q_current")
     if current.shape[-1:] != (6,) or current.shape[:-1] not in ((), lead):
         raise ValueError(
-            f"q_current must have shape (6,) or {(*lead, 6)} for T of shape {goal.shape}; "
-            f"got {current.shape}"
+            "q_current must have shape (6,)"
+            + (f" or {(*lead, 6)}" if lead else "")
+            + f" for T of shape {goal.shape}; got {current.shape}"
         )
     largest = float(np.abs(current).max(initial=0.0))
     if largest > MAX_JOINT_ANGLE:
         raise _range_error(largest, "q_current")
     current = np.broadcast_to(current, (*lead, 6)).reshape(-1, 6)
     q, valid = _solve(poses, robot.lengths)
+    # at the wrist singularity a family reaches the pose: its member that keeps the current
+    # θ2 + θ3 + θ4 (and so, on a path through it, the current θ6) joins the candidates
+    singular = (valid & (np.abs(np.sin(q[..., 4])) <= WRIST_TOLERANCE)).any(axis=1)
+    if singular.any():
+        rows = np.flatnonzero(singular)
+        extra_q, extra_valid = _solve(
+            poses[rows], robot.lengths, current[rows, 1] + current[rows, 2] + current[rows, 3]
+        )
+        q = np.concatenate([q, np.full_like(q, np.nan)], axis=1)
+        valid = np.concatenate([valid, np.zeros_like(valid)], axis=1)
+        q[rows, 8:], valid[rows, 8:] = extra_q, extra_valid
     lower = np.array([lo for lo, _ in robot.joint_limits])
     upper = np.array([hi for _, hi in robot.joint_limits])
     shifted = _whole_turns_into_limits(q, current[:, None, :], lower, upper)

@@ -249,7 +249,8 @@ def verified(
     if goal.shape[-2:] == (4, 4):
         position_error, rotation_error = pose_error(T, goal, check=False)
     else:
-        position_error = np.linalg.norm(T[:, :3, 3] - goal, axis=-1)
+        with np.errstate(over="ignore"):  # a target 1e300 m away: inf, and the reason says so
+            position_error = np.linalg.norm(T[:, :3, 3] - goal, axis=-1)
         rotation_error = np.zeros(n)
     success = found & (position_error <= tol_position) & (rotation_error <= tol_orientation)
     why = list(reasons)

@@ -120,7 +120,14 @@ def orientation_error(R_current: ArrayLike, R_target: ArrayLike, form: str = "lo
     choice(form, "form", ("log", "cross"))
     Rc = check_rotation(R_current, name="R_current")
     Rt = check_rotation(R_target, name="R_target")
-    sin_axis, _, omega = rotation_parts(Rt @ np.swapaxes(Rc, -1, -2), check=False)
+    try:
+        relative = Rt @ np.swapaxes(Rc, -1, -2)
+    except ValueError:
+        raise ValueError(
+            "R_current and R_target must be rotations of matching stacks; got shapes "
+            f"{Rc.shape} and {Rt.shape}"
+        ) from None
+    sin_axis, _, omega = rotation_parts(relative, check=False)
     return omega if form == "log" else sin_axis
 
 

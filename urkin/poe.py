@@ -141,8 +141,10 @@ def space_screws(
             raise type(error)(
                 f"robot must be a urkin Robot or a DH table of rows (d, a, alpha); {error}"
             ) from None
-        if table.ndim != 2 or table.shape[1] != 3:
-            raise ValueError(f"a DH table has rows (d, a, alpha): shape (n, 3); got {table.shape}")
+        if table.ndim != 2 or table.shape[1] != 3 or not len(table):
+            raise ValueError(
+                f"a DH table has rows (d, a, alpha), at least one: shape (n, 3); got {table.shape}"
+            )
         frames = _frames_at_zero(table, convention)
         axes = frames[:-1] if convention == "standard" else frames[1:]
         M = frames[-1]
@@ -200,11 +202,12 @@ def _revolute_pieces(data: bytes, n: int) -> tuple[np.ndarray, np.ndarray, np.nd
 
 
 def _check(M: ArrayLike | None, screws: ArrayLike, q: ArrayLike, name: str):
-    axes = np.ascontiguousarray(real(screws, name))
+    axes = real(screws, name)
     if axes.ndim != 2 or axes.shape[0] != 6:
         raise ValueError(
             f"{name} must have shape (6, n), one screw axis per column; got {axes.shape}"
         )
+    axes = np.ascontiguousarray(axes)
     angles = real(q, "q")
     n = axes.shape[1]
     if n == 0:
@@ -215,10 +218,10 @@ def _check(M: ArrayLike | None, screws: ArrayLike, q: ArrayLike, name: str):
         )
     if M is None:
         return None, axes, angles
-    home = np.ascontiguousarray(real(M, "M"))
+    home = real(M, "M")
     if home.shape != (4, 4):
         raise ValueError(f"M must have shape (4, 4); got {home.shape}")
-    return _checked_home(home.tobytes()), axes, angles
+    return _checked_home(np.ascontiguousarray(home).tobytes()), axes, angles
 
 
 def _home(M: ArrayLike) -> ArrayLike:

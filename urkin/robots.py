@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import functools
 import math
+import numbers
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -138,9 +139,14 @@ class Robot:
     )
 
     def __post_init__(self) -> None:
+        for label in ("d1", "a2", "a3", "d4", "d5", "d6"):
+            x = getattr(self, label)
+            if isinstance(x, (bool, np.bool_)) or not isinstance(x, numbers.Real):
+                raise TypeError(f"{self.name}: {label} must be a length in metres; got {x!r}")
+            if not math.isfinite(x):
+                raise ValueError(f"{self.name}: {label} must be finite; got {x!r}")
+            object.__setattr__(self, label, float(x))  # numpy scalars too: one float type
         lengths = (self.d1, self.a2, self.a3, self.d4, self.d5, self.d6)
-        if not all(isinstance(x, (int, float)) and math.isfinite(x) for x in lengths):
-            raise ValueError(f"{self.name}: DH lengths must be finite numbers; got {lengths}")
         if any(abs(x) > 5.0 for x in lengths):
             raise ValueError(
                 f"{self.name}: DH lengths are in metres; {lengths} looks like millimetres"

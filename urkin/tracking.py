@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._inputs import choice, positive, real
-from urkin.analytic_ik import ik_analytic, ik_closest
+from urkin.analytic_ik import WRIST_TOLERANCE, _members, ik_analytic, ik_closest
 from urkin.kinematics import fk
 from urkin.numerical_ik import ik
 from urkin.robots import Robot, check_robot
@@ -80,6 +80,7 @@ def _analytic(
     robot: Robot, poses: np.ndarray, q0: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, dict[int, str]]:
     solutions, real_rows = ik_analytic(robot, poses, return_mask=True)  # (M, 8, 6), (M, 8)
+    _through_the_wrist(robot, poses, q0, solutions, real_rows)
     reached = np.flatnonzero(real_rows.any(axis=1))
     q = np.empty((len(reached), 6))
     failures: dict[int, str] = {}
@@ -107,11 +108,7 @@ def _analytic(
             stop = int(beyond[0])
             joint = int(np.flatnonzero((q[stop] < lower - 1e-12) | (q[stop] > upper + 1e-12))[0])
             for k in reached[stop:]:
-                failures[int(k)] = (
-                    f"joint {joint + 1} would turn past its limit "
-                    f"({math.degrees(lower[joint]):.0f}°…{math.degrees(upper[joint]):.0f}°) to "
-                    f"follow the path from sample {int(reached[stop])} on: staying put"
-                )
+                failures[int(k)] = _winding(joint, lower, upper, int(reached[stop]))
             reached, q = reached[:stop], q[:stop]
     missing = np.setdiff1d(np.arange(len(poses)), np.r_[reached, list(failures)])
     if len(missing):
@@ -125,6 +122,41 @@ def _analytic(
     return full, ok, failures
 
 
+def _through_the_wrist(
+    robot: Robot, poses: np.ndarray, q0: np.ndarray, solutions: np.ndarray, real_rows: np.ndarray
+) -> None:
+    """At wrist-singular samples (``sin θ5 = 0``: a one-parameter family of solutions, of which
+    :func:`ik_analytic` returns two representatives per shoulder), replace each sample's rows by
+    the members that keep ``θ2 + θ3 + θ4`` of the rows of the last sample before them that is
+    not singular (of ``q0`` before the first): row ``r`` becomes the member nearest that
+    sample's row ``r``, so a path through the singularity keeps its branch, joint 4 included,
+    where the representatives would swing joints 4 and 6 by a large angle and back.  In place,
+    on ``solutions`` (M, 8, 6) and ``real_rows`` (M, 8)."""
+    singular = (real_rows & (np.abs(np.sin(solutions[..., 4])) <= WRIST_TOLERANCE)).any(axis=1)
+    if not singular.any():
+        return
+    m = len(poses)
+    anchor = np.maximum.accumulate(np.where(singular, -1, np.arange(m)))  # −1: q0
+    at = np.flatnonzero(singular)
+    before = np.where(
+        (anchor[at] >= 0)[:, None, None], solutions[np.maximum(anchor[at], 0)], q0
+    )  # (K, 8, 6): the rows each singular sample continues
+    usable = np.where((anchor[at] >= 0)[:, None], real_rows[np.maximum(anchor[at], 0)], True)
+    k, r = np.nonzero(usable)
+    found, valid = _members(
+        robot, poses[at[k]], before[k, r, 1] + before[k, r, 2] + before[k, r, 3]
+    )  # (H, 8, 6) members for each usable (sample, row)
+    gap = np.linalg.norm(wrap_angles(found - before[k, r, None], check=False), axis=-1)
+    gap[~valid] = np.inf
+    nearest = np.argmin(gap, axis=1)
+    hit = np.isfinite(gap[np.arange(len(k)), nearest])
+    rows = np.full((len(at), 8, 6), np.nan)
+    rows[k[hit], r[hit]] = found[np.flatnonzero(hit), nearest[hit]]
+    kept = ~np.isnan(rows[..., 0])
+    solutions[at] = np.where(kept.any(axis=1)[:, None, None], rows, solutions[at])
+    real_rows[at] = np.where(kept.any(axis=1)[:, None], kept, real_rows[at])
+
+
 def _numerical(
     robot: Robot, poses: np.ndarray, q0: np.ndarray, method: str, tol: float
 ) -> tuple[np.ndarray, np.ndarray, dict[int, str]]:
@@ -133,6 +165,7 @@ def _numerical(
     q = np.empty((len(poses), 6))
     ok = np.zeros(len(poses), dtype=bool)
     failures: dict[int, str] = {}
+    lower, upper = _limits(robot)
     current = q0
     for k, T in enumerate(poses):
         result = ik(
@@ -144,12 +177,28 @@ def _numerical(
             tol_orientation=tol,
             max_restarts=0,
         )
-        if result.success:
-            current = np.asarray(result.q, dtype=float)
-            q[k], ok[k] = current, True
-        else:
+        if not result.success:
             failures[k] = str(result.reason)
+            continue
+        # ik wraps into (−π, π]: continue each joint by the equivalent nearest the last sample
+        solved = np.asarray(result.q, dtype=float)
+        solved = solved + _TWO_PI * np.round((current - solved) / _TWO_PI)
+        beyond = np.flatnonzero((solved < lower - 1e-12) | (solved > upper + 1e-12))
+        if len(beyond):
+            failures[k] = _winding(beyond[0], lower, upper, k)
+            continue
+        current = solved
+        q[k], ok[k] = current, True
     return q, ok, failures
+
+
+def _winding(joint: int, lower: np.ndarray, upper: np.ndarray, k: int) -> str:
+    """Why a sample from ``k`` on is not followed: ``joint`` would turn past its limit."""
+    return (
+        f"joint {joint + 1} would turn past its limit "
+        f"({math.degrees(lower[joint]):.0f}°…{math.degrees(upper[joint]):.0f}°) to "
+        f"follow the path from sample {k} on: staying put"
+    )
 
 
 def track(

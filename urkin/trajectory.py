@@ -242,7 +242,14 @@ def polyline(points: ArrayLike, closed: bool = False) -> Path:
         vertices = vertices[:-1]  # closing is what closed=True does
     if closed:
         vertices = np.concatenate([vertices, vertices[:1]])
-    lengths = Path(vertices=vertices, closed=closed).segment_lengths
+    with np.errstate(over="ignore"):
+        lengths = Path(vertices=vertices, closed=closed).segment_lengths
+    if not np.isfinite(lengths).all():
+        k = int(np.argmax(~np.isfinite(lengths)))
+        raise ValueError(
+            f"points {k} and {(k + 1) % (len(vertices) - closed)} are too far apart: their "
+            "distance overflows a float (points are in metres)"
+        )
     if np.any(lengths == 0.0):
         k = int(np.argmin(lengths))
         raise ValueError(

@@ -664,8 +664,8 @@ def pose_error(
     (0.3, 1e-12)
     """
     checking = _checking(check)
-    A = check_transform(T1, name="T1") if checking else T1
-    B = check_transform(T2, name="T2") if checking else T2
+    A = T1 if not checking and _poses(T1) else check_transform(T1, name="T1")
+    B = T2 if not checking and _poses(T2) else check_transform(T2, name="T2")
     if A.shape == B.shape == (4, 4):  # the scalar fast path
         (a, b, c, x), (d, e, f, y), (g, h, i, z), _ = A.tolist()
         (a2, b2, c2, x2), (d2, e2, f2, y2), (g2, h2, i2, z2), _ = B.tolist()
@@ -698,6 +698,12 @@ def pose_error(
     return np.sqrt(np.sum(dp * dp, axis=-1)), angle
 
 
+def _poses(T: object) -> bool:
+    """Whether ``T`` is what ``check=False`` takes: a float array of shape (..., 4, 4) (else it
+    is checked anyway, for an error that names it rather than numpy's)."""
+    return type(T) is np.ndarray and T.dtype == np.float64 and T.shape[-2:] == (4, 4)
+
+
 def wrap_angles(q: ArrayLike, *, check: bool = True, out: np.ndarray | None = None) -> np.ndarray:
     """Angles wrapped into (−π, π], the one interval urkin uses everywhere.
 
@@ -721,7 +727,7 @@ def wrap_angles(q: ArrayLike, *, check: bool = True, out: np.ndarray | None = No
     >>> wrap_angles([np.pi, -np.pi, 3 * np.pi / 2, 0.5])
     array([ 3.14159265,  3.14159265, -1.57079633,  0.5       ])
     """
-    checking = _checking(check)
+    checking = _checking(check) or not isinstance(q, (np.ndarray, np.floating, float))
     if checking:
         angles = real(q, "q", finite=False)
         if np.isinf(angles).any():
