@@ -582,3 +582,42 @@ def test_explain_names_spheres_when_a_sphere_pair_of_two_tabulated_links_is_clos
         assert "meshes" not in text and model.names[c.sphere[k]] in text
     for k in np.flatnonzero(c.meshes)[:5]:
         assert "meshes" in planning.explain(model, planning.Scene(), Q[k])
+
+
+def test_obstacles_keep_their_own_numbers():
+    """An obstacle copies what it is given, read-only: editing the caller's array afterwards
+    neither bypasses the checks (a NaN centre, a negative size) nor changes the scene."""
+    centre, size = np.array([0.0, 0.0, -0.06]), np.array([2.0, 2.0, 0.1])
+    table = planning.Box(centre, size, name="table")
+    size[:] = [-1.0, 2.0, 0.1]
+    centre[0] = np.nan
+    scene = planning.Scene(boxes=[table])
+    down = [0, 0.5, 0, 0, 0, 0]  # the upper arm down through the table
+    assert not planning.is_free(MODEL, scene, down)
+    assert np.array_equal(table.centre, [0, 0, -0.06]) and np.array_equal(table.size, [2, 2, 0.1])
+    for value in (table.centre, table.size, table.rotation):
+        assert not value.flags.writeable
+    axis = np.array([0.0, 0.0, 1.0])
+    rod = planning.Cylinder([0.4, 0, 0], axis, 0.05, 0.5)
+    axis[0] = 5.0
+    assert np.array_equal(rod.axis, [0, 0, 1]) and not rod.axis.flags.writeable
+
+
+def test_audited_planning_inputs_get_errors_that_name_them():
+    eye = np.eye(3)
+    with pytest.raises(ValueError, match="half_a must be half edge lengths ≥ 0"):
+        planning.box_separation([0, 0, 0], eye, [-1, 1, 1], [3, 0, 0], eye, [1, 1, 1])
+    with pytest.raises(ValueError, match="R_a"):
+        planning.box_separation([0, 0, 0], 2 * eye, [1, 1, 1], [3, 0, 0], eye, [1, 1, 1])
+    ur3 = urkin.robot("ur3")
+    table = planning.Block.standing("table", [1.2, 1.2, 0.03], 0, 0, bottom=-0.03)
+    cube = planning.Block.standing("A", [0.05] * 3, 0.3, 0.1)
+    world = planning.World(ur3, planning.sphere_model(ur3), table, cube)  # one block
+    assert world.names == ("A",)
+    with pytest.raises(TypeError, match=r"blocks must be a sequence of planning\.Block"):
+        planning.World(ur3, planning.sphere_model(ur3), table, 5)
+    assert "x must be a number in metres; got True" in str(
+        planning.validate_goal(world, ("A", True, 0.1))
+    )
+    with pytest.raises(ValueError, match="plan=True plans from q_start"):
+        planning.validate_goal(world, ("A", 0.25, -0.15), plan=True)

@@ -59,8 +59,22 @@ def test_failures_are_sentences_and_bad_input_is_refused():
         ValueError, match=r"start is in collision: upper arm sphere \d+ penetrates box 'table'"
     ):
         planning.rrt_connect(MODEL, WALL, [0, 0.5, 0, 0, 0, 0], GOAL)
-    with pytest.raises(ValueError, match="every goal is in collision"):
+    with pytest.raises(
+        ValueError, match=r"no goal can be reached \(1 goals given\): 1 in collision"
+    ):
         planning.rrt_connect(MODEL, WALL, START, [0, 0.5, 0, 0, 0, 0])
+    # one goal outside the limits, one in collision: each kind counted, with an example
+    with pytest.raises(ValueError) as raised:
+        planning.rrt_connect(MODEL, WALL, START, [[7, 0, 0, 0, 0, 0], [0, 0.5, 0, 0, 0, 0]])
+    message = str(raised.value)
+    assert "1 outside the joint limits (goal 0: joint 1 is 7 rad" in message
+    assert "1 in collision (goal 1: upper arm sphere" in message
+    with pytest.raises(
+        ValueError, match=r"goals must be one configuration .* got shape \(2, 3, 6\)"
+    ):
+        planning.rrt_connect(MODEL, WALL, START, np.tile(GOAL, (2, 3, 1)))
+    with pytest.raises(ValueError, match=r"goals \(a pose\) must end in the row \[0, 0, 0, 1\]"):
+        planning.rrt_connect(MODEL, WALL, START, np.ones((4, 4)))
     for options, kind, message in (
         ({"seed": "x"}, TypeError, r"seed must be an integer ≥ 0 \(a random seed\); got str 'x'"),
         ({"seed": -1}, ValueError, "seed must be an integer ≥ 0"),
@@ -80,7 +94,7 @@ def test_failures_are_sentences_and_bad_input_is_refused():
         planning.rrt_connect(MODEL, WALL, START, far)
     for goals, kind, message in (
         ("abc", TypeError, "goals must be numbers; got str"),
-        ([[0, 1, 2, 3, 4, 5], [0, 1]], TypeError, "goals must be numbers"),
+        ([[0, 1, 2, 3, 4, 5], [0, 1]], ValueError, "goals must be a regular array of numbers"),
         (
             np.zeros((0, 6)),
             ValueError,

@@ -308,10 +308,41 @@ def test_hand_built_models_check_their_rows():
         model.with_tool_spheres(np.zeros((2, 6)), 0.01)  # not silently four centres
     with pytest.raises(ValueError, match=r"radii must be one radius or one per centre \(1\)"):
         model.with_tool_spheres([[0, 0, 0.1]], [0.01, 0.02])
-    with pytest.raises(ValueError, match=r"radii\[1\] must be positive \(metres\); got -0.01"):
+    with pytest.raises(ValueError, match=r"radii\[1\] must be positive and at most 2 m"):
         model.with_tool_spheres([[0, 0, 0.1], [0, 0, 0.2]], [0.01, -0.01])
+    with pytest.raises(ValueError, match=r"radii\[0\] must be positive and at most 2 m"):
+        model.with_tool_spheres([[0, 0, 0.1]], 100.0)  # not rows[0], which the caller never saw
+    with pytest.raises(TypeError, match="name must be a str"):
+        model.with_tool_spheres([[0, 0, 0.1]], 0.02, name=3)
+    with pytest.raises(ValueError, match=r"pairs must be integer sphere indices of shape \(P, 2\)"):
+        planning.SphereModel.from_rows(ur5, [[3, 0, 0, 0, 0.1], [6, 0, 0, 0, 0.1]], [[0, 1], [1]])
     with pytest.raises(TypeError, match=r"boxes\[0\]: .*unexpected keyword argument 'center'"):
         planning.Scene(boxes=[{"center": [0, 0, 0], "size": [1, 1, 1]}])
+
+
+def test_the_constructor_checks_and_copies_what_it_is_given():
+    """SphereModel(...) is public: it checks its fields as from_rows does (naming the sphere)
+    and keeps read-only copies, so the caller's arrays stay theirs and cannot change it."""
+    ur5 = urkin.robot("ur5")
+    frames, centres, radii = np.array([3, 6]), np.zeros((2, 3)), np.array([0.05, 0.04])
+    pairs = np.zeros((0, 2), dtype=int)
+    model = planning.SphereModel(ur5, frames, centres, radii, pairs, ("a", "b"))
+    radii[0] = -1.0  # the caller's array is still writeable, and the model keeps its own
+    assert model.radii[0] == 0.05 and not model.radii.flags.writeable
+    with pytest.raises(ValueError, match="sphere 0: the radius must be positive"):
+        planning.SphereModel(ur5, frames, centres, np.array([-0.1, 0.04]), pairs, ("a", "b"))
+    with pytest.raises(ValueError, match="sphere 1: the frame must be an integer"):
+        planning.SphereModel(ur5, [3, 9], centres, [0.05, 0.04], pairs, ("a", "b"))
+    with pytest.raises(ValueError, match=r"centres and radii must have shapes \(2, 3\)"):
+        planning.SphereModel(ur5, [3, 6], [[0, 0, 0]], [0.1], pairs, ("a", "b"))
+    with pytest.raises(ValueError, match="two different spheres among 0 … 1"):
+        planning.SphereModel(ur5, [3, 6], centres, [0.05, 0.04], [[0, 2]], ("a", "b"))
+    with pytest.raises(ValueError, match="names holds 1 labels for 2 spheres"):
+        planning.SphereModel(ur5, [3, 6], centres, [0.05, 0.04], pairs, ("a",))
+    with pytest.raises(TypeError, match="robot must be a urkin Robot"):
+        planning.SphereModel("ur5", [3, 6], centres, [0.05, 0.04], pairs, ("a", "b"))
+    with pytest.raises(TypeError, match="meshes must be a tuple"):
+        planning.SphereModel(ur5, [3, 6], centres, [0.05, 0.04], pairs, ("a", "b"), "", [1])
 
 
 def test_mesh_pairs_name_what_is_wrong_with_their_arguments():

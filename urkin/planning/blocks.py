@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._inputs import positive, real, shape_text
-from urkin.transforms import check_transform, make_transform, rot_z, wrap_angles
+from urkin.transforms import check_rotation, check_transform, make_transform, rot_z, wrap_angles
 
 __all__ = [
     "Block",
@@ -281,6 +281,11 @@ def box_separation(
     ca, cb = _stack(centre_a, "centre_a", (3,)), _stack(centre_b, "centre_b", (3,))
     Ra, Rb = _stack(R_a, "R_a", (3, 3)), _stack(R_b, "R_b", (3, 3))
     ha, hb = _stack(half_a, "half_a", (3,)), _stack(half_b, "half_b", (3,))
+    for R, name in ((Ra, "R_a"), (Rb, "R_b")):
+        check_rotation(R, name=name)  # the test takes the columns as the box's unit axes
+    for h, name in ((ha, "half_a"), (hb, "half_b")):
+        if np.any(h < 0):
+            raise ValueError(f"{name} must be half edge lengths ≥ 0 (metres); got {h.min():g}")
     try:
         lead = np.broadcast_shapes(
             ca.shape[:-1], Ra.shape[:-2], ha.shape[:-1], cb.shape[:-1], Rb.shape[:-2], hb.shape[:-1]

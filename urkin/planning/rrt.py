@@ -47,6 +47,7 @@ from urkin.planning.checks import (
 )
 from urkin.planning.scene import Scene, _dot
 from urkin.planning.spheres import SphereModel
+from urkin.transforms import check_transform
 
 __all__ = ["Plan", "rrt_connect", "shortcut"]
 
@@ -100,12 +101,17 @@ def _goal_configurations(
     if array.shape[-2:] == (4, 4):
         if array.ndim != 2:
             raise ValueError(f"goals: give one pose (4, 4); got shape {array.shape}")
-        solutions = ik_analytic(model.robot, array)
+        solutions = ik_analytic(model.robot, check_transform(array, name="goals (a pose)"))
         if len(solutions) == 0:
             why = ik_closest(model.robot, array, np.zeros(6)).reason
             raise ValueError(f"goals: the pose has no inverse kinematics solution: {why}")
         return _turned_into_limits(model, np.asarray(solutions, dtype=float), q_start), True
-    Q, _, _ = _joints(goals, "goals")
+    Q, lead, _ = _joints(goals, "goals")
+    if len(lead) > 1:
+        raise ValueError(
+            "goals must be one configuration (6,), a list of them (G, 6) or one pose (4, 4); "
+            f"got shape {array.shape}"
+        )
     return Q.reshape(-1, 6).copy(), False
 
 
@@ -194,11 +200,7 @@ def rrt_connect(
         _within(G[0], lower, upper, "the pose's solution 0" if pose else "goals[0]")
     free = inside & ~_collides(model, scene, G)
     if not free.any():
-        first = int(np.flatnonzero(inside)[0])
-        raise ValueError(
-            f"every goal is in collision ({len(G)} given); goal {first}: "
-            f"{_offence(model, scene, G[first])}"
-        )
+        raise ValueError(_no_goal(model, scene, G, inside, pose))
     rng = np.random.default_rng(seed)
     capacity = min(2 * max_iterations, 4096) + len(G) + 2  # doubled when full
     trees = [
@@ -369,6 +371,29 @@ _MIN_STEP = 1e-3
 
 #: What a seed must be (the messages of the option checks).
 _SEED = "an integer ≥ 0 (a random seed)"
+
+
+def _no_goal(
+    model: SphereModel, scene: Scene, G: np.ndarray, inside: np.ndarray, pose: bool
+) -> str:
+    """Why none of the goals ``G`` (K, 6) can be planned to: those not ``inside`` the joint
+    limits are outside them, the others in collision; one example of each."""
+    what = "solution" if pose else "goal"
+    parts = []
+    outside = np.flatnonzero(~inside)
+    if len(outside):
+        k = int(outside[0])
+        lower, upper = _limits(model)
+        j = int(np.flatnonzero((G[k] < lower) | (G[k] > upper))[0])
+        parts.append(
+            f"{len(outside)} outside the joint limits ({what} {k}: joint {j + 1} is "
+            f"{G[k, j]:.4g} rad, allowed [{lower[j]:.4g}, {upper[j]:.4g}])"
+        )
+    colliding = np.flatnonzero(inside)
+    k = int(colliding[0])
+    parts.append(f"{len(colliding)} in collision ({what} {k}: {_offence(model, scene, G[k])})")
+    given = f"the pose's {len(G)} solutions" if pose else f"{len(G)} goals given"
+    return f"no goal can be reached ({given}): " + "; ".join(parts)
 
 
 def _within(q: np.ndarray, lower: np.ndarray, upper: np.ndarray, name: str) -> None:

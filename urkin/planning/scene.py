@@ -89,6 +89,14 @@ def _vector(x: ArrayLike, name: str, *, bounded: bool = True) -> np.ndarray:
         raise ValueError(f"{name} must be a 3-vector (metres); got shape {v.shape}")
     if bounded and np.abs(v).max() > FARTHEST:
         raise _far(float(np.abs(v).max()), name)
+    return _frozen(v)
+
+
+def _frozen(v: np.ndarray) -> np.ndarray:
+    """A read-only copy of ``v``: an obstacle keeps its own numbers (a scene caches them, and
+    an edit of the caller's array after the checks would bypass them)."""
+    v = np.array(v, dtype=float)
+    v.setflags(write=False)
     return v
 
 
@@ -136,7 +144,7 @@ class Box:
         # further than round-off from orthonormal is replaced by its nearest rotation
         if np.abs(R.T @ R - np.eye(3)).max() > 1e-15:
             R = orthonormalize(R)
-        object.__setattr__(self, "rotation", R)
+        object.__setattr__(self, "rotation", _frozen(R))
 
 
 @dataclass(frozen=True)
@@ -154,7 +162,9 @@ class Cylinder:
         _name(self.name, "cylinder")
         object.__setattr__(self, "centre", _vector(self.centre, "cylinder centre"))
         object.__setattr__(
-            self, "axis", unit(_vector(self.axis, "cylinder axis", bounded=False), "cylinder axis")
+            self,
+            "axis",
+            _frozen(unit(_vector(self.axis, "cylinder axis", bounded=False), "cylinder axis")),
         )
         object.__setattr__(self, "radius", _length(self.radius, "cylinder radius"))
         object.__setattr__(self, "length", _length(self.length, "cylinder length"))

@@ -322,8 +322,43 @@ class SphereModel:
     _moving: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        for name in ("frames", "centres", "radii", "pairs"):
-            getattr(self, name).setflags(write=False)
+        # read-only copies, checked: the constructor is public (from_rows is the friendly way)
+        object.__setattr__(self, "robot", check_robot(self.robot))
+        frames = real(self.frames, "frames")
+        if frames.ndim != 1 or not len(frames):
+            raise ValueError(f"frames must have shape (S,), S ≥ 1; got shape {frames.shape}")
+        centres, radii = real(self.centres, "centres"), real(self.radii, "radii")
+        if centres.shape != (len(frames), 3) or radii.shape != (len(frames),):
+            raise ValueError(
+                f"centres and radii must have shapes ({len(frames)}, 3) and ({len(frames)},), "
+                f"one row per frame; got {centres.shape} and {radii.shape}"
+            )
+        _check_spheres(frames, centres, radii, lambda k: f"sphere {k}")
+        names = self.names
+        if (
+            isinstance(names, (str, bytes))
+            or not isinstance(names, Sequence)
+            or not all(isinstance(name, str) for name in names)
+        ):
+            raise TypeError(f"names must be a list of strings, one per sphere; got {names!r:.60}")
+        if len(names) != len(frames):
+            raise ValueError(f"names holds {len(names)} labels for {len(frames)} spheres")
+        if not isinstance(self.source, str):
+            raise TypeError(f"source must be a str; got {type(self.source).__name__}")
+        if not isinstance(self.meshes, tuple) or not all(
+            isinstance(m, MeshPair) for m in self.meshes
+        ):
+            raise TypeError("meshes must be a tuple of planning.MeshPair (from sphere_model)")
+        for name, value in (
+            ("frames", frames.astype(np.intp)),
+            ("centres", centres),
+            ("radii", radii),
+            ("pairs", _checked_pairs(self.pairs, len(frames))),
+        ):
+            value = np.array(value)  # a copy: the caller's array stays the caller's
+            value.setflags(write=False)
+            object.__setattr__(self, name, value)
+        object.__setattr__(self, "names", tuple(names))
         moving = np.flatnonzero(self.frames > 0)  # the base's spheres never move
         moving.setflags(write=False)
         object.__setattr__(self, "_moving", moving)
@@ -378,43 +413,16 @@ class SphereModel:
                 "rows must have shape (S, 5), one (frame, x, y, z, radius) per sphere; got "
                 f"shape {table.shape}"
             )
-        frames = table[:, 0]
-        if np.any(frames != np.round(frames)) or np.any((frames < 0) | (frames > TOOL_FRAME)):
-            bad = int(np.flatnonzero((frames != np.round(frames)) | (frames < 0) | (frames > 7))[0])
-            raise ValueError(
-                f"rows[{bad}]: the frame must be an integer 0 … 7 (DH frames 0 … 6, 7 the tool "
-                f"frame); got {frames[bad]:g}"
-            )
-        far = np.flatnonzero(np.abs(table[:, 1:4]).max(axis=1) > _MAX_OFFSET)
-        if len(far):
-            raise ValueError(
-                f"rows[{far[0]}]: the centre must lie within {_MAX_OFFSET:g} m of its frame (the "
-                f"coordinates are in metres); got {table[far[0], 1:4].tolist()}"
-            )
-        radii = table[:, 4].copy()
-        if np.any(radii <= 0) or np.any(radii > 2.0):
-            bad = int(np.flatnonzero((radii <= 0) | (radii > 2.0))[0])
-            raise ValueError(
-                f"rows[{bad}]: the radius must be positive and in metres; got {radii[bad]:g}"
-            )
+        frames, radii = table[:, 0], table[:, 4].copy()
+        _check_spheres(frames, table[:, 1:4], radii, lambda k: f"rows[{k}]")
         frames = frames.astype(np.intp)
-        if names is None:
-            names = _default_names(frames)
-        elif (
-            isinstance(names, (str, bytes))
-            or not isinstance(names, Sequence)
-            or not all(isinstance(name, str) for name in names)
-        ):
-            raise TypeError(f"names must be a list of strings, one per sphere; got {names!r:.60}")
-        elif len(names) != len(frames):
-            raise ValueError(f"names holds {len(names)} labels for {len(frames)} spheres")
         model = cls(
             robot,
             frames,
-            np.ascontiguousarray(table[:, 1:4]),
+            table[:, 1:4],
             radii,
             np.zeros((0, 2), dtype=np.intp),
-            tuple(str(n) for n in names),
+            _default_names(frames) if names is None else names,
             source,
         )
         return model.with_pairs(pairs)
@@ -428,20 +436,7 @@ class SphereModel:
                 raise ValueError(f"pairs must be an (P, 2) array or 'derive'; got {pairs!r}")
             chosen = self_pairs(self)
         else:
-            chosen = np.asarray(pairs)
-            if chosen.size == 0:
-                chosen = np.zeros((0, 2), dtype=np.intp)
-            if chosen.ndim != 2 or chosen.shape[1] != 2 or chosen.dtype.kind not in "iu":
-                raise ValueError(
-                    f"pairs must be integer sphere indices of shape (P, 2); got {pairs!r:.60}"
-                )
-            if (
-                np.any(chosen < 0)
-                or np.any(chosen >= len(self))
-                or np.any(chosen[:, 0] == chosen[:, 1])
-            ):
-                raise ValueError(f"pairs must name two different spheres among 0 … {len(self) - 1}")
-            chosen = np.unique(np.sort(chosen, axis=1), axis=0).astype(np.intp)
+            chosen = np.unique(np.sort(_checked_pairs(pairs, len(self)), axis=1), axis=0)
         return SphereModel(
             self.robot, self.frames, self.centres, self.radii, chosen, self.names, self.source
         )
@@ -482,9 +477,13 @@ class SphereModel:
                 f"radii must be one radius or one per centre ({len(c)}); got shape {r.shape}"
             )
         r = np.broadcast_to(r, (len(c),)).astype(float)
-        bad = np.flatnonzero(~(r > 0))
+        _name_of_group(name)
+        bad = np.flatnonzero(~((r > 0) & (r <= _MAX_RADIUS)))
         if len(bad):
-            raise ValueError(f"radii[{bad[0]}] must be positive (metres); got {r[bad[0]]:g}")
+            raise ValueError(
+                f"radii[{bad[0]}] must be positive and at most {_MAX_RADIUS:g} m (metres); got "
+                f"{r[bad[0]]:g}"
+            )
         rows = np.column_stack([np.full(len(c), TOOL_FRAME), c, r])
         extra = SphereModel.from_rows(self.robot, rows, pairs=np.zeros((0, 2), dtype=np.intp))
         names = self.names + tuple(f"{name} sphere {k}" for k in range(len(c)))
@@ -629,8 +628,53 @@ def _check_model(model: SphereModel) -> None:
         )
 
 
-#: How far from its frame's origin a sphere's centre may be (m): no arm link reaches further.
-_MAX_OFFSET = 5.0
+#: How far from its frame's origin a sphere's centre may be (m): no arm link reaches further;
+#: and the largest radius (m).
+_MAX_OFFSET, _MAX_RADIUS = 5.0, 2.0
+
+
+def _check_spheres(frames: np.ndarray, centres: np.ndarray, radii: np.ndarray, label) -> None:
+    """A ValueError, for the first sphere ``k`` at fault named ``label(k)``, unless every frame
+    is an integer 0 … 7, every centre within :data:`_MAX_OFFSET` of its frame and every radius
+    in (0, :data:`_MAX_RADIUS`] (metres)."""
+    odd = np.flatnonzero((frames != np.round(frames)) | (frames < 0) | (frames > TOOL_FRAME))
+    if len(odd):
+        raise ValueError(
+            f"{label(odd[0])}: the frame must be an integer 0 … 7 (DH frames 0 … 6, 7 the tool "
+            f"frame); got {frames[odd[0]]:g}"
+        )
+    far = np.flatnonzero(np.abs(centres).max(axis=1) > _MAX_OFFSET)
+    if len(far):
+        raise ValueError(
+            f"{label(far[0])}: the centre must lie within {_MAX_OFFSET:g} m of its frame (the "
+            f"coordinates are in metres); got {centres[far[0]].tolist()}"
+        )
+    bad = np.flatnonzero(~((radii > 0) & (radii <= _MAX_RADIUS)))
+    if len(bad):
+        raise ValueError(
+            f"{label(bad[0])}: the radius must be positive and at most {_MAX_RADIUS:g} m "
+            f"(metres); got {radii[bad[0]]:g}"
+        )
+
+
+def _checked_pairs(pairs: ArrayLike, count: int) -> np.ndarray:
+    """``pairs`` as (P, 2) sphere indices among ``count`` spheres, or a ValueError naming it."""
+    try:
+        chosen = np.asarray(pairs)
+    except ValueError:  # ragged
+        chosen = np.zeros((1, 3))  # refused below
+    if chosen.size == 0 and chosen.ndim <= 2:
+        return np.zeros((0, 2), dtype=np.intp)
+    if chosen.ndim != 2 or chosen.shape[1] != 2 or chosen.dtype.kind not in "iu":
+        raise ValueError(f"pairs must be integer sphere indices of shape (P, 2); got {pairs!r:.60}")
+    if np.any(chosen < 0) or np.any(chosen >= count) or np.any(chosen[:, 0] == chosen[:, 1]):
+        raise ValueError(f"pairs must name two different spheres among 0 … {count - 1}")
+    return chosen.astype(np.intp)
+
+
+def _name_of_group(name: object) -> None:
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a str (the group's label); got {type(name).__name__}")
 
 
 def self_pairs(model: SphereModel, only: ArrayLike | None = None) -> np.ndarray:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -83,7 +83,14 @@ class World:
         if self.model.robot.lengths != self.robot.lengths:
             raise ValueError("model must be a sphere model of robot (its DH lengths differ)")
         for name in ("blocks", "obstacles"):
-            items = tuple(getattr(self, name))
+            given = getattr(self, name)
+            if isinstance(given, Block):  # one block: as a sequence of one (Scene does the same)
+                given = (given,)
+            if isinstance(given, (str, bytes)) or not isinstance(given, Iterable):
+                raise TypeError(
+                    f"{name} must be a sequence of planning.Block; got {type(given).__name__}"
+                )
+            items = tuple(given)
             for item in items:
                 if not isinstance(item, Block):
                     raise TypeError(f"{name} must hold planning.Block objects; got {type(item)}")
@@ -218,6 +225,9 @@ class GoalCheck:
 
 
 def _number(value: object, name: str, reasons: list[str]) -> float | None:
+    if isinstance(value, (bool, np.bool_)):  # True is not 1 m
+        reasons.append(f"{name} must be a number in metres; got {value!r}")
+        return None
     try:
         x = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
@@ -275,7 +285,7 @@ def validate_goal(
     q_start : array_like, shape (6,), optional
         The arm's configuration (for the yaw to stay near, and for ``plan``).
     plan, seed, max_iterations
-        Plan the whole pick and place (check 7).
+        Plan the whole pick and place (check 7) from ``q_start`` (required with ``plan``).
 
     Returns
     -------
@@ -300,6 +310,8 @@ def validate_goal(
     """
     if not isinstance(world, World):
         raise TypeError(f"world must be a planning.World; got {type(world).__name__}")
+    if plan and q_start is None:
+        raise ValueError("plan=True plans from q_start: give the arm's configuration")
     reasons: list[str] = []
     if isinstance(goal, Move):
         fields = [goal.block, goal.x, goal.y, goal.z, goal.yaw]
@@ -411,11 +423,10 @@ def validate_goal(
     if plan:
         from urkin.planning.tasks import pick_and_place
 
-        start = np.zeros(6) if q_now is None else q_now
         result = pick_and_place(
             world,
             [Move(name, x, y, placed.bottom, yaw)],
-            start,
+            q_now,
             seed=seed,
             max_iterations=max_iterations,
         )
