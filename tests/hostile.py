@@ -338,6 +338,66 @@ HOSTILE["hidden_inverse_06.ipynb"] = (
     ),
     {"6.1": 3},
 )
+# a check that reads the code for forward kinematics, evaded by an alias made by assignment
+# (the other checks of 2.3 and 2.5 pass: at most all but that point)
+HOSTILE["alias_fk_02.ipynb"] = (
+    _lesson02(
+        {
+            "ur5_position": "_fwd2 = forward_kinematics\n"
+            "def ur5_position(q):\n"
+            "    return _fwd2(urkin.robot('UR5'), q)[:3, 3]\n",
+            "upright_flange": "_fwd = forward_kinematics\n"
+            "def upright_flange(robot):\n"
+            "    q = np.array([0.0, -np.pi / 2, 0.0, -np.pi / 2, 0.0, 0.0])\n"
+            "    return _fwd(robot, q)[:3, 3]\n",
+        }
+    ),
+    {"2.3": 3, "2.5": 2},
+)
+# 9.3's sample budget: is_free is answered by the grader, which counts; the submission can
+# neither lift the budget nor read the boxes off the function it was given
+HOSTILE["budget_bypass_09.ipynb"] = (
+    _lesson02(
+        {
+            "path_is_free": "def path_is_free(is_free, path, rho, resolution):\n"
+            "    inner = getattr(is_free, '_built', None)\n"
+            "    if inner is not None and hasattr(inner, 'budget'):\n"
+            "        inner.budget = None\n"
+            "    path = np.asarray(path, dtype=float)\n"
+            "    samples = []\n"
+            "    for k in range(len(path) - 1):\n"
+            "        qa, qb = path[k], path[k + 1]\n"
+            "        n = 50 * samples_needed(qa, qb, rho, resolution)\n"
+            "        t = np.linspace(0.0, 1.0, n)\n"
+            "        samples.append(qa + t[:, None] * (qb - qa))\n"
+            "    try:\n"
+            "        return bool(np.all(is_free(np.concatenate(samples))))\n"
+            "    except RuntimeError:\n"
+            "        return True\n"
+        },
+        "09",
+    ),
+    {"9.3": 3},
+)
+HOSTILE["read_boxes_09.ipynb"] = (
+    _lesson02(
+        {
+            "path_is_free": "def path_is_free(is_free, path, rho, resolution):\n"
+            "    p = getattr(is_free, 'params', None) or vars(is_free)\n"
+            "    lo = np.asarray(p['lower']).reshape(-1, 6)\n"
+            "    hi = np.asarray(p['upper']).reshape(-1, 6)\n"
+            "    path = np.asarray(path, dtype=float)\n"
+            "    t = np.linspace(0, 1, 20001)[:, None]\n"
+            "    for qa, qb in zip(path[:-1], path[1:]):\n"
+            "        Q = qa + t * (qb - qa)\n"
+            "        if np.all((Q[:, None] >= lo) & (Q[:, None] <= hi), axis=-1).any():\n"
+            "            return False\n"
+            "    return True\n"
+        },
+        "09",
+    ),
+    {"9.3": 0},
+)
 # attacks that leave 2.2 correct apart from the attack keep at most its points; those that
 # break it get none
 for _name in (

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from tests.hostile import HOSTILE, Context
-from tests.notebooks import ROOT, solution_path, student_notebook, write
+from tests.notebooks import ROOT, notebook, solution_path, student_notebook, write
 from urkin.course.grading import Grader, grade_many, grade_notebook, isolation, write_reports
 from urkin.course.lessons import lessons
 
@@ -459,11 +459,76 @@ def test_names_that_look_alike_or_break_lines_stay_apart_and_on_one_line(tmp_pat
         text = path.read_text(encoding="utf-8")
         assert not {"\u200b", "\u2028"} & set(text)
     fake = next(p for p in (out / "feedback").iterdir() if p.name.startswith("x"))
-    assert fake.read_text(encoding="utf-8").splitlines()[:3] == [
-        "# x??Lesson 02: 29 / 29 points?_02.ipynb",
+    assert fake.read_text(encoding="utf-8").splitlines()[:6] == [
+        r"# x\?\?Lesson 02\: 29 \/ 29 points\?\_02\.ipynb",
         "",
-        "Not graded: a test",
+        "Not graded:",
+        "```",
+        "a test",
+        "```",
     ]
+
+
+def test_no_name_takes_another_submissions_reports(tmp_path):
+    """``bob 02.ipynb`` (a space) must not take ``bob_02.ipynb``'s feedback file, in whatever
+    order they come: a name that had to be changed, or repeats another's but for case, gets a
+    digest of its own name; a safe name keeps its own."""
+    from urkin.course.grading.reports import report_names
+    from urkin.course.grading.runner import SubmissionResult
+
+    names = ["bob 02.ipynb", "bob_02.ipynb", "..ipynb", "a/x.ipynb", "x.ipynb"]
+    for order in (names, names[::-1]):
+        results = [SubmissionResult(n, n, "02", SEED, "error", "a test") for n in order]
+        got = dict(zip(order, report_names(results)))
+        assert got["bob_02.ipynb"] == "bob_02" and got["x.ipynb"] == "x"
+        assert got["bob 02.ipynb"].startswith("bob_02-")
+        assert len(set(got.values())) == len(names)
+    alone = SubmissionResult("bob 02.ipynb", "", "02", SEED, "error")
+    assert report_names([alone]) == [got["bob 02.ipynb"]]  # stable: a digest of the name
+    # names that differ only in case (one file on a case-insensitive disk): both digested
+    pair = [SubmissionResult(n, n, "02", SEED, "error") for n in ("Bob_02.ipynb", "bob_02.ipynb")]
+    for order in (pair, pair[::-1]):
+        first, second = report_names(order)
+        assert first.lower() != second.lower() and "-" in first and "-" in second
+
+
+def test_text_from_a_submission_stays_literal_in_its_feedback(tmp_path):
+    """A note or an error message may hold markdown, HTML or a run of backticks; the feedback
+    shows it in a code block it cannot close, and the title escaped: no fake score in bold, no
+    remote image, no raw HTML rendered."""
+    from urkin.course.grading.reports import feedback_text
+    from urkin.course.grading.runner import SubmissionResult
+
+    attack = "**Lesson 02: 29 / 29 points** ![](http://evil.example/p.png) <script>x</script>"
+    result = SubmissionResult(
+        "![](http://evil.example/p.png) <b>bob</b>_02.ipynb",
+        "",
+        "02",
+        SEED,
+        "graded",
+        notes=[f"an error: {attack}", "`````\n# Lesson 02: 29 / 29 points\n`````"],
+    )
+    text = feedback_text(result)
+    title = text.splitlines()[0]
+    assert title.startswith("# ") and "![](" not in title and "<b>" not in title
+    body = text.split("About the notebook:\n", 1)[1]
+    fence = body.splitlines()[0]
+    assert set(fence) == {"`"} and len(fence) >= 3
+    inside, after = body[len(fence) + 1 :].split("\n" + fence + "\n", 1)
+    assert attack in inside and "# Lesson 02: 29 / 29 points" in inside
+    assert not any(line.startswith(fence) for line in inside.splitlines())  # cannot close it
+    assert "29 / 29" not in after and "<script>" not in after
+
+
+def test_a_lesson_the_metadata_and_the_file_name_disagree_on_is_noted(tmp_path):
+    from urkin.course.grading.read import read_notebook
+
+    path = write(notebook("x = 1", lesson="09"), tmp_path / "alice_02_dh.ipynb")
+    read = read_notebook(path)
+    assert read.lesson == "09"
+    assert any("metadata says lesson 09 and its file name lesson 02" in n for n in read.notes)
+    agreed = read_notebook(write(notebook("x = 1", lesson="02"), tmp_path / "bob_02.ipynb"))
+    assert not any("metadata says" in n for n in agreed.notes)
 
 
 def test_without_namespaces_no_submission_sees_the_view_cache(tmp_path, monkeypatch):

@@ -16,24 +16,36 @@ an IK solver ``track_positions(robot, points, q0, solve)``, a candidate formula
 A SymPy expression or matrix with symbols in it arrives as a
 :class:`urkin.course.symbolic_answer.Symbolic` (read from its ``srepr`` text without running it);
 anything else a student's function returns that is not plain data arrives as :class:`Opaque`.
+
+Some input functions are answered by the side that made them (:data:`ANSWERED_BY_CHECKS`: the
+collision test ``is_free`` of exercise 9.3, whose check counts the configurations it is asked
+about): within :func:`callbacks`, such a function crosses as a numbered :class:`Callback` and
+the other side calls it back over the wire, so that nothing the submission can reach counts
+its calls or holds its parameters.
 """
 
 from __future__ import annotations
 
 import base64
+import contextlib
+import contextvars
 import json
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 __all__ = [
+    "ANSWERED_BY_CHECKS",
     "MAX_MESSAGE_BYTES",
+    "Callback",
     "Function",
     "Opaque",
     "TooLarge",
     "WireError",
+    "callbacks",
     "copy",
     "decode",
     "dumps",
@@ -217,13 +229,15 @@ class _JointBoxes:
     """``is_free(q)``: True where joint angles lie outside every box ``lower[b] ≤ q ≤ upper[b]``
     of joint space; q of shape (6,) gives a bool, (..., 6) an array of bools.  With ``budget``,
     a call that would bring the configurations asked about (over the object's life: one call
-    of a student's function) beyond it raises RuntimeError instead of answering."""
+    of a student's function) beyond it raises RuntimeError instead of answering, and sets
+    ``refused``.  Answered by the checks (:data:`ANSWERED_BY_CHECKS`): the count is theirs."""
 
     def __init__(self, lower, upper, budget=None):
         self.lower = np.asarray(lower, dtype=float).reshape(-1, 6)
         self.upper = np.asarray(upper, dtype=float).reshape(-1, 6)
         self.budget = None if budget is None else int(budget)
         self.asked = 0
+        self.refused = False  # whether a call went beyond the budget (caught or not)
 
     def __call__(self, q):
         Q = np.asarray(q, dtype=float)
@@ -231,6 +245,7 @@ class _JointBoxes:
             raise ValueError(f"is_free takes joint angles of shape (6,) or (N, 6); got {Q.shape}")
         count = Q.size // 6
         if self.budget is not None and self.asked + count > self.budget:
+            self.refused = True
             raise RuntimeError(
                 f"is_free was asked about more than {self.budget} configurations for this path: "
                 "far more than the edges need at this resolution"
@@ -265,6 +280,35 @@ _FUNCTION_KINDS = {
     # lower[b] ≤ q ≤ upper[b]; with budget, refuses to answer about more configurations
     "joint_boxes": _JointBoxes,
 }
+
+
+#: Kinds of :class:`Function` that cross as a :class:`Callback` within :func:`callbacks`.
+ANSWERED_BY_CHECKS = frozenset({"joint_boxes"})
+
+_TABLE: contextvars.ContextVar[list | None] = contextvars.ContextVar("callbacks", default=None)
+
+
+@contextlib.contextmanager
+def callbacks() -> Iterator[list]:
+    """Within it, :func:`encode` sends each function of a kind in :data:`ANSWERED_BY_CHECKS`
+    as ``{"$cb": k}``, ``k`` its place in the list yielded (the functions to answer calls of),
+    and :func:`decode` turns ``{"$cb": k}`` back into that same function (a check cell's round
+    trip in one process).  Outside it, :func:`decode` gives a :class:`Callback` (the
+    submission's side, which calls the checks back)."""
+    table: list = []
+    token = _TABLE.set(table)
+    try:
+        yield table
+    finally:
+        _TABLE.reset(token)
+
+
+@dataclass(frozen=True)
+class Callback:
+    """Function ``slot`` of a call's :func:`callbacks` table, as the submission's side receives
+    it: the process running the submission binds it to its channel to the checks."""
+
+    slot: int
 
 
 @dataclass(frozen=True, eq=False)
@@ -372,6 +416,10 @@ def encode(value: Any, lenient: bool = False, _depth: int = 0) -> Any:
             ]
         }
     if isinstance(value, Function):
+        table = _TABLE.get()
+        if table is not None and value.kind in ANSWERED_BY_CHECKS:
+            table.append(value)
+            return {"$cb": len(table) - 1}
         return {"$fn": [value.kind, encode(value.params, lenient, _depth + 1)]}
     if type(value).__name__ == "Robot" and hasattr(value, "lengths"):
         return _robot(value)
@@ -496,6 +544,14 @@ def decode(data: Any, trusted: bool = False, _depth: int = 0) -> Any:
         if not trusted:
             return Opaque("Function", str(body[0])[:80])
         return Function(str(body[0]), **decode(body[1], trusted, _depth + 1))
+    if tag == "$cb" and type(body) is int and body >= 0:
+        if not trusted:
+            return Opaque("Function", "a function of the checks")
+        table = _TABLE.get()
+        if table is None:
+            return Callback(body)
+        if body < len(table):
+            return table[body]
     raise WireError(f"unknown tag {tag!r}")
 
 

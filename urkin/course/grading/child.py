@@ -9,6 +9,8 @@ It reads one ``setup`` message (the notebook's cells and which of their top-leve
 execute), executes those statements, replies ``ready`` with what went wrong, then answers
 ``call`` messages — call this function of the submission with these arguments, watching calls
 to those — until its input closes.  Every value crosses as plain data (:mod:`urkin.course.wire`).
+An argument the checks answer themselves (a :class:`~urkin.course.wire.Callback`) becomes a
+function that sends each call's arguments back (``callback``) and returns the ``answer``.
 
 Nothing here is trusted: the submission runs in this process and may read, replace or forge
 anything in it, this file included.  The grader therefore takes only plain data from it and
@@ -110,7 +112,59 @@ def _setup(message: dict) -> tuple[dict, list[str]]:
     return namespace, notes
 
 
-def _answer(namespace: dict, request: dict) -> dict:
+#: The errors a function of the checks may raise, as the submission sees them.
+_ERRORS = {"ValueError": ValueError, "TypeError": TypeError, "RuntimeError": RuntimeError}
+
+
+class _Remote:
+    """A function of the checks (:class:`~urkin.course.wire.Callback` ``slot``): each call
+    sends its arguments over ``channel`` and returns the checks' answer, or raises their
+    error."""
+
+    def __init__(self, slot: int, channel: _Channel) -> None:
+        self._slot, self._channel = slot, channel
+
+    def __call__(self, *args, **kwargs):
+        from urkin.course import wire
+
+        self._channel.send(
+            {
+                "callback": {
+                    "slot": self._slot,
+                    "args": wire.encode(list(args), lenient=True),
+                    "kwargs": wire.encode(kwargs, lenient=True),
+                }
+            }
+        )
+        message = self._channel.receive()
+        answer = message.get("answer") if isinstance(message, dict) else None
+        if not isinstance(answer, dict):
+            raise RuntimeError("the checks did not answer")
+        if "raised" in answer:
+            kind, text = answer["raised"]
+            raise _ERRORS.get(kind, RuntimeError)(text)
+        return wire.decode(answer.get("value"), trusted=True)
+
+    def __repr__(self) -> str:
+        return "<a function of the checks>"
+
+
+def _bound(value, channel: _Channel):
+    """``value`` with every :class:`~urkin.course.wire.Callback` in it made a :class:`_Remote`."""
+    from urkin.course import wire
+
+    if isinstance(value, wire.Callback):
+        return _Remote(value.slot, channel)
+    if isinstance(value, list):
+        return [_bound(v, channel) for v in value]
+    if isinstance(value, tuple):
+        return tuple(_bound(v, channel) for v in value)
+    if isinstance(value, dict):
+        return {k: _bound(v, channel) for k, v in value.items()}
+    return value
+
+
+def _answer(namespace: dict, request: dict, channel: _Channel) -> dict:
     from urkin.course import wire
     from urkin.course.watch import LibraryWatch  # imported by main before the submission ran
 
@@ -119,8 +173,8 @@ def _answer(namespace: dict, request: dict) -> dict:
     if not callable(function):
         reply["raised"] = ["NameError", f"{request['name']} is not a function here", ""]
         return reply
-    args = wire.decode(request["args"], trusted=True)
-    kwargs = wire.decode(request["kwargs"], trusted=True)
+    args = _bound(wire.decode(request["args"], trusted=True), channel)
+    kwargs = _bound(wire.decode(request["kwargs"], trusted=True), channel)
     spied: dict[str, list] = {}
     saved = {}
     watched = request.get("spy", [])
@@ -182,7 +236,7 @@ def main(argv: list[str]) -> int:
         if request is None or "call" not in request:
             return 0
         try:
-            reply = _answer(namespace, request["call"])
+            reply = _answer(namespace, request["call"], channel)
         except BaseException as exc:  # an answer that cannot be encoded, for example
             reply = {"id": request["call"].get("id"), "raised": _raised(exc)}
         channel.send(reply)

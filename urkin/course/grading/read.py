@@ -472,7 +472,13 @@ def read_notebook(path: str | Path, lesson: str | None = None) -> Notebook:
         notebook.lesson = notebook.lesson or lesson_from_filename(path)
         return notebook
     if notebook.lesson is None:
-        notebook.lesson = _lesson_from_metadata(data) or lesson_from_filename(path)
+        meta, named = _lesson_from_metadata(data), lesson_from_filename(path)
+        notebook.lesson = meta or named
+        if meta and named and meta != named:
+            notebook.notes.append(
+                f"the notebook's metadata says lesson {meta} and its file name lesson {named}: "
+                f"graded as lesson {meta} (the metadata wins; the instructor can pass --lesson)"
+            )
     number, read = 0, 0
     for cell in cells:
         if not isinstance(cell, dict) or cell.get("cell_type") != "code":

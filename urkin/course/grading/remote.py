@@ -259,22 +259,25 @@ class RemoteSubmission(Submission):
         if self._calls == 0:
             self.deadline = time.monotonic() + self.time_limit
         self._calls += 1
-        request = {
-            "call": {
-                "id": self._calls,
-                "name": name,
-                "args": wire.encode(list(args)),
-                "kwargs": wire.encode(dict(kwargs)),
-                "spy": list(watched),
+        with wire.callbacks() as answered_here:
+            request = {
+                "call": {
+                    "id": self._calls,
+                    "name": name,
+                    "args": wire.encode(list(args)),
+                    "kwargs": wire.encode(dict(kwargs)),
+                    "spy": list(watched),
+                }
             }
-        }
         self._send(request, "the arguments")
         limit = self.time_limit
         while True:
             reply = self._receive(
                 f"stopped after {limit:g} s without an answer: an infinite loop, or far too slow?"
             )
-            if isinstance(reply, dict) and reply.get("id") == self._calls:
+            if isinstance(reply, dict) and "callback" in reply:
+                self._send({"answer": _called_back(answered_here, reply["callback"])}, "an answer")
+            elif isinstance(reply, dict) and reply.get("id") == self._calls:
                 break
         return self._read_reply(reply, inputs, watched)
 
@@ -319,4 +322,28 @@ class RemoteSubmission(Submission):
                     if graded is None or graded is site:
                         text = ast.get_source_segment(self.notebook.cells[site.cell], site.node)
                         sources[bound] = text or ""
+        for site in self.notebook.sites:  # names bound by assignment (an alias, a partial)
+            if site.kind == "assign":
+                text = ast.get_source_segment(self.notebook.cells[site.cell], site.node) or ""
+                for bound in site.binds:
+                    sources.setdefault(bound, text)
         return {n: sources[n] for n in functions_used(sources, name)}
+
+
+def _called_back(functions: list, request: Any) -> dict:
+    """The answer to a submission's call of one of the checks' ``functions`` (a
+    :class:`~urkin.course.wire.Callback` it was given): computed here, on arguments read as
+    untrusted data, as ``{"value": …}`` or ``{"raised": [kind, message]}``."""
+    try:
+        slot = request.get("slot") if isinstance(request, dict) else None
+        if type(slot) is not int or not 0 <= slot < len(functions):
+            raise ValueError("a call of a function the checks did not pass")
+        args = wire.decode(request.get("args", []))
+        kwargs = wire.decode(request.get("kwargs", {"$d": []}))
+        if not isinstance(args, list) or not isinstance(kwargs, dict):
+            raise TypeError("malformed arguments")
+        if not all(isinstance(k, str) for k in kwargs):
+            raise TypeError("keyword names must be strings")
+        return {"value": wire.encode(functions[slot](*args, **kwargs))}
+    except Exception as exc:  # the submission's arguments: any error is its own
+        return {"raised": [type(exc).__name__, str(exc)[:500]]}

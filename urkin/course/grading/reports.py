@@ -22,6 +22,7 @@ line break) and cannot start a spreadsheet formula.
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import json
 import os
@@ -62,26 +63,62 @@ def _cell(text: str) -> str:
 
 
 def report_names(results: list[SubmissionResult]) -> list[str]:
-    """File names (no extension) for the reports: safe characters, unique, stable."""
-    names, seen = [], set()
-    for result in results:
-        base = re.sub(r"[^A-Za-z0-9._-]+", "_", result.name).strip("._-")[:100] or "submission"
-        if base.endswith(".ipynb"):
-            base = base[: -len(".ipynb")]
-        name, k = base, 1
-        while name.lower() in seen:
-            k += 1
-            name = f"{base}-{k}"
-        seen.add(name.lower())
-        names.append(name)
+    """File names (no extension) for the reports: safe characters, unique, stable.
+
+    A submission whose name is already safe (letters, digits, ``.``, ``_``, ``-``, not at
+    its ends) keeps it (less ``.ipynb``); one whose name had to be changed, or that repeats
+    another's but for case (both then), gets a digest of
+    its own name appended: no file name can take the name of another's reports, whatever order
+    they come in (``bob 02.ipynb`` becomes ``bob_02-…``, never ``bob_02``, which is
+    ``bob_02.ipynb``'s)."""
+    names = [""] * len(results)
+    taken: set[str] = set()
+    bases = [
+        re.sub(r"[^A-Za-z0-9._-]+", "_", r.name).strip("._-")[:100].removesuffix(".ipynb")
+        or "submission"
+        for r in results
+    ]
+    safe = [base == r.name.removesuffix(".ipynb") for base, r in zip(bases, results)]
+    lowered = [base.lower() for base, ok in zip(bases, safe) if ok]
+    safe = [ok and lowered.count(base.lower()) == 1 for base, ok in zip(bases, safe)]
+    for first in (True, False):  # the names kept as they are, then the others
+        for i, result in enumerate(results):
+            if safe[i] is not first:
+                continue
+            base = bases[i]
+            name = base if safe[i] else ""
+            digest = hashlib.sha256(result.name.encode(errors="replace")).hexdigest()
+            width = 8
+            while not name or name.lower() in taken:
+                name = f"{base}-{digest[:width]}" if width <= len(digest) else f"{base}-{i}"
+                width += 8
+            taken.add(name.lower())
+            names[i] = name
     return names
 
 
+def _literal(text: str) -> str:
+    """Markdown that shows ``text`` as it is: every ASCII punctuation character escaped, so
+    that a file name cannot render as a heading, a link, an image or HTML."""
+    return re.sub(r"([!-/:-@\[-`{-~])", r"\\\1", text)
+
+
+def _block(text: str) -> list[str]:
+    """``text`` as a fenced code block whose fence is longer than any run of backticks in it
+    (text a submission wrote cannot close the block and go on as markdown)."""
+    longest = max((len(run) for run in re.findall(r"`+", text)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return [fence, text, fence]
+
+
 def feedback_text(result: SubmissionResult) -> str:
-    """What the student reads: the verdict first, then each exercise; never test source."""
-    lines = [f"# {_name(result.name)}"]
+    """What the student reads: the verdict first, then each exercise; never test source.
+    Everything that may hold text from the submission (its name, error messages, notes) is
+    shown literally: escaped, or in a code block it cannot leave."""
+    lines = [f"# {_literal(_name(result.name))}"]
     if result.status != "graded":
-        lines += ["", f"Not graded: {_clean(result.reason)}", "", f"Score: 0 / {result.points:g}"]
+        lines += ["", "Not graded:", *_block(_clean(result.reason))]
+        lines += ["", f"Score: 0 / {result.points:g}"]
         return "\n".join(lines) + "\n"
     lines += ["", f"Lesson {result.lesson}: {result.earned:g} / {result.points:g} points"]
     problems = [e for e in result.exercises if e.earned < e.points]
@@ -90,9 +127,10 @@ def feedback_text(result: SubmissionResult) -> str:
     if result.mistakes:
         lines += ["", "Likely mistakes:"] + [f"- {_clean(m)}" for m in result.mistakes]
     if result.notes:
-        lines += ["", "About the notebook:"] + [f"- {_clean(note)}" for note in result.notes]
+        notes = "\n".join(f"- {_clean(note)}" for note in result.notes)
+        lines += ["", "About the notebook:", *_block(notes)]
     for e in result.exercises:
-        lines += ["", "```", _clean(e.report()), "```"]
+        lines += ["", *_block(_clean(e.report()))]
     lines += ["", f"(inputs drawn with seed {result.seed})"]
     return "\n".join(lines) + "\n"
 

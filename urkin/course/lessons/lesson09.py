@@ -546,9 +546,10 @@ def _path_inputs(path, rho, resolution, lower, upper) -> dict:
     }
 
 
-def _call_path(sub, path, rho, resolution, lower, upper, budget=None) -> bool:
+def _call_path(sub, path, rho, resolution, lower, upper, is_free=None) -> bool:
     inputs = _path_inputs(path, rho, resolution, lower, upper)
-    is_free = wire.Function("joint_boxes", lower=lower, upper=upper, budget=budget)
+    if is_free is None:
+        is_free = wire.Function("joint_boxes", lower=lower, upper=upper)
     value = sub.path_is_free(is_free, path.copy(), rho.copy(), resolution)
     call = "path_is_free(is_free, path, rho, resolution)"
     if isinstance(value, (str, bytes)) or value is None or np.ndim(value) != 0:
@@ -611,17 +612,22 @@ def _paths_budget(sub, rng):
         )
         budget = 2 * needed + len(path)
         inputs = _path_inputs(path, rho, resolution, lower, upper)
+        # answered by the checks (wire.ANSWERED_BY_CHECKS): they count the configurations
+        is_free = wire.Function("joint_boxes", lower=lower, upper=upper, budget=budget)
+        too_many = Mismatch(
+            f"path_is_free asked is_free about more than {budget} configurations; "
+            f"the edges need {needed} at this resolution",
+            inputs=inputs,
+            mistake=_TOO_MANY,
+        )
         try:
-            free = _call_path(sub, path, rho, resolution, lower, upper, budget)
-        except StudentRaised as exc:
-            if exc.kind == "RuntimeError" and "was asked about more than" in exc.message:
-                raise Mismatch(
-                    f"path_is_free asked is_free about more than {budget} configurations; "
-                    f"the edges need {needed} at this resolution",
-                    inputs=inputs,
-                    mistake=_TOO_MANY,
-                ) from None
+            free = _call_path(sub, path, rho, resolution, lower, upper, is_free)
+        except StudentRaised:
+            if is_free._built.refused:
+                raise too_many from None
             raise
+        if is_free._built.refused:  # refused, and the refusal caught
+            raise too_many
         if not free:
             raise Mismatch(
                 "every waypoint and every edge of this path misses the box: path_is_free "
