@@ -1192,15 +1192,17 @@ q_many = np.array([shoulder_singular(row) for row in q_many[np.abs(reach_many) <
 T_many = urkin.fk(ur5, q_many)
 wrist_point = T_many[:, :3, 3] - ur5.d6 * T_many[:, :3, 2]
 under_root = wrist_point[:, 0] ** 2 + wrist_point[:, 1] ** 2 - ur5.d4**2  # m², exactly 0
+negative = int(np.sum(under_root < 0))
 print(f"\nρ² − d4² on {len(q_many)} shoulder-singular poses: all within ±1e-15 m²: "
-      f"{bool(np.all(np.abs(under_root) < 1e-15))}; negative for about "
-      f"{10 * round(10 * np.mean(under_root < 0))} % of them")
+      f"{bool(np.all(np.abs(under_root) < 1e-15))}; negative for some of them: "
+      f"{0 < negative}; for most of them: {negative > len(q_many) // 2}")
 
 # %% [markdown]
 # Every singular pose is solved, with fewer distinct solutions than eight. The last line is
 # the trap: at a shoulder-singular pose the quantity under the square root is zero in exact
 # arithmetic, and in floating point it comes out as a tiny number of either sign — negative
-# for about 40 % of the poses above, around $-10^{-17}$. A solver that takes the square root
+# for a large share of the poses above (about two in five on the machines this was written on;
+# which ones depends on the last bits of the sines and cosines), around $-10^{-17}$. A solver that takes the square root
 # (or the `arccos`) without clamping gets NaN and reports *no* solution for a pose the robot
 # can reach. This is not hypothetical: ur-analytic-ik, a widely used C++ implementation,
 # returns nothing for many exactly shoulder-singular poses because a value under its square

@@ -367,7 +367,9 @@ def tracking_report(
                 real(max_acceleration, "max_acceleration"), 6
             )
             ratio = np.maximum(v_ratio, a_ratio)
-            worst_sample, worst_joint = np.unravel_index(int(np.argmax(ratio)), ratio.shape)
+            top = ratio.max()  # the first of the ratios equal to the largest, to round-off
+            first = int(np.argmax(ratio.ravel() >= top - _TIE * max(1.0, top)))
+            worst_sample, worst_joint = np.unravel_index(first, ratio.shape)
             timing |= {
                 "velocity_ratio": v_ratio.max(axis=0),
                 "acceleration_ratio": a_ratio.max(axis=0),

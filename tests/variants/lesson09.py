@@ -303,19 +303,26 @@ WRONG = [
         points=None,
         mistake="one sample short",
     ),
+    Variant(
+        "9.2",
+        "joint changes wrapped the short way",
+        _samples(bound="np.sum(np.abs((dq + np.pi) % (2 * np.pi) - np.pi) * rho)"),
+        points=2,
+        mistake="Δq wrapped",
+    ),
     # ------------------------------------------------------------------------------ 9.3
     Variant(
         "9.3",
         "waypoints only (MIT's autograder)",
         _PATH_WAYPOINTS_ONLY,
-        points=2,
+        points=0,  # the waypoint check is gated on a check of the edges
         mistake="only the waypoints",
     ),
     Variant(
         "9.3",
         "ten samples per edge",
         _path(t="np.linspace(0.0, 1.0, 10)"),
-        points=2,
+        points=None,  # 0 where an edge needs more than ten samples, as every free path's do
         mistake="fixed number of samples",
     ),
     Variant(
@@ -339,6 +346,20 @@ WRONG = [
         mistake="first waypoint never checked",
     ),
     Variant("9.3", "2000 samples per edge", _PATH_TOO_MANY, points=3, mistake="far more samples"),
+    Variant(
+        "9.3",
+        "one sample short per edge",
+        _path(t="np.linspace(0.0, 1.0, samples_needed(qa, qb, rho, resolution) - 1)"),
+        points=3,
+        mistake="sampled more coarsely",
+    ),
+    Variant(
+        "9.3",
+        "a quarter of the samples",
+        _path(t="np.linspace(0.0, 1.0, max(2, samples_needed(qa, qb, rho, resolution) // 4))"),
+        points=None,
+        mistake="sampled more coarsely",
+    ),
     # ------------------------------------------------------------------------------ 9.4
     Variant(
         "9.4",

@@ -230,7 +230,8 @@ class _JointBoxes:
     of joint space; q of shape (6,) gives a bool, (..., 6) an array of bools.  With ``budget``,
     a call that would bring the configurations asked about (over the object's life: one call
     of a student's function) beyond it raises RuntimeError instead of answering, and sets
-    ``refused``.  Answered by the checks (:data:`ANSWERED_BY_CHECKS`): the count is theirs."""
+    ``refused``; the configurations asked about are kept (:meth:`seen`).  Answered by the
+    checks (:data:`ANSWERED_BY_CHECKS`): the count and the record are theirs."""
 
     def __init__(self, lower, upper, budget=None):
         self.lower = np.asarray(lower, dtype=float).reshape(-1, 6)
@@ -238,6 +239,7 @@ class _JointBoxes:
         self.budget = None if budget is None else int(budget)
         self.asked = 0
         self.refused = False  # whether a call went beyond the budget (caught or not)
+        self._seen: list[np.ndarray] = []  # with a budget: every configuration asked about
 
     def __call__(self, q):
         Q = np.asarray(q, dtype=float)
@@ -251,10 +253,16 @@ class _JointBoxes:
                 "far more than the edges need at this resolution"
             )
         self.asked += count
+        if self.budget is not None:
+            self._seen.append(Q.reshape(-1, 6).copy())
         P = Q[..., None, :]
         inside = np.all((P >= self.lower) & (P <= self.upper), axis=-1).any(axis=-1)
         free = ~inside
         return bool(free) if free.ndim == 0 else free
+
+    def seen(self) -> np.ndarray:
+        """Every configuration asked about (with a budget, which bounds them): (K, 6)."""
+        return np.concatenate(self._seen) if self._seen else np.zeros((0, 6))
 
 
 _FUNCTION_KINDS = {

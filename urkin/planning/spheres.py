@@ -511,6 +511,10 @@ class SphereModel:
     def place(self, q: ArrayLike) -> np.ndarray:
         """World (base-frame) centres of every sphere at joint angles ``q``.
 
+        Complex ``q`` gives complex centres (:func:`urkin.fk`'s complex-step support: the
+        imaginary parts of ``place(q + 1e-20j · dq) / 1e-20`` are the centres' velocities);
+        the collision checks take real configurations only.
+
         Returns
         -------
         ndarray, shape (S, 3) for q (6,), or (..., S, 3) for q (..., 6)

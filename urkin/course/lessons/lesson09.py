@@ -243,6 +243,10 @@ _ONE_SHORT = (
     "floor or round) where they must be ⌈D / resolution⌉"
 )
 _SIGNED = "signed joint changes: a joint that turns backwards moves the spheres too; use |Δq_j|"
+_WRAPPED = (
+    "Δq wrapped into (−π, π]: the edge is the straight line from qa to qb in joint space, and "
+    "along it a joint turns by all of qb_j − qa_j, more than half a turn too"
+)
 
 _ROUND_OFF = 1e-9  # relative: where D / resolution is this close to a whole number m, m or m+1
 
@@ -258,6 +262,7 @@ def _bound(qa, qb, rho, rule="sum") -> float:
         "max_rho": float(rho.max() * np.abs(dq).sum()),
         "no_rho": float(np.abs(dq).sum()),
         "signed": float(dq @ rho),
+        "wrapped": float((np.abs((dq + np.pi) % (2 * np.pi) - np.pi) * rho).sum()),
     }[rule]
 
 
@@ -281,6 +286,7 @@ _SAMPLE_MISTAKES = {
     _MAX_RHO: {"rule": "max_rho"},
     _NO_RHO: {"rule": "no_rho"},
     _SIGNED: {"rule": "signed"},
+    _WRAPPED: {"rule": "wrapped"},
     _ONE_SHORT: {"ends": 0},
     _ONE_SHORT + " ": {"rounding": "floor"},
     _ONE_SHORT + "  ": {"rounding": "round"},
@@ -336,7 +342,11 @@ def _edge_problem(rng, *, distinct=True):
             continue
         if distinct:
             right = _accepted(qa, qb, rho, resolution)
-            counts = [_samples(qa, qb, rho, resolution, **how) for how in _SAMPLE_MISTAKES.values()]
+            counts = [  # wrapping changes nothing below half a turn (_samples_edges tests it)
+                _samples(qa, qb, rho, resolution, **how)
+                for name, how in _SAMPLE_MISTAKES.items()
+                if name != _WRAPPED
+            ]
             if any(c in right for c in counts):
                 continue
         return qa, qb, rho, resolution
@@ -386,6 +396,19 @@ def _samples_edges(sub, rng):
         if (dq > 0.2).sum() >= 2 and (dq < -0.2).sum() >= 2:
             break
     _judge_samples(sub, qa, qb, rho, resolution, "joints turning both ways")
+    # a joint turning more than half a turn: the straight edge turns it all the way
+    qa, qb, rho, resolution = _edge_problem(rng, distinct=False)
+    j = int(rng.integers(6))
+    while True:
+        qb[j] = qa[j] + rng.choice([-1.0, 1.0]) * rng.uniform(3.6, 5.5)
+        ratio = _bound(qa, qb, rho) / resolution
+        if abs(ratio - round(ratio)) > 0.05 and abs(ratio - math.floor(ratio) - 0.5) > 0.05:
+            break
+    _judge_samples(
+        sub, qa, qb, rho, resolution, f"joint {j + 1} turns by more than half a turn (|Δq| > π)"
+    )
+    # an edge of length zero: its one configuration, as both ends
+    _judge_samples(sub, qa, qa.copy(), rho, resolution, "an edge of length zero (qa = qb)")
 
 
 # ----------------------------------------------------------------------- 9.3 path_is_free
@@ -636,6 +659,41 @@ def _paths_budget(sub, rng):
                 expected=1.0,
                 got=0.0,
             )
+        _judge_coverage(path, rho, resolution, is_free._built.seen(), inputs)
+
+
+_TOO_COARSE = (
+    "edges sampled more coarsely than the resolution: consecutive samples along an edge must be "
+    "at most 1 / (samples_needed − 1) of it apart, samples_needed(qa, qb, rho, resolution) "
+    "samples from qa to qb (np.linspace(0, 1, samples_needed(…)) of the way), else a centre "
+    "moves more than the resolution between two of them and a thin obstacle slips through"
+)
+
+
+def _judge_coverage(path, rho, resolution, asked, inputs):
+    """That the configurations ``asked`` (K, 6) include, along every edge of a free path,
+    samples no further apart than the resolution rule's, from one end to the other (what
+    "checked at the resolution" means, whatever order or batches they were asked in)."""
+    for k in range(len(path) - 1):
+        qa, qb = path[k], path[k + 1]
+        dq = qb - qa
+        pieces = len(_edge_t(qa, qb, rho, resolution, "resolution")) - 1
+        length2 = float(dq @ dq)
+        if length2 == 0.0:
+            continue
+        t = (asked - qa) @ dq / length2
+        off = np.linalg.norm(asked - qa - t[:, None] * dq, axis=1)
+        on = t[(off <= 1e-9 * (1.0 + math.sqrt(length2))) & (t > -1e-9) & (t < 1 + 1e-9)]
+        # the ends as if asked (whether the waypoints were is another check's question)
+        widest = float(np.diff(np.sort(np.r_[0.0, on, 1.0])).max())
+        if widest > (1.0 + 1e-6) / pieces:
+            raise Mismatch(
+                f"edge {k + 1} was sampled {widest:.3g} of its length apart at the widest; at "
+                f"this resolution its {pieces + 1} samples are 1/{pieces} = {1 / pieces:.3g} "
+                "of it apart",
+                inputs=inputs,
+                mistake=_TOO_COARSE,
+            )
 
 
 # ----------------------------------------------------------------------------- 9.4 steer
@@ -793,7 +851,8 @@ LESSON = Lesson(
                     _samples_random,
                 ),
                 Check(
-                    "a short edge, one joint turning backwards, joints turning both ways",
+                    "a short edge, a joint turning backwards, joints turning both ways, a joint "
+                    "turning more than half a turn, an edge of length zero",
                     1,
                     _samples_edges,
                 ),
@@ -817,7 +876,8 @@ LESSON = Lesson(
                     gated=True,  # "never free" passes too
                 ),
                 Check(
-                    "no more than twice the samples the resolution needs",
+                    "every edge sampled at the resolution, and no more than twice the samples "
+                    "it needs",
                     1,
                     _paths_budget,
                     gated=True,  # "always free" asks for no sample
