@@ -1163,8 +1163,27 @@ WRONG = [
         _VERDICT_HEAD + "    if not np.allclose(R.T @ R, np.eye(3)):\n"
         "        return 'not orthonormal'\n"
         "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
-        points=4,
+        points=3,
         mistake="tol was not used",
+    ),
+    Variant(
+        "1.5",
+        "np.allclose with atol=tol, its rtol left",
+        _VERDICT_HEAD + "    if not np.allclose(R.T @ R, np.eye(3), atol=tol):\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation' if np.linalg.det(R) > 0 else 'reflection'\n",
+        points=None,
+        mistake="keeps numpy's relative tolerance",
+    ),
+    Variant(
+        "1.5",
+        "unit columns and |det| = 1",
+        _VERDICT_HEAD + "    d = np.linalg.det(R)\n"
+        "    if np.abs(np.linalg.norm(R, axis=0) - 1.0).max() > tol or abs(abs(d) - 1.0) > tol:\n"
+        "        return 'not orthonormal'\n"
+        "    return 'rotation' if d > 0 else 'reflection'\n",
+        points=None,
+        mistake="only unit columns",
     ),
     Variant(
         "1.5",

@@ -789,6 +789,16 @@ def _mistake_text(key):
     return _FIXED_TOL if isinstance(key, tuple) else key
 
 
+_ALLCLOSE_RTOL = (
+    "np.allclose(RᵀR, I, atol=tol) keeps numpy's relative tolerance (rtol 1e-5): a matrix "
+    "1e-6 from orthonormal passes; give rtol=0 as well, or compare max |RᵀR − I| with tol"
+)
+_UNIT_COLUMNS = (
+    "only unit columns and |det R| = 1 were tested: columns of length 1 can still lean on one "
+    "another (RᵀR's off-diagonal entries), and det R hardly changes; test RᵀR = I"
+)
+
+
 def _sign_verdict(det):
     return "rotation" if det > 0 else "reflection"
 
@@ -823,7 +833,19 @@ def _verdict_hypotheses(R, tol, tol_first=False):
             "not orthonormal": "not orthonormal",
         }[_verdict(R, tol)],
     }
-    return {**about_tol, **others} if tol_first else {**others, **about_tol}
+    near = {  # the tolerance kept loose in a way of its own: named before the rest
+        _ALLCLOSE_RTOL: lambda: (
+            _sign_verdict(det)
+            if np.allclose(R.T @ R, np.eye(3), rtol=1e-5, atol=tol)
+            else "not orthonormal"
+        ),
+        _UNIT_COLUMNS: lambda: (
+            _sign_verdict(det)
+            if np.abs(np.linalg.norm(R, axis=0) - 1.0).max() <= tol and abs(abs(det) - 1.0) <= tol
+            else "not orthonormal"
+        ),
+    }
+    return {**near, **about_tol, **others} if tol_first else {**others, **near, **about_tol}
 
 
 def _verdict_mistake(got, R, tol, tol_first=False):
@@ -917,9 +939,10 @@ def _verdict_call(sub, R, tol=None):
     )
 
 
-def _require_verdict(sub, R, why, tol=None):
+def _require_verdict(sub, R, why, tol=None, near=False):
     """A Mismatch unless the student's verdict on ``R`` is right; a ``tol`` given is passed on
-    (and makes the tolerance the first suspect when the verdict is wrong)."""
+    (and, as ``near``, a matrix close to orthonormal, makes the tolerance the first suspect when
+    the verdict is wrong)."""
     got, inputs = _verdict_call(sub, R, tol)
     right = _verdict(R, _DEFAULT_TOL if tol is None else tol)
     if got != right:
@@ -929,7 +952,7 @@ def _require_verdict(sub, R, why, tol=None):
             expected=right,
             got=got,
             mistake=_verdict_mistake(
-                got, R, _DEFAULT_TOL if tol is None else tol, tol_first=tol is not None
+                got, R, _DEFAULT_TOL if tol is None else tol, tol_first=near or tol is not None
             ),
         )
 
@@ -984,6 +1007,9 @@ def _verdict_not_orthonormal(sub, rng):
     unit_axis /= np.linalg.norm(unit_axis)
     K = skew(2.0 * unit_axis)  # an axis of length 2 in Rodrigues' formula
     angle = rng.uniform(0.5, 2.5)
+    stretch = rng.uniform(1e-6, 3e-6)
+    leaning = _inexact_rotation(rng)
+    leaning[:, 1] = np.cos(1e-6) * leaning[:, 1] + np.sin(1e-6) * leaning[:, 0]  # still unit
     cases = [
         (_shear(rng), "a shear with det exactly 1"),
         (_inexact_rotation(rng) @ _shear(rng), "a rotation times a shear (det 1)"),
@@ -995,8 +1021,17 @@ def _verdict_not_orthonormal(sub, rng):
             "Rodrigues' formula with an axis of length 2",
         ),
     ]
+    near = [  # inside np.allclose's rtol (1e-5), far beyond tol (1e-9)
+        (
+            (1.0 + stretch) * _inexact_rotation(rng),
+            f"a rotation scaled by 1 + {stretch:.1e} (max |RᵀR − I| about {2 * stretch:.0e})",
+        ),
+        (leaning, "a rotation whose second column leans 1e-6 rad towards its first (unit columns)"),
+    ]
     for R, name in cases:
         _require_verdict(sub, R, f"{name} is 'not orthonormal', whatever its determinant")
+    for R, name in near:
+        _require_verdict(sub, R, f"{name} is 'not orthonormal' at tol = 1e-9", near=True)
 
 
 def _near_orthonormal(rng, proper, deviation):
