@@ -516,6 +516,26 @@ def _judged_by(prelude: str) -> str:
 
 
 WRONG = [
+    Variant(
+        "1.3",
+        "the lock branch within np.isclose's default tolerance",
+        _rpy(
+            lock="    if np.isclose(abs(R[2, 0]), 1.0):\n"
+            "        return np.array([np.arctan2(-R[1, 2], R[1, 1]), pitch, 0.0])\n"
+        ),
+        points=3,
+        mistake="gimbal-lock branch taken too far from the lock",
+    ),
+    Variant(
+        "1.3",
+        "the lock branch below cos(pitch) = 1e-3",
+        _rpy(
+            lock="    if cos_pitch < 1e-3:\n"
+            "        return np.array([np.arctan2(-R[1, 2], R[1, 1]), pitch, 0.0])\n"
+        ),
+        points=None,
+        mistake="gimbal-lock branch taken too far from the lock",
+    ),
     # ------------------------------------------------------------------------ 1.1 rot_z
     Variant(
         "1.1",
@@ -861,7 +881,7 @@ WRONG = [
             "    yaw = np.arctan(R[1, 0] / R[0, 0])\n"
             "    return np.array([roll, pitch, yaw])\n"
         ),
-        points=1,
+        points=0,  # wrong near the lock too, where the general formulas hold
         mistake="arctan",
     ),
     Variant(
@@ -872,7 +892,7 @@ WRONG = [
             "    yaw = np.arctan(R[1, 0] / R[0, 0])\n"
             "    return np.array([roll, pitch, yaw])\n"
         ),
-        points=1,
+        points=0,  # wrong near the lock too, where the general formulas hold
         mistake="arctan",
     ),
     Variant(
@@ -883,7 +903,7 @@ WRONG = [
             "    yaw = np.arctan2(R[0, 1], R[0, 0])\n"
             "    return np.array([roll, pitch, yaw])\n"
         ),
-        points=1,
+        points=0,  # wrong near the lock too, where the general formulas hold
         mistake="yaw wrong, roll and pitch right",
     ),
     Variant(

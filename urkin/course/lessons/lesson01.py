@@ -545,6 +545,30 @@ def _rpy_gimbal_lock(sub, rng):
                 or "at the gimbal lock the turn went into yaw: the convention is yaw = 0, all of "
                 "it in roll",
             )
+    # near the lock, not at it: the general formulas are exact there, the lock branch is not
+    for pitch_sign in (1.0, -1.0):
+        short = 10.0 ** rng.uniform(-6.0, -3.0)
+        rpy_true = [rng.uniform(-np.pi, np.pi), pitch_sign * (np.pi / 2 - short), 0.0]
+        rpy_true[2] = rng.uniform(-np.pi, np.pi)
+        R = rpy_to_rotation(np.array(rpy_true))
+        rpy, inputs = _rpy_call(sub, R, f"rotation_to_rpy(R) {short:.0e} rad from the lock")
+        if not close(_rebuilt(rpy), R, 1e-9):
+            raise Mismatch(
+                f"{short:.0e} rad short of pitch = ±90° the angles must still rebuild R (to 1e-9): "
+                "the general formulas are accurate there, and only at the lock itself does "
+                "atan2 meet (0, 0)",
+                inputs=inputs,
+                expected=rotation_to_rpy(R),
+                got=rpy,
+                mistake=_WIDE_LOCK,
+            )
+
+
+_WIDE_LOCK = (
+    "the gimbal-lock branch taken too far from the lock (np.isclose's default tolerance, or a "
+    "threshold such as cos(pitch) < 1e-3): there it drops the yaw that R still holds; test "
+    "cos(pitch) against a tiny number such as 1e-9"
+)
 
 
 # ---------------------------------------------------------------- 1.4 axis_angle_to_rotation
@@ -1426,7 +1450,7 @@ LESSON = Lesson(
                     _rpy_in_range,
                 ),
                 Check(
-                    "copes with the gimbal lock (pitch = ±90°): yaw = 0, R rebuilt",
+                    "copes with the gimbal lock (pitch = ±90°): yaw = 0, R rebuilt; near it too",
                     1,
                     _rpy_gimbal_lock,
                 ),
