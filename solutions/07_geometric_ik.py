@@ -1198,16 +1198,16 @@ print(f"\nρ² − d4² on {len(q_many)} shoulder-singular poses: all within ±1
       f"{0 < negative}; for most of them: {negative > len(q_many) // 2}")
 
 # %% [markdown]
-# Every singular pose is solved, with fewer distinct solutions than eight. The last line is
-# the trap: at a shoulder-singular pose the quantity under the square root is zero in exact
-# arithmetic, and in floating point it comes out as a tiny number of either sign — negative
-# for a large share of the poses above (about two in five on the machines this was written on;
-# which ones depends on the last bits of the sines and cosines), around $-10^{-17}$. A solver that takes the square root
-# (or the `arccos`) without clamping gets NaN and reports *no* solution for a pose the robot
-# can reach. This is not hypothetical: ur-analytic-ik, a widely used C++ implementation,
-# returns nothing for many exactly shoulder-singular poses because a value under its square
-# root rounds to about $-5 \cdot 10^{-18}$. (`bench/ik_analytic.py` in the repository counts
-# them, when that package is installed.) Exactly singular poses are not rare in practice:
+# Every singular pose is solved, with fewer distinct solutions than eight. The last line is the
+# trap: at a shoulder-singular pose the quantity under the square root is zero in exact arithmetic,
+# and in floating point it comes out as a tiny number of either sign — negative for a large share of
+# the poses above (about two in five on the machines this was written on; which ones depends on the
+# last bits of the sines and cosines), around $-10^{-17}$. A solver that takes the square root (or
+# the `arccos`) without clamping gets NaN and reports *no* solution for a pose the robot can reach.
+# This is not hypothetical: ur-analytic-ik, a widely used C++ implementation, returns nothing for
+# many exactly shoulder-singular poses because a value under its square root rounds to about $-5
+# \cdot 10^{-18}$. (`bench/ik_analytic.py` in the repository counts them, when that package is
+# installed.) Exactly singular poses are not rare in practice:
 # "home", and any pose taught by moving one joint at a time from it, is one.
 #
 # ## 7. Choosing a solution
