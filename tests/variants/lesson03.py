@@ -1121,6 +1121,19 @@ def twist_log(T):
     # ------------------------------------------------------------------------------ 3.6
     Variant(
         "3.6",
+        "a tolerance of 1e-2 on |ω|",
+        """
+def screw_to_joint(S):
+    S = np.asarray(S, dtype=float)
+    if abs(np.linalg.norm(S[:3]) - 1.0) > 1e-2:
+        raise ValueError("S needs a unit ω")
+    return np.cross(S[:3], S[3:])
+""",
+        points=None,
+        mistake="no check of the input",
+    ),
+    Variant(
+        "3.6",
         "v × ω: the mirror point",
         """
 def screw_to_joint(S):

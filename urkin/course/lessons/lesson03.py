@@ -900,6 +900,8 @@ _NO_UNIT_CHECK = (
 def _joint_refuses_non_unit(sub, rng):
     S = screw_axis(_unit(rng), rng.uniform(-0.5, 0.5, 3))
     _joint_call(sub, S)  # a function that refuses every S earns nothing here
+    S[:3] *= 1.0 + 1e-12  # unit to round-off (as a computed ω is): still a joint axis
+    _joint_call(sub, S, {"S": S, "case": "ω of length 1 + 1e-12: a unit vector to round-off"})
     w = _unit(rng)
     prismatic = np.r_[np.zeros(3), _unit(rng)]
     cases = [
@@ -907,6 +909,10 @@ def _joint_refuses_non_unit(sub, rng):
         ("ω of length 2", np.r_[2.0 * w, -np.cross(2.0 * w, rng.uniform(-0.5, 0.5, 3))]),
         ("ω of length 0.5", np.r_[0.5 * w, -np.cross(0.5 * w, rng.uniform(-0.5, 0.5, 3))]),
         ("ω of length 1.01", np.r_[1.01 * w, rng.uniform(-0.3, 0.3, 3)]),
+        (
+            "ω of length 1.0001 (1e-4 beyond unit, a hundred times the 1e-6 allowed)",
+            np.r_[1.0001 * w, rng.uniform(-0.3, 0.3, 3)],
+        ),
     ]
     for name, S in cases:
         inputs = {"S": S, "case": name}
