@@ -38,9 +38,13 @@ def format_array(value: Any, inline: bool = False) -> str:
     --------
     >>> format_array([1.0, -0.0, 1 / 3], inline=True)
     '[1.    , 0.    , 0.3333]'
+    >>> format_array(121)
+    '121'
     """
     if isinstance(value, str):
         return value
+    if isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)):
+        return str(int(value))  # a count or a seed: as it is
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
