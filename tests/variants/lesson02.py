@@ -443,6 +443,22 @@ def symbolic_fk(rows):
     ),
     Variant(
         "2.4",
+        "every twist rounded to a multiple of π/2",
+        """
+def symbolic_fk(rows):
+    q = sp.symbols(f"q1:{len(rows) + 1}")
+    T = sp.eye(4)
+    for qi, (d, a, alpha) in zip(q, rows):
+        alpha = round(alpha / (np.pi / 2)) * sp.pi / 2
+        ca, sa, cq, sq = sp.cos(alpha), sp.sin(alpha), sp.cos(qi), sp.sin(qi)
+        T = T * sp.Matrix([[cq, -sq * ca, sq * sa, a * cq], [sq, cq * ca, -cq * sa, a * sq],
+                           [0, sa, ca, d], [0, 0, 0, 1]])
+    return T
+""",
+        points=None,
+    ),
+    Variant(
+        "2.4",
         "joint symbols numbered from 0",
         """
 def symbolic_fk(rows):
