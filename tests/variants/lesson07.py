@@ -1206,6 +1206,23 @@ def nearest_solution(solutions, q_current):
     ),
     Variant(
         "7.6",
+        "nearest by the sum of the differences' sizes",
+        """
+def nearest_solution(solutions, q_current):
+    solutions = np.asarray(solutions, dtype=float)
+    if len(solutions) == 0:
+        raise ValueError("solutions is empty")
+    q = np.asarray(q_current, dtype=float)
+    shifted = solutions + 2 * np.pi * np.round((q - solutions) / (2 * np.pi))
+    shifted = np.where(shifted > 2 * np.pi, shifted - 2 * np.pi, shifted)
+    shifted = np.where(shifted < -2 * np.pi, shifted + 2 * np.pi, shifted)
+    return shifted[np.argmin(np.abs(shifted - q).sum(axis=1))]
+""",
+        points=None,
+        mistake="(L1)",
+    ),
+    Variant(
+        "7.6",
         "limits ignored",
         """
 def nearest_solution(solutions, q_current):

@@ -1272,6 +1272,8 @@ def _nearest_hypotheses(solutions: np.ndarray, q: np.ndarray) -> dict:
         "the largest joint difference instead of the Euclidean norm of the difference": lambda: (
             _nearest(solutions, q, norm=lambda d: np.abs(d).max(axis=1))
         ),
+        "the sum of the joint differences' sizes (L1) instead of the Euclidean norm of the "
+        "difference": lambda: _nearest(solutions, q, norm=lambda d: np.abs(d).sum(axis=1)),
         "the first solution, whatever q_current is": lambda: _shifted(solutions[:1], q)[0],
     }
 
@@ -1316,6 +1318,25 @@ def _nearest_random(sub, rng):
         _nearest_compare(
             sub, solutions, q, "the solution nearest q_current, shifted by whole turns", arm
         )
+    # a q_current whose nearest solution by the Euclidean norm is not the one by another norm
+    for _ in range(200):
+        arm, solutions = _pose_solutions(rng)
+        q = rng.uniform(-np.pi, np.pi, 6)
+        euclidean = _nearest(solutions, q)
+        others = (
+            _nearest(solutions, q, norm=lambda d: np.abs(d).sum(axis=1)),
+            _nearest(solutions, q, norm=lambda d: np.abs(d).max(axis=1)),
+        )
+        if not any(close(other, euclidean, 1e-6) for other in others):
+            _nearest_compare(
+                sub,
+                solutions,
+                q,
+                "nearest by the Euclidean norm of the difference (here neither the largest "
+                "joint difference nor the sum of their sizes picks the same solution)",
+                arm,
+            )
+            break
 
 
 def _nearest_limits(sub, rng):
