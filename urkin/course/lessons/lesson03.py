@@ -26,7 +26,7 @@ from urkin.course.inputs import random_arm, random_pose, random_q, random_screw_
 from urkin.course.submission import StudentRaised
 from urkin.kinematics import dh_chain, dh_transform
 from urkin.poe import body_screws, jacobian_space, screw_axis, space_screws
-from urkin.transforms import adjoint, inv_transform, se3_exp, se3_log, skew
+from urkin.transforms import adjoint, inv_transform, rotation_angle, se3_exp, se3_log, skew
 
 _fk = urkin.fk
 
@@ -792,7 +792,19 @@ def _log_at_the_edges(sub, rng):
             expected=T,
             got=se3_exp(got),
             mistake=mistake,
+            difference=_pose_gap(se3_exp(got), T),
         )
+
+
+def _pose_gap(A, B) -> str | None:
+    """How far pose ``A`` is from ``B``, in words (4 decimals can show two poses alike)."""
+    try:
+        A = np.asarray(A, dtype=float)
+        turn = float(rotation_angle(A[:3, :3], B[:3, :3]))
+        shift = float(np.linalg.norm(A[:3, 3] - B[:3, 3]))
+    except (TypeError, ValueError):  # not a pose: the values shown say enough
+        return None
+    return f"e^[V] is {turn:.1e} rad from T's rotation and {shift:.1e} m from its position"
 
 
 # ------------------------------------------------------------------------- 3.6 screw_to_joint
