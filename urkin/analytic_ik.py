@@ -625,6 +625,12 @@ def _flange_poses(
     return poses, lead, skew
 
 
+def _wrist_singular(q: np.ndarray, valid: np.ndarray) -> np.ndarray:
+    """Which poses of a stack of solutions ``q`` (N, 8, 6) (rows ``valid`` (N, 8)) are at the
+    wrist singularity, where the solver returned representatives of a family: (N,) bool."""
+    return (valid & (np.abs(np.sin(q[..., 4])) <= WRIST_TOLERANCE)).any(axis=1)
+
+
 def _members(robot: Robot, T: np.ndarray, prefer: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`ik_analytic` of checked tool poses ``T`` (K, 4, 4) with, at the wrist singularity,
     the family member whose ``θ2 + θ3 + θ4`` is ``prefer`` (K,) (or, where its elbow does not
@@ -770,7 +776,7 @@ def ik_closest(robot: Robot, T: ArrayLike, q_current: ArrayLike, *, tol: float =
     q, valid = _solve(poses, robot.lengths)
     # at the wrist singularity a family reaches the pose: its member that keeps the current
     # θ2 + θ3 + θ4 (and so, on a path through it, the current θ6) joins the candidates
-    singular = (valid & (np.abs(np.sin(q[..., 4])) <= WRIST_TOLERANCE)).any(axis=1)
+    singular = _wrist_singular(q, valid)
     if singular.any():
         rows = np.flatnonzero(singular)
         extra_q, extra_valid = _solve(

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from urkin._inputs import choice, positive, real
-from urkin.analytic_ik import WRIST_TOLERANCE, _members, ik_analytic, ik_closest
+from urkin.analytic_ik import _members, _wrist_singular, ik_analytic, ik_closest
 from urkin.kinematics import fk
 from urkin.numerical_ik import ik
 from urkin.robots import Robot, check_robot
@@ -132,7 +132,7 @@ def _through_the_wrist(
     sample's row ``r``, so a path through the singularity keeps its branch, joint 4 included,
     where the representatives would swing joints 4 and 6 by a large angle and back.  In place,
     on ``solutions`` (M, 8, 6) and ``real_rows`` (M, 8)."""
-    singular = (real_rows & (np.abs(np.sin(solutions[..., 4])) <= WRIST_TOLERANCE)).any(axis=1)
+    singular = _wrist_singular(solutions, real_rows)
     if not singular.any():
         return
     m = len(poses)
