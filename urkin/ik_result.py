@@ -12,7 +12,7 @@ raises, naming the argument.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -206,13 +206,13 @@ def verified(
     robot: Robot,
     q: np.ndarray,
     goal: np.ndarray,
-    found: np.ndarray,
+    found: Sequence[bool],
     reasons: list[str],
     tol_position: float,
     tol_orientation: float,
     lead: tuple[int, ...],
-    iterations: np.ndarray | None = None,
-    restarts: np.ndarray | None = None,
+    iterations: Sequence[int] | None = None,
+    restarts: Sequence[int] | None = None,
     failure: Callable[[int, float, float], str] | None = None,
 ) -> IKResult:
     """The :class:`IKResult` of configurations ``q`` (N, 6) for targets ``goal`` — poses
@@ -252,7 +252,9 @@ def verified(
         with np.errstate(over="ignore"):  # a target 1e300 m away: inf, and the reason says so
             position_error = np.linalg.norm(T[:, :3, 3] - goal, axis=-1)
         rotation_error = np.zeros(n)
-    success = found & (position_error <= tol_position) & (rotation_error <= tol_orientation)
+    success = (
+        np.asarray(found) & (position_error <= tol_position) & (rotation_error <= tol_orientation)
+    )
     why = list(reasons)
     for i in np.flatnonzero(~success):
         if not why[i]:
@@ -264,8 +266,8 @@ def verified(
             )
     for i in np.flatnonzero(success):
         why[i] = "converged"
-    iterations = np.zeros(n, dtype=int) if iterations is None else iterations
-    restarts = np.zeros(n, dtype=int) if restarts is None else restarts
+    iterations = np.zeros(n, dtype=int) if iterations is None else np.asarray(iterations)
+    restarts = np.zeros(n, dtype=int) if restarts is None else np.asarray(restarts)
     residual = np.maximum(position_error, rotation_error)
     result = IKResult(
         q, success, residual, position_error, rotation_error, iterations, restarts, why

@@ -207,6 +207,15 @@ class _Problem:
         e_o = omega if self.form == "log" else sin_axis
         return T, np.concatenate([e_p, e_o], axis=-1), position_error, theta
 
+    def errors(self, Q: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """The errors ``e`` (k, m) of :meth:`evaluate` alone; one configuration of a single
+        target's problem by :meth:`evaluate_one` (a fifth of the stacked path's cost)."""
+        if len(Q) == 1 and len(self.p) == 1:
+            J, e = np.empty((6, 6)), np.empty((1, 3 if self.R is None else 6))
+            self.evaluate_one(Q[0].tolist(), J, e[0])
+            return e
+        return self.evaluate(Q, rows)[1]
+
     def evaluate_one(self, q: list[float], J: np.ndarray, error: np.ndarray):
         """:meth:`evaluate` for one configuration (six floats) against the only target, with
         its Jacobian: the pose's top three rows as a tuple of 12 floats, ``e`` (m,), the two
@@ -449,8 +458,17 @@ class DampedLeastSquares(StepRule):
 #: Levenberg–Marquardt damping: starts at _TAU × max diag(JᵀJ), follows Nielsen's update
 #: (μ × max(1/3, 1 − (2ρ − 1)³) after a step that lowers the error by the fraction ρ of what
 #: the linear model predicted, μ × ν with ν doubling after one that does not), and an attempt
-#: gives up when μ exceeds _MU_GIVE_UP.
-_TAU, _MU_GIVE_UP = 1e-2, 1e8
+#: gives up when μ exceeds _MU_GIVE_UP.  After a good step μ is also kept at most
+#: _ERROR_DAMPING × |e|² (the new error's), as in Yamashita and Fukushima's μ = |e|²: near a
+#: solution the damping then vanishes with the error and the last steps converge
+#: quadratically (Nielsen's rule alone shrinks μ by at most a third per step, and the error
+#: fell only about a hundredfold per step there).  Far away |e|² ≳ 1 and the cap is not met.
+#: Measured on 2,000 random UR5 targets from q0 = 0 and from random q0 (bench/ik.py's kind):
+#: 17.7 and 16.6 iterations per solve instead of 18.6 and 17.7, every target solved, as
+#: before; with the factor 1 about the same, with 0.1 and less more iterations than without.
+#: The cap stops at _MU_FLOOR: at a singular solution (the wrist's, q5 = 0) JᵀJ + μI must
+#: stay solvable when the error vanishes.
+_TAU, _MU_GIVE_UP, _ERROR_DAMPING, _MU_FLOOR = 1e-2, 1e8, 10.0, 1e-12
 _DIAGONAL = np.arange(6)
 
 
@@ -510,7 +528,10 @@ class LevenbergMarquardt(StepRule):
             predicted = float(Jdq.dot(e + e - Jdq))
         rho = (squares - squares_trial) / predicted if predicted > 0 else -1.0
         if rho > 0:
-            self.mu_one *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
+            self.mu_one = min(
+                self.mu_one * max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3),
+                max(_ERROR_DAMPING * squares_trial, _MU_FLOOR),
+            )
             self.nu_one = 2.0
         else:
             self.mu_one *= self.nu_one
@@ -521,12 +542,14 @@ class LevenbergMarquardt(StepRule):
         # gain ratio: actual reduction of |e|² over the reduction the linear model predicts
         Jdq = (J @ dq[..., None])[..., 0]
         predicted = np.sum(Jdq * (2.0 * e - Jdq), axis=-1)
-        actual = np.sum(e * e, axis=-1) - np.sum(e_trial * e_trial, axis=-1)
+        squares_trial = np.sum(e_trial * e_trial, axis=-1)
+        actual = np.sum(e * e, axis=-1) - squares_trial
         rho = np.where(predicted > 0, actual / np.where(predicted > 0, predicted, 1.0), -1.0)
         better = rho > 0
         shrink = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
         mu, nu = self.mu[rows], self.nu[rows]
-        self.mu[rows] = np.where(better, mu * shrink, mu * nu)
+        lowered = np.minimum(mu * shrink, np.maximum(_ERROR_DAMPING * squares_trial, _MU_FLOOR))
+        self.mu[rows] = np.where(better, lowered, mu * nu)
         self.nu[rows] = np.where(better, 2.0, 2.0 * nu)
         return better
 
@@ -596,6 +619,28 @@ def _limited(step: np.ndarray, max_step: float) -> np.ndarray:
     return step * np.minimum(1.0, max_step / np.maximum(largest, 1e-300))
 
 
+#: An attempt also ends when its error has not fallen by 1 % at the last step and the error
+#: is nearly orthogonal to every direction the joints can move the tool,
+#: ``|Jᵀe| < _STATIONARY · |J|_F · |e|``: a stationary point of ``|e|²`` that is not a
+#: solution (a local minimum).  Converging to a solution the ratio stays near 0.1 or more;
+#: into a local minimum it falls about tenfold per step while the error stays put, and waiting
+#: for the patience spent some six more iterations there.  Measured on 2,000 random UR5
+#: targets from q0 = 0 and from random q0: 16.4 and 15.4 iterations per solve instead of
+#: 17.7 and 16.6, every target solved (0.03 saves a little more, in more restarts).
+_STATIONARY = 1e-2
+
+
+def _stationary(J: np.ndarray, e: np.ndarray, squares):
+    """Whether the errors ``e`` (m,) or (k, m) are nearly orthogonal to the ranges of their
+    Jacobians ``J`` (m, 6) or (k, m, 6) (``squares``: ``|e|²``, a float or (k,))."""
+    if J.ndim == 2:  # one target: the same test, fewer numpy calls
+        g = e.dot(J)
+        flat = J.ravel()
+        return float(g.dot(g)) < _STATIONARY**2 * float(flat.dot(flat)) * squares
+    g = (e[:, None, :] @ J)[:, 0]
+    return np.sum(g * g, axis=-1) < _STATIONARY**2 * np.sum(J * J, axis=(1, 2)) * squares
+
+
 def _stalled(attempt, since_progress, given_up, patience: int, max_iterations: int):
     """When an attempt ends without success (for one target or, elementwise, many)."""
     return (attempt >= max_iterations) | (since_progress >= patience) | given_up
@@ -638,7 +683,7 @@ def _singular_steps(problem, rows, Q: np.ndarray, J: np.ndarray, e: np.ndarray) 
         )
     Q = problem.wrap(Q + t[:, None] * v)
     for _ in range(_CORRECTIONS):
-        e = problem.evaluate(Q, rows)[1]
+        e = problem.errors(Q, rows)
         U, S, Vt = np.linalg.svd(problem.jacobians(Q))
         kept = S[..., : m - 1]
         steps = np.einsum("kmi,km->ki", U[..., : m - 1], e) / np.maximum(kept, 1e-300)
@@ -649,8 +694,8 @@ def _singular_steps(problem, rows, Q: np.ndarray, J: np.ndarray, e: np.ndarray) 
 def _quadratic_root(problem, rows, Q, u, v, a0, s) -> np.ndarray:
     """The root nearest 0 of ``a0 + a1 t + a2 t²`` fitted to ``u · e(Q + t v)`` at ``t = ±s``
     (its vertex where it has none; within ±1 rad): :func:`_singular_steps`' move."""
-    plus = np.einsum("km,km->k", u, problem.evaluate(Q + s[:, None] * v, rows)[1])
-    minus = np.einsum("km,km->k", u, problem.evaluate(Q - s[:, None] * v, rows)[1])
+    plus = np.einsum("km,km->k", u, problem.errors(Q + s[:, None] * v, rows))
+    minus = np.einsum("km,km->k", u, problem.errors(Q - s[:, None] * v, rows))
     a1 = (plus - minus) / (2.0 * s)
     a2 = (plus + minus - 2.0 * a0) / (2.0 * s * s)
     disc = a1 * a1 - 4.0 * a2 * a0
@@ -714,7 +759,12 @@ def _iterate_one(
             attempt_best = residual
         if pos <= tol_position and rot <= tol_orientation:
             return np.array(best_q), True, iterations, restarts, best
-        if attempt >= max_iterations or since_progress >= patience or rule.given_up_one():
+        if (
+            attempt >= max_iterations
+            or since_progress >= patience
+            or rule.given_up_one()
+            or (since_progress and _stationary(J, e, squares))
+        ):
             if (
                 singular_steps
                 and residual < _SINGULAR_BELOW
@@ -810,6 +860,10 @@ def _iterate(
         stalled = ~done & _stalled(
             attempt[rows], since_progress[rows], rule.given_up(rows), rule.patience, max_iterations
         )
+        look = np.flatnonzero(~done & ~stalled & (since_progress[rows] > 0))
+        if len(look):  # a local minimum (_STATIONARY)
+            squares = np.sum(e[look] * e[look], axis=-1)
+            stalled[look] = _stationary(problem.jacobians(q[rows[look]]), e[look], squares)
         near = stalled & (residual < _SINGULAR_BELOW) & singular_steps
         near &= attempt_best[rows] < _PROGRESS * singular_best[rows]
         if near.any():  # first a step along the weakest direction (near a singular solution)
@@ -1004,7 +1058,7 @@ def ik(
     else:
         guess, guess_lead, _ = _joints(q0, "q0")
         if len(guess) == 1:  # one guess (of shape (6,), (1, 6), …) for every target
-            Q0 = np.repeat(guess, n, axis=0)
+            Q0 = guess if n == 1 else np.repeat(guess, n, axis=0)
         elif guess_lead == lead:
             Q0 = guess.copy()
         else:
@@ -1052,8 +1106,7 @@ def ik(
         single = (
             _iterate_one(problem, rule, Q0[0], **settings) if not bad[0] else (Q0[0], False, 0, 0)
         )
-        q, found = single[0][None], np.array([single[1]])
-        iterations, restarts = np.array([single[2]]), np.array([single[3]])
+        q, found, iterations, restarts = single[0][None], single[1:2], single[2:3], single[3:4]
     else:
         q, found, iterations, restarts = _iterate(problem, rule, Q0, ~bad, **settings)
     if n == 1:
