@@ -2,6 +2,7 @@
 
     python bench/ik_success.py                      # 1,000,000 poses, method "lm" (~1 min)
     python bench/ik_success.py --count 100000 --method lm nr dls poe
+    python bench/ik_success.py --max-restarts 20    # fewer restarts than the default 30
 
 Each pose is ``fk(q)`` of a configuration drawn uniformly in (−π, π]⁶ (seeded, in chunks of
 10,000 solved by one batched call), so every target is reachable.  A solve counts only if
@@ -28,13 +29,13 @@ CHUNK = 10_000
 SINGULAR = ("shoulder", "elbow", "wrist")
 
 
-def run(method: str, count: int) -> None:
+def run(method: str, count: int, max_restarts: int) -> None:
     ur5 = urkin.robot("ur5")
     solved, missed, reasons = 0, [], Counter()
     start = time.perf_counter()
     for chunk in range(max(1, count // CHUNK)):
         q = random_configurations(ur5, min(CHUNK, count), seed=1000 + chunk)
-        result = urkin.ik(ur5, urkin.fk(ur5, q), method=method)
+        result = urkin.ik(ur5, urkin.fk(ur5, q), method=method, max_restarts=max_restarts)
         success = np.asarray(result.success)
         solved += int(success.sum())
         missed.extend(q[~success])
@@ -57,9 +58,10 @@ def main() -> None:
     parser.add_argument("--count", type=int, default=1_000_000)
     methods = urkin.numerical_ik.IK_METHODS
     parser.add_argument("--method", nargs="+", default=["lm"], choices=methods)
+    parser.add_argument("--max-restarts", type=int, default=30, help="urkin.ik's max_restarts")
     args = parser.parse_args()
     for method in args.method:
-        run(method, args.count)
+        run(method, args.count, args.max_restarts)
 
 
 if __name__ == "__main__":

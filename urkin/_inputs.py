@@ -128,6 +128,8 @@ def generator(seed: Any) -> np.random.Generator:
 def sample_shape(shape: Any) -> tuple[int, ...]:
     """``shape`` (an int or a tuple of ints ≥ 0, numpy integers too, no bools) as a tuple, or
     an error naming it."""
+    if type(shape) is tuple and not shape:  # one item: the common case, at no cost
+        return ()
     items = (shape,) if isinstance(shape, (int, np.integer)) else shape
     try:
         if isinstance(items, (str, bytes)) or any(isinstance(n, (bool, np.bool_)) for n in items):

@@ -317,6 +317,8 @@ def nearest_rigid(
     (rad) each was moved by (0 for the others): the targets IK solves, and how far they are
     from what was asked (a pose copied with a few decimals is off by about its last digit).
     ``deviation`` (N,): each pose's deviation from a rotation, if the check measured it."""
+    if deviation is None and len(goal) == 1 and _is_rotation_one(goal[0].tolist(), tol):
+        return goal, np.zeros(1)  # one rigid pose: the common case of a single solve
     if deviation is None and len(goal) <= _FEW_POSES:  # a few poses: their floats, one by one
         off = np.array([not _is_rotation_one(rows, tol) for rows in goal.tolist()], dtype=bool)
     else:
