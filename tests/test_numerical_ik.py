@@ -1,5 +1,6 @@
 """Numerical IK: verified success, reproducibility, failures that say why, and the blind spot."""
 
+import itertools
 import zlib
 
 import numpy as np
@@ -275,3 +276,97 @@ def test_a_custom_step_rule_runs_on_the_single_and_the_stacked_path():
     assert stacked.success.mean() >= 0.9
     position = np.linalg.norm(urkin.fk(ur5, stacked.q)[:, :3, 3] - targets[:, :3, 3], axis=1)
     assert position[stacked.success].max() <= 1e-10
+
+
+def test_lm_damping_falls_with_the_error_so_the_end_is_quadratic():
+    """After a good step μ is at most 10·|e|² (Yamashita–Fukushima), never below the floor
+    that keeps JᵀJ + μI solvable at a singular solution; from a start 0.05 rad off a regular
+    solution the error then falls faster than quadratically's square root each step."""
+    from urkin import numerical_ik as nik
+
+    rule = nik.LevenbergMarquardt()
+    rule.start(1)
+    J = np.eye(6)
+    e = np.full(6, 1e-3)
+    rule.mu_one = 1.0
+    dq = rule.step(None, 0, None, J, e)
+    assert rule.accept_one(e, 0.01 * e, J, dq, float(e @ e), float(1e-4 * e @ e))
+    assert rule.mu_one == pytest.approx(10 * 1e-4 * float(e @ e))
+    rule.mu_one = 1.0
+    dq = rule.step(None, 0, None, J, e)
+    assert rule.accept_one(e, 0 * e, J, dq, float(e @ e), 0.0)
+    assert rule.mu_one == nik._MU_FLOOR
+
+    ur5 = urkin.robot("ur5")
+    q = np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.2])
+    residuals = []
+    evaluate_one = nik._Problem.evaluate_one
+
+    def spy(self, *args):
+        out = evaluate_one(self, *args)
+        residuals.append(max(out[2], out[3]))
+        return out
+
+    nik._Problem.evaluate_one = spy
+    try:
+        result = urkin.ik(ur5, urkin.fk(ur5, q), q0=q + 0.05)
+    finally:
+        nik._Problem.evaluate_one = evaluate_one
+    assert result.success
+    tail = [r for r in residuals if 1e-12 < r < 1e-2]
+    assert len(tail) >= 2
+    assert all(b < a**1.5 for a, b in itertools.pairwise(tail)), tail
+
+
+def test_a_stationary_point_is_told_from_a_solution_on_the_way():
+    """|Jᵀe| < 0.01·|J|_F·|e| marks an error the joints cannot reduce (a local minimum), one
+    target or a stack alike; an error in the Jacobian's range is not one."""
+    from urkin.numerical_ik import _stationary
+
+    rng = np.random.default_rng(5)
+    J = rng.normal(size=(6, 6))
+    J[:, 5] = J[:, 4]  # rank 5: one direction of the task space out of reach
+    u = np.linalg.svd(J)[0][:, -1]  # orthogonal to the range of J
+    reachable = J @ rng.normal(size=6)
+    for e, expected in [(u, True), (reachable, False), (u + 0.1 * reachable, False)]:
+        assert _stationary(J, e, float(e @ e)) is expected
+    E = np.array([u, reachable])
+    stacked = _stationary(np.array([J, J]), E, np.sum(E * E, axis=1))
+    assert stacked.tolist() == [True, False]
+
+
+def test_local_minima_restart_without_waiting_out_the_patience():
+    """With restarts left, an attempt caught in a local minimum (the error above 1 mm, not
+    falling, orthogonal to the Jacobian's range) restarts at once: on 300 random targets the
+    stacked and the single paths both solve every one, with fewer iterations than the
+    patience rule alone takes (the test raised to never)."""
+    from urkin import numerical_ik as nik
+
+    ur5 = urkin.robot("ur5")
+    targets = urkin.fk(ur5, np.random.default_rng(11).uniform(-np.pi, np.pi, (300, 6)))
+    with_test = urkin.ik(ur5, targets)
+    single = [urkin.ik(ur5, T) for T in targets[:60]]
+    saved = nik._STATIONARY
+    nik._STATIONARY = 0.0
+    try:
+        without = urkin.ik(ur5, targets)
+    finally:
+        nik._STATIONARY = saved
+    assert with_test.success.all() and without.success.all()
+    assert all(r.success for r in single)
+    assert with_test.iterations.sum() < without.iterations.sum()
+
+
+def test_one_rows_errors_match_the_stacked_evaluation():
+    """The singular steps of a single solve measure errors with the one-pose code: the same
+    errors as the stacked evaluation, to round-off."""
+    from urkin import numerical_ik as nik
+
+    ur5 = urkin.robot("ur5")
+    T = urkin.fk(ur5, np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.2]))
+    problem = nik._Problem(ur5, T[None, :3, 3], T[None, :3, :3], "log", 1e-10, 1e-10)
+    Q = np.array([[0.2, -1.0, 1.3, -0.4, 1.0, 0.5]])
+    rows = np.zeros(1, dtype=np.intp)
+    np.testing.assert_allclose(
+        problem.errors(Q, rows), problem.evaluate(Q, rows)[1], rtol=0, atol=1e-14
+    )

@@ -15,7 +15,8 @@ the single path, each continuing its attempt):
 * where an attempt stalls close to a nearly singular solution (micrometres short, the error
   left along the Jacobian's weakest direction falling only at second order), a step along
   that direction fitted to the error (:func:`_singular_steps`), unless ``max_restarts=0``;
-* restarts from seeded random configurations when an attempt stalls;
+* restarts from seeded random configurations when an attempt stalls, or reaches a point where
+  the error is orthogonal to every direction the joints can move the tool (a local minimum);
 * verification: success is reported only when the pose error of the returned ``q``, measured
   with :func:`urkin.fk` against the target as given, is within both tolerances.
 
@@ -29,7 +30,8 @@ Step rules (``method``, or a :class:`StepRule` object):
 ``"lm"`` (:class:`LevenbergMarquardt`, default)
     ``Δq = (JᵀJ + μ I)⁻¹ Jᵀ e`` with ``μ`` adapted every iteration from how well the step's
     predicted error reduction matched the actual one (Nielsen's rule): smaller after a good
-    step, larger — and the step rejected — after one that does not lower the error.
+    step (and at most ``10 |e|²``, so that the last steps converge quadratically), larger —
+    and the step rejected — after one that does not lower the error.
 ``"poe"`` (:class:`MatrixLog`)
     Modern Robotics' ``IKinSpace``: the matrix-log twist error ``V_s = log(T_target T⁻¹)`` and
     ``Δq = J_s⁺ V_s`` with the space Jacobian.
@@ -497,7 +499,7 @@ class LevenbergMarquardt(StepRule):
 
     def for_row(self, row):
         one = copy.copy(self)
-        del one.gram, one.gram_diagonal  # its own scratch
+        one.__dict__.pop("gram", None)  # its own scratch (start makes it)
         one.start(1)
         one.mu_one, one.nu_one = float(self.mu[row]), float(self.nu[row])
         return one
