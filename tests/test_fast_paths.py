@@ -322,3 +322,25 @@ def test_a_single_solve_returns_wrapped_angles_whatever_the_step_limit(max_step)
         assert np.all(result.q > -np.pi) and np.all(result.q <= np.pi)
         position, angle = pose_error(urkin.fk(arm, result.q), T)
         assert position <= 1e-10 and angle <= 1e-10
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, 30.0])
+def test_a_few_configurations_refuse_what_one_refuses(bad):
+    """The row-by-row path of a few configurations (k ≤ 24) tests them all at once; one bad
+    angle anywhere sends the stack to the checked path, which names it."""
+    q = np.zeros((3, 6))
+    q[1, 2] = bad
+    for function in (urkin.fk, urkin.jacobian, urkin.position_jacobian, urkin.fk_frames):
+        with pytest.raises(ValueError, match=r"q contains NaN or infinity|q has an angle of 30"):
+            function(urkin.robot("ur5"), q)
+
+
+@pytest.mark.parametrize("size", [2, 3, 7, 24])
+@pytest.mark.parametrize("scale", [np.pi, 2 * np.pi])
+def test_a_few_configurations_are_the_single_results_to_the_bit(size, scale):
+    """Row by row (all angles' norm within the bound) or through the checked path (a stack of
+    angles up to ±2π whose norm is past it), a small stack equals its rows' single results."""
+    arm = urkin.robot("ur10e")
+    q = np.random.default_rng(size).uniform(-scale, scale, (size, 6))
+    for function in (urkin.fk, urkin.jacobian, urkin.position_jacobian):
+        np.testing.assert_array_equal(function(arm, q), np.array([function(arm, x) for x in q]))

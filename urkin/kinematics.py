@@ -13,6 +13,7 @@ a base was set with :meth:`urkin.Robot.with_base`).
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 
 import numpy as np
@@ -168,6 +169,7 @@ _SIX, _ONE_ROW = (6,), (1, 6)
 
 
 _hypot = math.hypot
+_chain = itertools.chain.from_iterable
 
 
 def _one_pose_first(one, stacked: tuple[int, ...]):
@@ -175,8 +177,12 @@ def _one_pose_first(one, stacked: tuple[int, ...]):
     ``robot`` is a plain :class:`Robot` and ``q`` one configuration, of shape (6,) or a stack
     of one (``stacked``: the shape of a stack of one's result), as a float array, finite and
     within ±:data:`MAX_JOINT_ANGLE` (:func:`_six`'s test, written out: the fast path of
-    :func:`fk`, :func:`jacobian` and :func:`position_jacobian` makes no call but ``one``'s);
-    anything else goes to the decorated function, which checks it."""
+    :func:`fk`, :func:`jacobian` and :func:`position_jacobian` makes no call but ``one``'s),
+    and likewise a few configurations (k, 6), k ≤ :data:`_FEW` (:func:`_few`'s test), row by
+    row; anything else goes to the decorated function, which checks it."""
+
+    item = stacked[1:]
+    size = 8 * math.prod(item)  # bytes of one result
 
     def decorate(general):
         @functools.wraps(general)
@@ -192,6 +198,13 @@ def _one_pose_first(one, stacked: tuple[int, ...]):
                         (values,) = q.tolist()
                         if _hypot(*values) <= MAX_JOINT_ANGLE:
                             return one(values, robot.lengths, _empty(stacked))
+                    elif len(shape) == 2 and shape[1] == 6 and shape[0] <= _FEW:  # a few
+                        rows = q.tolist()
+                        if _hypot(*_chain(rows)) <= MAX_JOINT_ANGLE:
+                            lengths, out = robot.lengths, _empty((shape[0], *item))
+                            for row, at in zip(rows, range(0, shape[0] * size, size)):
+                                one(row, lengths, out, at)
+                            return out
             return general(robot, q)
 
         return public
@@ -204,27 +217,15 @@ _empty = np.empty
 
 def _few(q: ArrayLike) -> list[list[float]] | None:
     """The rows of ``q`` when it is a small stack (k ≤ :data:`_FEW`, k, 6) of float angles, all
-    finite and in range; else None (the general path checks ``q``)."""
+    finite and in range; else None (the general path checks ``q``).
+
+    :func:`_six`'s test on the whole stack at once: one Euclidean norm of every angle (NaN and
+    inf fail it) at most ``MAX_JOINT_ANGLE``; a stack of angles in range but of a larger norm
+    takes the general path."""
     if type(q) is np.ndarray and q.ndim == 2 and q.shape[1] == 6 and q.dtype is _FLOAT:
-        if len(q) <= _FEW:
-            rows = q.tolist()
-            if all(map(_in_range, rows)):
-                return rows
+        if len(q) <= _FEW and _hypot(*q.ravel().tolist()) <= MAX_JOINT_ANGLE:
+            return q.tolist()
     return None
-
-
-def _in_range(values: list[float]) -> bool:
-    """Six floats, finite and within ±:data:`MAX_JOINT_ANGLE` (NaN fails every comparison)."""
-    a, b, c, d, e, f = values
-    top = MAX_JOINT_ANGLE
-    return (
-        -top <= a <= top
-        and -top <= b <= top
-        and -top <= c <= top
-        and -top <= d <= top
-        and -top <= e <= top
-        and -top <= f <= top
-    )
 
 
 def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> np.ndarray:
@@ -243,14 +244,18 @@ def _evaluate(robot: Robot, q: ArrayLike, one, many, shape: tuple[int, ...]) -> 
         rows = array.tolist()
     else:
         lead = (len(rows),)
-    # a few poses: the one-pose code row by row, straight into the output, beats the column
-    # code's fixed cost
-    lengths = robot.lengths
+    out = _row_by_row(one, rows, robot.lengths, shape)
+    return out if len(lead) == 1 else unstack(out, lead)
+
+
+def _row_by_row(one, rows: list[list[float]], lengths, shape: tuple[int, ...]) -> np.ndarray:
+    """A few poses (``rows``, checked): the one-pose code ``one`` row by row, straight into the
+    output (k, *shape), which beats the column code's fixed cost."""
     out = np.empty((len(rows), *shape))
     size = 8 * math.prod(shape)
-    for i, row in enumerate(rows):
-        one(row, lengths, out, i * size)
-    return out if len(lead) == 1 else unstack(out, lead)
+    for row, at in zip(rows, range(0, len(rows) * size, size)):
+        one(row, lengths, out, at)
+    return out
 
 
 @_one_pose_first(_gen.t06_one, (1, 4, 4))
