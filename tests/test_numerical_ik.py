@@ -212,6 +212,11 @@ def test_tool_and_base_are_honoured():
         ),
         ({"target": [0.3, 0.1, 0.2], "method": "poe"}, ValueError, "full poses"),
         ({"target": np.eye(4), "q0": np.full(6, 90.0)}, ValueError, "degrees"),
+        (
+            {"target": np.eye(4), "method": urkin.numerical_ik.LevenbergMarquardt},
+            TypeError,
+            r"not the class: pass LevenbergMarquardt\(\)",
+        ),
     ],
 )
 def test_bad_input_names_the_problem(kwargs, error, message):

@@ -615,6 +615,11 @@ IK_METHODS = ("lm", "nr", "dls", "poe")
 def _rule(method: str | StepRule, damping: float) -> StepRule:
     if isinstance(method, StepRule):
         return method
+    if isinstance(method, type) and issubclass(method, StepRule):
+        raise TypeError(
+            f"method must be a StepRule object, not the class: pass {method.__name__}() "
+            f"instead of {method.__name__}"
+        )
     if not isinstance(method, str):
         raise TypeError(
             f"method must be one of {', '.join(IK_METHODS)} or a StepRule; got "
