@@ -344,3 +344,20 @@ def test_a_few_configurations_are_the_single_results_to_the_bit(size, scale):
     q = np.random.default_rng(size).uniform(-scale, scale, (size, 6))
     for function in (urkin.fk, urkin.jacobian, urkin.position_jacobian):
         np.testing.assert_array_equal(function(arm, q), np.array([function(arm, x) for x in q]))
+
+
+@pytest.mark.parametrize("lead", [(1,), (1, 1)])
+def test_a_stack_of_one_ik_target_is_the_single_solve(lead):
+    """A target of shape (1, 4, 4) or (1, 1, 4, 4) is solved and verified as the single target
+    is (the same q, errors, iterations and reason), and reported with its leading axes."""
+    arm = urkin.robot("ur5")
+    T = urkin.fk(arm, np.array([0.3, -1.2, 1.4, -0.6, 1.1, 0.2]))
+    one = urkin.ik(arm, T)
+    stack = urkin.ik(arm, T.reshape(*lead, 4, 4))
+    assert stack.q.shape == (*lead, 6) and stack.success.shape == lead
+    np.testing.assert_array_equal(stack.q.reshape(6), one.q)
+    assert stack.iterations.reshape(()) == one.iterations
+    assert stack.residual.reshape(()) == one.residual
+    assert np.ravel(stack.reason).tolist() == [one.reason]
+    with pytest.raises(ValueError, match=r"entry \(0, 0, 0\)"):
+        urkin.ik(arm, np.full((1, 4, 4), np.nan))

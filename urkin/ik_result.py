@@ -224,7 +224,7 @@ def verified(
     ``lead`` gives the result its leading axes (``()`` for one target).
     """
     n = len(q)
-    if lead == () and goal.shape == (1, 4, 4):  # the scalar fast path
+    if goal.shape == (1, 4, 4):  # one pose (or a stack of one): its errors in floats
         position, rotation = pose_error(fk(robot, q[0]), goal[0], check=False)
         success = bool(found[0]) and position <= tol_position and rotation <= tol_orientation
         if success:
@@ -235,7 +235,7 @@ def verified(
             why = failure(0, float(position), float(rotation))
         else:
             why = f"the solution misses the target by {position:.2e} m and {rotation:.2e} rad"
-        return IKResult(
+        one = IKResult(
             q[0].copy(),
             success,
             float(max(position, rotation)),
@@ -245,6 +245,7 @@ def verified(
             0 if restarts is None else int(restarts[0]),
             why,
         )
+        return one if lead == () else _with_leading_axes(_stack_of_one(one), lead)
     T = fk(robot, q)
     if goal.shape[-2:] == (4, 4):
         position_error, rotation_error = pose_error(T, goal, check=False)
@@ -291,6 +292,20 @@ def stacked(results: list[IKResult], lead: tuple[int, ...]) -> IKResult:
     ]
     flat = IKResult(np.stack([r.q for r in results]), *columns, [r.reason for r in results])
     return _with_leading_axes(flat, lead)
+
+
+def _stack_of_one(one: IKResult) -> IKResult:
+    """A single result as a batch of one (arrays of one entry, ``q`` of shape (1, 6))."""
+    return IKResult(
+        one.q[None],
+        np.array([one.success]),
+        np.array([one.residual]),
+        np.array([one.position_error]),
+        np.array([one.orientation_error]),
+        np.array([one.iterations]),
+        np.array([one.restarts]),
+        [one.reason],
+    )
 
 
 def _with_leading_axes(result: IKResult, lead: tuple[int, ...]) -> IKResult:

@@ -74,6 +74,8 @@ from urkin.ik_result import (
 from urkin.kinematics import _joints, fk, flange_pose, jacobian
 from urkin.robots import Robot, check_robot, random_configurations
 from urkin.transforms import (
+    ROTATION_TOLERANCE,
+    _is_transform_one,
     check_rotation,
     check_transform,
     rotation_parts,
@@ -998,9 +1000,13 @@ def _iterate(
 def _targets(target: ArrayLike) -> tuple[np.ndarray, bool, tuple[int, ...]]:
     """Checked targets as (N, 4, 4) poses or (N, 3) positions, whether they are poses, and
     their leading axes."""
-    if type(target) is np.ndarray and target.dtype == np.float64 and target.shape == (4, 4):
+    if type(target) is np.ndarray and target.dtype == np.float64 and target.size == 16:
         # one pose: check_transform's scalar test checks finiteness and rigidity at once
-        return check_transform(target, name="target")[None], True, ()
+        if target.shape == (4, 4):
+            return check_transform(target, name="target")[None], True, ()
+        if target.shape[-2:] == (4, 4):  # a stack of one: taken as it is if rigid
+            if _is_transform_one(target.reshape(4, 4).tolist(), ROTATION_TOLERANCE):
+                return target.reshape(1, 4, 4), True, target.shape[:-2]
     goal = real(target, "target")
     if goal.shape[-2:] == (4, 4):
         goal = check_transform(goal, name="target")
