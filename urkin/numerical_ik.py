@@ -1122,19 +1122,30 @@ def ik(
                 f"q0 holds {len(guess)} configurations for {n} targets: give one guess, or "
                 f"one per target (shape {(*lead, 6)}); got shape {(*guess_lead, 6)}"
             )
+    settings = {
+        "max_iterations": max_iterations,
+        "max_restarts": max_restarts,
+        "max_step": rule.max_step if max_step is None else max_step,
+        "seed": seed,
+        # with no restarts, one attempt of the step rule alone, as the lessons trace it
+        "singular_steps": max_restarts > 0,
+    }
+    tolerances = (orientation, tol_position, tol_orientation)
     if 1 < n <= _HAND_OFF:  # a few targets: each solved as if alone, on the single path
-        alone = {
-            "method": rule,
-            "orientation": orientation,
-            "tol_position": tol_position,
-            "tol_orientation": tol_orientation,
-            "max_iterations": max_iterations,
-            "max_restarts": max_restarts,
-            "max_step": max_step,
-            "seed": seed,
-        }
-        return stacked([ik(robot, goal[i], Q0[i], **alone) for i in range(n)], lead)
+        results = [
+            _solve(robot, goal[i : i + 1], pose, (), Q0[i : i + 1], rule, tolerances, settings)
+            for i in range(n)
+        ]
+        return stacked(results, lead)
+    return _solve(robot, goal, pose, lead, Q0, rule, tolerances, settings)
 
+
+def _solve(robot, goal, pose, lead, Q0, rule, tolerances, settings) -> IKResult:
+    """:func:`ik` of checked targets ``goal`` (N, 4, 4) or positions (N, 3) from ``Q0`` (N, 6):
+    one target on the single path, more on the stacked one; ``tolerances``: the orientation
+    error's form and the two tolerances; ``settings``: the core's keyword arguments."""
+    orientation, tol_position, tol_orientation = tolerances
+    n = len(goal)
     bad, reasons = unreachable(robot, goal, pose)
     if pose:  # iterate on the flange's target, the nearest rotation, with the plain kinematics
         plain = (
@@ -1150,24 +1161,14 @@ def ik(
     else:  # a position of the tool point, in the world frame: the robot's own kinematics
         problem = _Problem(robot, goal, None, orientation, tol_position, tol_orientation)
         skew_angle = np.zeros(n)
-    settings = {
-        "max_iterations": max_iterations,
-        "max_restarts": max_restarts,
-        "max_step": rule.max_step if max_step is None else max_step,
-        "seed": seed,
-        # with no restarts, one attempt of the step rule alone, as the lessons trace it
-        "singular_steps": max_restarts > 0,
-    }
     if n == 1:
         single = (
             _iterate_one(problem, rule, Q0[0], **settings) if not bad[0] else (Q0[0], False, 0, 0)
         )
         q, found, iterations, restarts = single[0][None], single[1:2], single[2:3], single[3:4]
-    else:
-        q, found, iterations, restarts = _iterate(problem, rule, Q0, ~bad, **settings)
-    if n == 1:
         skewed = [0] if not bad[0] and skew_angle[0] > tol_orientation else []
     else:
+        q, found, iterations, restarts = _iterate(problem, rule, Q0, ~bad, **settings)
         skewed = np.flatnonzero(~bad & (skew_angle > tol_orientation))
     for i in skewed:
         reasons[i] = skew_reason(skew_angle[i], "tol_orientation", tol_orientation)
