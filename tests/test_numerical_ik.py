@@ -283,7 +283,7 @@ def test_a_custom_step_rule_runs_on_the_single_and_the_stacked_path():
     assert position[stacked.success].max() <= 1e-10
 
 
-def test_lm_damping_falls_with_the_error_so_the_end_is_quadratic():
+def test_lm_damping_falls_with_the_error_so_the_end_is_quadratic(monkeypatch):
     """After a good step μ is at most 10·|e|² (Yamashita–Fukushima), never below the floor
     that keeps JᵀJ + μI solvable at a singular solution; from a start 0.05 rad off a regular
     solution the error then falls faster than quadratically's square root each step."""
@@ -312,11 +312,8 @@ def test_lm_damping_falls_with_the_error_so_the_end_is_quadratic():
         residuals.append(max(out[2], out[3]))
         return out
 
-    nik._Problem.evaluate_one = spy
-    try:
-        result = urkin.ik(ur5, urkin.fk(ur5, q), q0=q + 0.05)
-    finally:
-        nik._Problem.evaluate_one = evaluate_one
+    monkeypatch.setattr(nik._Problem, "evaluate_one", spy)
+    result = urkin.ik(ur5, urkin.fk(ur5, q), q0=q + 0.05)
     assert result.success
     tail = [r for r in residuals if 1e-12 < r < 1e-2]
     assert len(tail) >= 2
@@ -340,7 +337,7 @@ def test_a_stationary_point_is_told_from_a_solution_on_the_way():
     assert stacked.tolist() == [True, False]
 
 
-def test_local_minima_restart_without_waiting_out_the_patience():
+def test_local_minima_restart_without_waiting_out_the_patience(monkeypatch):
     """With restarts left, an attempt caught in a local minimum (the error above 1 mm, not
     falling, orthogonal to the Jacobian's range) restarts at once: on 300 random targets the
     stacked and the single paths both solve every one, with fewer iterations than the
@@ -351,12 +348,8 @@ def test_local_minima_restart_without_waiting_out_the_patience():
     targets = urkin.fk(ur5, np.random.default_rng(11).uniform(-np.pi, np.pi, (300, 6)))
     with_test = urkin.ik(ur5, targets)
     single = [urkin.ik(ur5, T) for T in targets[:60]]
-    saved = nik._STATIONARY
-    nik._STATIONARY = 0.0
-    try:
-        without = urkin.ik(ur5, targets)
-    finally:
-        nik._STATIONARY = saved
+    monkeypatch.setattr(nik, "_STATIONARY", 0.0)  # the test off: |Jᵀe|² < 0 never holds
+    without = urkin.ik(ur5, targets)
     assert with_test.success.all() and without.success.all()
     assert all(r.success for r in single)
     assert with_test.iterations.sum() < without.iterations.sum()

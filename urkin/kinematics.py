@@ -182,7 +182,6 @@ def _one_pose_first(one, stacked: tuple[int, ...]):
     row; anything else goes to the decorated function, which checks it."""
 
     item = stacked[1:]
-    size = 8 * math.prod(item)  # bytes of one result
 
     def decorate(general):
         @functools.wraps(general)
@@ -198,13 +197,10 @@ def _one_pose_first(one, stacked: tuple[int, ...]):
                         (values,) = q.tolist()
                         if _hypot(*values) <= MAX_JOINT_ANGLE:
                             return one(values, robot.lengths, _empty(stacked))
-                    elif len(shape) == 2 and shape[1] == 6 and shape[0] <= _FEW:  # a few
-                        rows = q.tolist()
-                        if _hypot(*_chain(rows)) <= MAX_JOINT_ANGLE:
-                            lengths, out = robot.lengths, _empty((shape[0], *item))
-                            for row, at in zip(rows, range(0, shape[0] * size, size)):
-                                one(row, lengths, out, at)
-                            return out
+                    else:
+                        rows = _few(q)
+                        if rows is not None:
+                            return _row_by_row(one, rows, robot.lengths, item)
             return general(robot, q)
 
         return public
@@ -223,8 +219,10 @@ def _few(q: ArrayLike) -> list[list[float]] | None:
     inf fail it) at most ``MAX_JOINT_ANGLE``; a stack of angles in range but of a larger norm
     takes the general path."""
     if type(q) is np.ndarray and q.ndim == 2 and q.shape[1] == 6 and q.dtype is _FLOAT:
-        if len(q) <= _FEW and _hypot(*q.ravel().tolist()) <= MAX_JOINT_ANGLE:
-            return q.tolist()
+        if len(q) <= _FEW:
+            rows = q.tolist()
+            if _hypot(*_chain(rows)) <= MAX_JOINT_ANGLE:
+                return rows
     return None
 
 
