@@ -301,3 +301,14 @@ def test_a_pose_not_quite_rigid_is_solved_as_its_nearest_rotation():
     result = ik_closest(ur5, scaled, q)
     assert not result.success and "from the nearest rotation matrix" in result.reason
     assert ik_closest(ur5, np.round(T, 9), q).success  # 9 decimals: within tol = 1e-9
+
+
+def test_return_mask_gives_a_pair_for_one_pose_too():
+    ur5 = urkin.robot("ur5")
+    T = urkin.fk(ur5, [0.3, -1.2, 1.4, -0.6, 1.1, 0.2])
+    q, mask = ik_analytic(ur5, T, return_mask=True)
+    assert q.shape == (8, 6) and mask.shape == (8,) and mask.all()
+    far = T.copy()
+    far[:3, 3] = [5.0, 0.0, 0.0]
+    q, mask = ik_analytic(ur5, far, return_mask=True)
+    assert q.shape == (0, 6) and mask.shape == (0,)

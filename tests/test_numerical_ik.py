@@ -368,3 +368,35 @@ def test_one_rows_errors_match_the_stacked_evaluation():
     np.testing.assert_allclose(
         problem.errors(Q, rows), problem.evaluate(Q, rows)[1], rtol=0, atol=1e-14
     )
+
+
+@pytest.mark.parametrize("offset", [[0, 0, 0.15], [0.1, -0.05, 0.2]])
+def test_a_tool_converges_on_the_tools_own_error_near_singular_poses(offset):
+    # the solver iterates on the flange; the tool point misses by up to the flange's miss plus
+    # |offset| × the rotation error, so the convergence test must bound that sum (else the
+    # flange converges, the tool misses 1e-10 by a hair and no restart is tried)
+    arm = urkin.robot("UR5").with_tool(make_transform(rot_x(0.3), offset))
+    rng = np.random.default_rng(17)
+    Q = rng.uniform(-3, 3, (120, 6))
+    Q[:, 2] = rng.choice([1e-6, -1e-6, 1e-3], len(Q))  # near the elbow singularity
+    Q[:60, 4] = 1e-6  # and the wrist's
+    T = urkin.fk(arm, Q)
+    single = [urkin.ik(arm, t) for t in T]
+    assert all(r.success for r in single), [r.reason for r in single if not r.success][:2]
+    assert max(r.position_error for r in single) <= 1e-10
+    assert urkin.ik(arm, T).success.all()
+
+
+@pytest.mark.parametrize("damping", [1e-160, 5e-324, 1e-154])
+def test_dls_refuses_a_damping_whose_square_underflows(damping):
+    T = urkin.fk(urkin.robot("ur5"), [0.1, -1.2, 1.1, -0.5, 0.7, 0.3])
+    with pytest.raises(ValueError, match=r"damping must be 0 .* underflows"):
+        urkin.ik(urkin.robot("ur5"), T, method="dls", damping=damping)
+    assert urkin.ik(urkin.robot("ur5"), T, method="dls", damping=1.5e-154).success
+
+
+@pytest.mark.parametrize("keyword", ["tol_position", "tol_orientation", "damping"])
+def test_an_integer_too_large_for_a_float_is_refused_by_name(keyword):
+    T = urkin.fk(urkin.robot("ur5"), [0.1, -1.2, 1.1, -0.5, 0.7, 0.3])
+    with pytest.raises(ValueError, match=rf"{keyword} must be .*a huge integer"):
+        urkin.ik(urkin.robot("ur5"), T, method="dls", **{keyword: 10**400})

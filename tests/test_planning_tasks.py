@@ -582,3 +582,14 @@ def test_replay_checks_the_arm_while_it_carries_a_block(world, stack):
         assert not ok and why.startswith("step 4 (move): ")
     last = why.removeprefix("step 4 (move): in collision: ")
     assert any(last.startswith(f"{n} penetrates box") for n in world.model.names), why
+
+
+def test_tool_yaw_refuses_a_vertical_x_axis_and_names_the_pose():
+    from urkin.transforms import rot_y
+
+    assert planning.tool_yaw(make_transform(rot_z(0.3) @ rot_x(0.5))) == pytest.approx(0.3)
+    with pytest.raises(ValueError, match="x axis is vertical: it has no yaw"):
+        planning.tool_yaw(make_transform(rot_y(np.pi / 2)))
+    stack = np.stack([np.eye(4), make_transform(rot_y(-np.pi / 2))])
+    with pytest.raises(ValueError, match=r"vertical at \(1,\)"):
+        planning.tool_yaw(stack)

@@ -88,3 +88,24 @@ def test_random_configurations_are_generator_uniform_draws(name, shape):
     expected = np.random.default_rng(3).uniform(lower, upper, (*size, 6))
     drawn = random_configurations(arm, shape, seed=3)
     assert np.array_equal(drawn, expected)
+
+
+@pytest.mark.parametrize("which", ["with_base", "with_tool"])
+def test_a_base_or_tool_typed_with_a_few_decimals_is_made_rigid(which):
+    # 7 decimals: 1e-7 from orthonormal, which the checks accept; kept as given, every pose
+    # fk gives would be as skewed and IK could reach none of them
+    R = np.round(urkin.transforms.rot_z(0.3) @ urkin.transforms.rot_x(0.2), 7)
+    M = urkin.transforms.make_transform(R, [0.5, 0.0, 0.1])
+    arm = getattr(urkin.robot("ur5"), which)(M)
+    kept = arm.base if which == "with_base" else arm.tool
+    assert np.abs(kept[:3, :3] - R).max() < 1e-6
+    assert np.abs(kept[:3, :3].T @ kept[:3, :3] - np.eye(3)).max() < 1e-14
+    T = urkin.fk(arm, [0.1, -1.2, 1.1, -0.5, 0.7, 0.3])
+    assert np.abs(T[:3, :3].T @ T[:3, :3] - np.eye(3)).max() < 1e-14
+    assert urkin.ik(arm, T).success
+
+
+def test_an_exact_base_is_kept_to_the_bit():
+    M = urkin.transforms.make_transform(urkin.transforms.rot_z(0.3), [0.5, 0.0, 0.1])
+    assert np.array_equal(urkin.robot("ur5").with_base(M).base, M)
+    assert urkin.robot("ur5").with_tool(np.eye(4)).has_identity_frames

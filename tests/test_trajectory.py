@@ -472,3 +472,17 @@ def test_via_trajectory_with_gaps_too_short_for_its_vias_is_refused():
     assert np.isfinite(slow.qdd).all() and np.abs(slow.qdd).max() < 1e-300
     same = tj.via_trajectory(q, [0.0, 1.0, 2.0])  # the same path, in τ
     np.testing.assert_allclose(slow.q, same.q, rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize("acceleration", [1e15, 1e16, 1e300])
+def test_a_trapezoid_that_is_nearly_all_cruise_still_evaluates_within_its_peaks(acceleration):
+    # V·T rounds to 1 here: the ramp must come from the two peaks, not from V·T − 1
+    ts = tj.minimum_time("trapezoid", [1.0], 1.0, acceleration)
+    t = np.linspace(-0.1, ts.T + 0.1, 20_001)
+    s, sd, sdd = ts(t)
+    assert s[0] == 0.0 and s[-1] == 1.0
+    assert np.all(np.diff(s) >= 0) and np.abs(np.diff(s)).max() < 1e-4
+    assert sd.max() <= ts.peak_speed * (1 + 1e-12)
+    assert np.abs(sdd).max() <= ts.peak_acceleration * (1 + 1e-12)
+    motion = tj.joint_trajectory([0.0], [1.0], ts)
+    assert np.all(np.isfinite(motion.q))

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import operator
+import sys
 from numbers import Integral, Real
 from typing import Any
 
@@ -54,21 +55,28 @@ def positive(
     """
     kind = type(value)
     if (kind is int or (kind is float and not integer)) and (
-        0 < value < math.inf or (zero_ok and value == 0)
-    ):  # the common case, without the abstract-class checks below
+        0 < value <= _LARGEST or (zero_ok and value == 0) or (integer and value > 0)
+    ):  # the common case, without the abstract-class checks below (a count may be any int)
         return value
     kinds = Integral if integer else Real
     if not what:
         what = f"{'an integer' if integer else 'a number'} {'≥' if zero_ok else '>'} 0"
     if isinstance(value, bool) or not isinstance(value, Real):
         raise TypeError(f"{name} must be {what}; got {type(value).__name__} {value!r:.40}")
-    if (
-        not (isinstance(value, kinds) and math.isfinite(value))
-        or value < 0
-        or (value == 0 and not zero_ok)
-    ):
-        raise ValueError(f"{name} must be {what}; got {value!r}")
+    try:
+        finite = (integer and isinstance(value, Integral)) or (
+            math.isfinite(value) and abs(value) <= _LARGEST
+        )
+    except OverflowError:  # an integer beyond any float, where a number is asked for
+        finite = False
+    if not (isinstance(value, kinds) and finite) or value < 0 or (value == 0 and not zero_ok):
+        shown = f"{value!r:.40}" if finite or not isinstance(value, Integral) else "a huge integer"
+        raise ValueError(f"{name} must be {what}; got {shown}")
     return value
+
+
+#: The largest number :func:`positive` accepts (a larger integer is no float).
+_LARGEST = sys.float_info.max
 
 
 def choice(value: Any, name: str, options: tuple[str, ...]) -> str:

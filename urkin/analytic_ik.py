@@ -663,7 +663,9 @@ def ik_analytic(
         configuration reaches a matrix that is not a rotation, and the solutions reach the
         nearest one exactly.
     return_mask : bool
-        For a stack of poses, also return the (..., 8) boolean mask of the real rows.
+        Also return the boolean mask of the real rows: (..., 8) for a stack of poses, and
+        (k,), all True, for one pose (so that ``q, mask = ik_analytic(..., return_mask=True)``
+        unpacks alike for both).
 
     Returns
     -------
@@ -696,7 +698,7 @@ def ik_analytic(
         rows = goal.tolist()
         if _is_rotation_one(rows, RIGID_TOLERANCE):
             found = [row for row in _solve_one(rows, robot.lengths) if row is not None]
-            return np.array(found) if found else np.empty((0, 6))
+            return _one_pose(found, return_mask)
     if goal.ndim == 3 and len(goal) <= _FEW and robot._plain:  # a few flange poses, rigid
         rows = goal.tolist()
         if all(_is_rotation_one(pose, RIGID_TOLERANCE) for pose in rows):
@@ -705,10 +707,17 @@ def ik_analytic(
     poses, lead, _ = _flange_poses(robot, goal, deviation)
     if lead == ():
         found = [row for row in _solve_one(poses[0].tolist(), robot.lengths) if row is not None]
-        return np.array(found) if found else np.empty((0, 6))
+        return _one_pose(found, return_mask)
     q, keep = _solve(poses, robot.lengths)  # rows of NaN where keep is False
     q, keep = unstack(q, lead), unstack(keep, lead)
     return (q, keep) if return_mask else q
+
+
+def _one_pose(found: list, return_mask: bool) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+    """One pose's solutions ``found`` (rows of six floats) as (k, 6), with a (k,) mask of
+    True if asked."""
+    q = np.array(found) if found else np.empty((0, 6))
+    return (q, np.ones(len(q), dtype=bool)) if return_mask else q
 
 
 def _whole_turns_into_limits(

@@ -118,7 +118,9 @@ def _joints(
 
 
 def check_joints(q: ArrayLike, name: str = "q") -> np.ndarray:
-    """Validate joint angles and return them as a float array of shape (6,) or (..., 6).
+    """Validate joint angles and return them as a float array of shape (6,) or (..., 6): a
+    view of ``q`` itself (not a copy) when it already is a float array, as
+    :func:`numpy.asarray` gives it.
 
     Raises
     ------

@@ -54,6 +54,7 @@ from __future__ import annotations
 import copy
 import functools
 import math
+import sys
 from operator import add as _add
 from struct import Struct
 
@@ -172,8 +173,13 @@ def _into_limit(x: float, lo: float, hi: float) -> float:
 class _Problem:
     """The targets (flange poses or tool positions), their error and the robot's kinematics."""
 
-    def __init__(self, robot, positions, rotations, form, tol_position, tol_orientation):
+    def __init__(self, robot, positions, rotations, form, tol_position, tol_orientation, lever=0.0):
         self.robot = robot
+        # the distance from the flange to the tool point, when the targets are flange poses of
+        # an arm with a tool: its position then misses by at most the flange's position error
+        # plus lever × the rotation error, which the convergence test bounds (verified() judges
+        # the tool's pose)
+        self.lever = lever
         self.p = positions  # (N, 3)
         self.R = rotations  # (N, 3, 3), or None for position-only targets
         self.form = form
@@ -195,6 +201,7 @@ class _Problem:
             self.form,
             self.tol_position,
             self.tol_orientation,
+            self.lever,
         )
 
     def evaluate(self, Q: np.ndarray, rows: np.ndarray):
@@ -441,6 +448,11 @@ class DampedLeastSquares(StepRule):
 
     def __init__(self, damping: float = 0.01) -> None:
         self.damping = float(positive(damping, "damping", zero_ok=True))
+        if self.damping > 0.0 and self.damping * self.damping < sys.float_info.min:
+            raise ValueError(
+                f"damping must be 0 (undamped) or at least {math.sqrt(sys.float_info.min):.3g}: "
+                f"λ² = {self.damping * self.damping:g} underflows; got {damping!r}"
+            )
         if self.damping > _MAX_DAMPING:
             raise ValueError(
                 f"damping must be at most {_MAX_DAMPING:g} (λ² is added to JJᵀ, whose entries "
@@ -781,7 +793,11 @@ def _iterate_one(
         attempt, since_progress, attempt_best, singular_best = 0, 0, math.inf, math.inf
     else:
         attempt, since_progress, attempt_best, singular_best = attempt_state
-    tol_position, tol_orientation = problem.tol_position, problem.tol_orientation
+    tol_position, tol_orientation, lever = (
+        problem.tol_position,
+        problem.tol_orientation,
+        problem.lever,
+    )
     patience, limit_steps, uses_pose = rule.patience, max_step != math.inf, rule.uses_pose
     # J and e of the current configuration and of the trial, in two pairs of arrays that
     # swap roles when a trial is accepted (a rule must not keep them across iterations)
@@ -801,7 +817,7 @@ def _iterate_one(
             since_progress += 1
         if residual < attempt_best:
             attempt_best = residual
-        if pos <= tol_position and rot <= tol_orientation:
+        if pos + lever * rot <= tol_position and rot <= tol_orientation:
             return np.array(best_q), True, iterations, restarts, best
         if (
             attempt >= max_iterations
@@ -904,7 +920,9 @@ def _iterate(
         progress = residual < _PROGRESS * attempt_best[rows]
         since_progress[rows] = np.where(progress, 0, since_progress[rows] + 1)
         attempt_best[rows] = np.minimum(attempt_best[rows], residual)
-        done = (pos <= problem.tol_position) & (rot <= problem.tol_orientation)
+        done = (pos + problem.lever * rot <= problem.tol_position) & (
+            rot <= problem.tol_orientation
+        )
         success[rows[done]] = True
         stalled = ~done & _stalled(
             attempt[rows], since_progress[rows], rule.given_up(rows), rule.patience, max_iterations
@@ -1156,7 +1174,13 @@ def _solve(robot, goal, pose, lead, Q0, rule, tolerances, settings) -> IKResult:
         rigid, skew_angle = nearest_rigid(goal, min(RIGID_TOLERANCE, 0.1 * tol_orientation))
         flange = flange_pose(robot, rigid, check=False)
         problem = _Problem(
-            plain, flange[:, :3, 3], flange[:, :3, :3], orientation, tol_position, tol_orientation
+            plain,
+            flange[:, :3, 3],
+            flange[:, :3, :3],
+            orientation,
+            tol_position,
+            tol_orientation,
+            math.hypot(*robot.tool[:3, 3].tolist()),
         )
     else:  # a position of the tool point, in the world frame: the robot's own kinematics
         problem = _Problem(robot, goal, None, orientation, tol_position, tol_orientation)

@@ -64,13 +64,20 @@ def _frozen(matrix: np.ndarray | None, name: str) -> np.ndarray:
         array = np.eye(4)
     else:
         # imported here so that robots stays importable on its own in docs builds
-        from urkin.transforms import check_transform
+        from urkin.transforms import _is_rotation_one, check_transform, orthonormalize
 
         array = np.array(check_transform(matrix, name=name), dtype=float)
         if array.shape != (4, 4):
             raise ValueError(f"{name} must be one 4×4 transform; got shape {array.shape}")
+        if not _is_rotation_one(array.tolist(), _RIGID):  # e.g. typed with a few decimals
+            array[:3, :3] = orthonormalize(array[:3, :3])  # else every pose fk gives is skewed
     array.setflags(write=False)
     return array
+
+
+#: A base or tool rotation further than this from orthonormal (but within the checks'
+#: tolerance) is replaced by its nearest rotation.
+_RIGID = 1e-14
 
 
 class UnknownRobotError(KeyError, ValueError):
@@ -193,11 +200,16 @@ class Robot:
         return np.column_stack([self.d, self.a, self.alpha])
 
     def with_base(self, T_world_base: np.ndarray) -> Robot:
-        """A copy of this arm mounted at ``T_world_base`` (pose of DH frame 0 in the world)."""
+        """A copy of this arm mounted at ``T_world_base`` (pose of DH frame 0 in the world).
+
+        A rotation that is orthonormal only within the checks' tolerance (a matrix typed with
+        a few decimals) is replaced by its nearest rotation, so that every pose :func:`fk`
+        gives is rigid (and IK can reach them)."""
         return replace(self, base=T_world_base)
 
     def with_tool(self, T_flange_tool: np.ndarray) -> Robot:
-        """A copy of this arm carrying a tool at ``T_flange_tool`` (tool pose in DH frame 6)."""
+        """A copy of this arm carrying a tool at ``T_flange_tool`` (tool pose in DH frame 6);
+        its rotation is made orthonormal as :meth:`with_base`'s is."""
         return replace(self, tool=T_flange_tool)
 
 

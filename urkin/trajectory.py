@@ -454,18 +454,30 @@ class TimeScaling:
             sdd = 60 * tau * (1 - tau) * (1 - 2 * tau) / T / T
         else:  # in τ, with the speed in units of 1/T and the acceleration in units of 1/T²
             V = self.peak_speed * T  # in (1, 2]
-            A = V * V / (V - 1.0)
-            ramp = (V - 1.0) / V  # the fraction of T spent speeding up (and slowing down)
+            # the fraction of T spent speeding up (and slowing down); for a profile that is
+            # nearly all cruise, from the two peaks, since V − 1 then cancels (to 0 where the
+            # acceleration is 1e16 times the speed)
+            if V - 1.0 > _CRUISE or self.peak_acceleration == 0.0:
+                ramp = (V - 1.0) / V
+            else:
+                ramp = self.peak_speed / self.peak_acceleration / T
             rising, falling = tau < ramp, tau > 1.0 - ramp
             back = 1.0 - tau
-            s = np.where(
-                rising,
-                0.5 * A * tau * tau,
-                np.where(falling, 1 - 0.5 * A * back * back, V * (tau - ramp / 2)),
-            )
-            sd = np.where(rising, A * tau, np.where(falling, A * back, V)) / T
-            sdd = np.where(rising, A, np.where(falling, -A, 0.0)) / T / T
+            with np.errstate(over="ignore", invalid="ignore"):  # A = inf: no ramp is picked
+                A = V * V / (V - 1.0) if V - 1.0 > _CRUISE else V / ramp if ramp > 0 else math.inf
+                s = np.where(
+                    rising,
+                    0.5 * A * tau * tau,
+                    np.where(falling, 1 - 0.5 * A * back * back, V * (tau - ramp / 2)),
+                )
+                sd = np.where(rising, A * tau, np.where(falling, A * back, V)) / T
+                sdd = np.where(rising, A, np.where(falling, -A, 0.0)) / T / T
         return s, np.where(moving, sd, 0.0), np.where(moving, sdd, 0.0)
+
+
+#: A trapezoid whose cruise speed is within this of ``1/T`` (in units of ``1/T``) is nearly all
+#: cruise: its ramps are taken from its peaks.
+_CRUISE = 1e-4
 
 
 def time_scaling(kind: str, T: float, peak_speed: float | None = None) -> TimeScaling:

@@ -137,7 +137,8 @@ def check_rotation(R: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "R
     Returns
     -------
     ndarray
-        ``R`` as a float array.
+        ``R`` as a float array: ``R`` itself (not a copy) when it already is one, as
+        :func:`numpy.asarray` gives it.
 
     Raises
     ------
@@ -194,14 +195,26 @@ def _rotation_deviation(array: np.ndarray, tol: float, name: str) -> np.ndarray:
     )
     if np.any(det < 0):
         raise ValueError(f"{name} is a reflection, not a rotation: det({name}) = -1")
-    gram_error = gram.max(initial=0.0)
-    if gram_error > tol or np.abs(det - 1.0).max(initial=0.0) > tol:
+    gram_error = float(gram.max(initial=0.0))
+    det_error = float(np.abs(det - 1.0).max(initial=0.0))
+    if gram_error > tol or det_error > tol:
         symbol = name if str(name).isidentifier() else "R"  # "the rotation part of T" reads as R
-        raise ValueError(
-            f"{name} is not a rotation matrix: its columns are not orthonormal "
-            f"(max |{symbol}ᵀ{symbol} − I| = {gram_error:.3g}, tolerance {tol:g})"
-        )
+        if gram_error > tol:
+            what = f"its columns are not orthonormal (max |{symbol}ᵀ{symbol} − I| = "
+            error = gram_error
+        else:
+            what, error = f"its determinant is not 1 (|det {symbol} − 1| = ", det_error
+        raise ValueError(f"{name} is not a rotation matrix: {what}{_above(error, tol)})")
     return np.maximum(gram, np.abs(det - 1.0))
+
+
+def _above(value: float, tol: float) -> str:
+    """``value``, and the tolerance ``tol`` it exceeds, with the digits that tell them apart."""
+    for digits in range(3, 18):
+        shown = f"{value:.{digits}g}"
+        if shown != f"{tol:.{digits}g}":
+            break
+    return f"{shown}, tolerance {tol:g}"
 
 
 def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "T") -> np.ndarray:
@@ -219,7 +232,8 @@ def check_transform(T: ArrayLike, tol: float = ROTATION_TOLERANCE, name: str = "
     Returns
     -------
     ndarray
-        ``T`` as a float array.
+        ``T`` as a float array: ``T`` itself (not a copy) when it already is one, as
+        :func:`numpy.asarray` gives it.
 
     Raises
     ------

@@ -135,17 +135,44 @@ def symmetry(size: ArrayLike) -> float:
 
 
 def tool_yaw(T_world_tool: ArrayLike) -> np.ndarray | float:
-    """The yaw of a tool's x axis about the world's vertical (rad), for tools pointing down.
+    """The yaw of a tool's x axis about the world's vertical (rad): the angle of its
+    horizontal part from the world's x axis.  For a tool pointing down (the grasps of the
+    block tasks), the turn about the vertical that takes the world's x axis to the tool's.
+
+    Raises
+    ------
+    ValueError
+        Where the tool's x axis is vertical (within 1e-9 rad), which has no yaw.
 
     Examples
     --------
-    >>> from urkin.transforms import make_transform, rot_x, rot_z
+    >>> from urkin.transforms import make_transform, rot_x, rot_y, rot_z
     >>> round(tool_yaw(make_transform(rot_z(0.3) @ rot_x(np.pi))), 12)
     0.3
+    >>> tool_yaw(make_transform(rot_y(np.pi / 2)))
+    Traceback (most recent call last):
+    ...
+    ValueError: T_world_tool's x axis is vertical: it has no yaw
     """
     T = check_transform(T_world_tool, name="T_world_tool")
-    yaw = np.arctan2(T[..., 1, 0], T[..., 0, 0])
+    yaw, vertical = _yaw(T)
+    if np.any(vertical):
+        where = "" if T.ndim == 2 else f" at {tuple(int(i) for i in np.argwhere(vertical)[0])}"
+        raise ValueError(f"T_world_tool's x axis is vertical{where}: it has no yaw")
     return float(yaw) if yaw.ndim == 0 else yaw
+
+
+def _yaw(T: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`tool_yaw` of checked poses, and where it is undefined (the x axis vertical:
+    its yaw is then 0)."""
+    x, y = T[..., 0, 0], T[..., 1, 0]
+    vertical = np.hypot(x, y) <= 1e-9
+    return np.where(vertical, 0.0, np.arctan2(y, x)), vertical
+
+
+def _yaw_near(T: np.ndarray) -> float:
+    """The yaw of one checked tool pose to order grasps by (0 where it has none)."""
+    return float(_yaw(T)[0])
 
 
 def _down(yaw: np.ndarray) -> np.ndarray:

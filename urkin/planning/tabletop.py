@@ -28,10 +28,10 @@ from urkin.kinematics import _one_configuration, fk
 from urkin.planning.blocks import (
     Block,
     _grasp_at,
+    _yaw_near,
     block_spheres,
     box_separation,
     grasp_yaws,
-    tool_yaw,
 )
 from urkin.planning.checks import explain, is_free
 from urkin.planning.scene import Box, Scene
@@ -358,7 +358,7 @@ def validate_goal(
     placed = Block.standing(name, block.size, x, y, z, yaw)
     # reach with the tool pointing down
     q_now = None if q_start is None else _one_configuration(q_start, "q_start")
-    yaw_now = 0.0 if q_now is None else tool_yaw(fk(world.robot, q_now))
+    yaw_now = 0.0 if q_now is None else _yaw_near(fk(world.robot, q_now))
     configurations = _place_configurations(world, placed, yaw_now)
     if len(configurations) == 0:
         T = _grasp_at(placed, float(grasp_yaws(placed, yaw_now)[0]))

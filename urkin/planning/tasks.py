@@ -31,7 +31,13 @@ from numpy.typing import ArrayLike
 
 from urkin.analytic_ik import ik_analytic
 from urkin.kinematics import _joints, _one_configuration, fk
-from urkin.planning.blocks import Block, _grasp_at, box_separation, grasp_yaws, tool_yaw
+from urkin.planning.blocks import (
+    Block,
+    _grasp_at,
+    _yaw_near,
+    box_separation,
+    grasp_yaws,
+)
 from urkin.planning.checks import (
     RESOLUTION,
     _intervals,
@@ -510,7 +516,7 @@ def pick_and_place(
             return fail("to pre-grasp", label, "invalid goal: " + "; ".join(verdict.reasons), began)
         name, placed = label, verdict.placed
         block = world.block(name)
-        yaw_now = tool_yaw(fk(world.robot, q))
+        yaw_now = _yaw_near(fk(world.robot, q))
         # the grasp: nearest closed-form configuration with a free approach and lift
         picks, why = _options(
             world, block, yaw_now, q, (world, None), (world, name), resolution, count=1
@@ -555,7 +561,7 @@ def pick_and_place(
         places, why = _options(
             world,
             placed,
-            tool_yaw(fk(world.robot, q)),
+            _yaw_near(fk(world.robot, q)),
             q,
             (world, name),
             (after, None),
