@@ -67,7 +67,11 @@ np.set_printoptions(precision=4, suppress=True)
 # **How you are graded.** Your instructor grades the notebook you hand in with the same checks,
 # but on *fresh random inputs*, so a function that only memorises the visible answers earns
 # nothing. The grader runs only your *definitions* — imports, functions, classes and
-# assignments — not your demonstrations, so keep each exercise self-contained in its function.
+# assignments — not your demonstrations (a call at the top level of a cell is skipped, so set a
+# global with an assignment, not from inside a function you call), and each exercise's function
+# sees the names as they stood at its check cell, as after *Restart & Run All*: a helper or a
+# variable you bind again further down does not change an exercise above it. Keep each exercise
+# self-contained in its function.
 # And where an exercise asks you to write something `urkin` already does, calling `urkin`'s
 # version earns no points for that exercise: the point is to write it yourself.
 

@@ -398,6 +398,27 @@ HOSTILE["read_boxes_09.ipynb"] = (
     ),
     {"9.3": 0},
 )
+# a reply forged straight onto the pipe, of sixty symbolic texts: read one after another they
+# would take the grader seconds each and gigabytes together (the check reads at most
+# wire.MAX_SYMBOLIC_TOTAL of symbolic text per message)
+HOSTILE["symbolic_bomb_02.ipynb"] = (
+    _lesson02(
+        _fk(
+            "    import json, os, sys, time\n"
+            "    f = sys._getframe()\n"
+            "    while f is not None and 'request' not in f.f_locals:\n"
+            "        f = f.f_back\n"
+            "    rid = f.f_locals['request']['id'] if f else 1\n"
+            "    term = 'sin(' * 40 + \"Symbol('x')\" + ')' * 40\n"
+            "    one = 'Add(' + ', '.join([term] * 1500) + ')'\n"
+            "    data = json.dumps({'id': rid, 'value': [{'$sym': one}] * 60}).encode() + b'\\n'\n"
+            "    while data:\n"
+            "        data = data[os.write(int(sys.argv[2]), data):]\n"
+            "    time.sleep(1000)\n"
+        )
+    ),
+    {"2.2": 0},
+)
 # attacks that leave 2.2 correct apart from the attack keep at most its points; those that
 # break it get none
 for _name in (

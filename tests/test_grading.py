@@ -520,15 +520,24 @@ def test_text_from_a_submission_stays_literal_in_its_feedback(tmp_path):
     assert "29 / 29" not in after and "<script>" not in after
 
 
-def test_a_lesson_the_metadata_and_the_file_name_disagree_on_is_noted(tmp_path):
+def test_a_lesson_the_metadata_and_the_file_name_disagree_on_is_not_graded(tmp_path):
+    # a finished lesson-02 notebook handed in as lesson 01 (Gradescope's run_autograder sees
+    # one file) must not earn lesson 02's points there; --lesson settles it
     from urkin.course.grading.read import read_notebook
 
-    path = write(notebook("x = 1", lesson="09"), tmp_path / "alice_02_dh.ipynb")
+    path = write(notebook("x = 1", lesson="09"), tmp_path / "02_dh_forward_kinematics.ipynb")
     read = read_notebook(path)
-    assert read.lesson == "09"
-    assert any("metadata says lesson 09 and its file name lesson 02" in n for n in read.notes)
+    assert read.lesson is None
+    assert "metadata says lesson 09 and its file name lesson 02: not graded" in read.conflict
+    assert read_notebook(path, "02").lesson == "02" and not read_notebook(path, "02").conflict
     agreed = read_notebook(write(notebook("x = 1", lesson="02"), tmp_path / "bob_02.ipynb"))
-    assert not any("metadata says" in n for n in agreed.notes)
+    assert agreed.lesson == "02" and not agreed.conflict
+    chosen = read_notebook(write(notebook("x = 1", lesson="09"), tmp_path / "alice_02_dh.ipynb"))
+    assert chosen.lesson == "09" and any("graded as lesson 09" in n for n in chosen.notes)
+    with Grader(seed=0) as grader:
+        result = grader.grade(path)
+    assert result.status == "unknown lesson" and result.earned == 0
+    assert "metadata says lesson 09" in result.reason
 
 
 def test_without_namespaces_no_submission_sees_the_view_cache(tmp_path, monkeypatch):

@@ -83,8 +83,14 @@ def test_a_syntax_error_loses_only_its_cell(tmp_path):
 
 
 def test_the_lesson_comes_from_metadata_then_the_file_name(tmp_path):
-    path = write(notebook("x = 1", lesson="05"), tmp_path / "bob_02.ipynb")
+    path = write(notebook("x = 1", lesson="05"), tmp_path / "bob_hw.ipynb")
     assert read_notebook(path).lesson == "05"
+    path = write(notebook("x = 1", lesson="05"), tmp_path / "bob_hw10.ipynb")
+    assert read_notebook(path).lesson == "05"  # a number in a name the student chose
+    assert "metadata says lesson 05 and its file name lesson 10" in read_notebook(path).notes[0]
+    path = write(notebook("x = 1", lesson="05"), tmp_path / "02_dh_forward_kinematics.ipynb")
+    assert read_notebook(path).lesson is None  # another lesson's course name: --lesson decides
+    assert read_notebook(path, lesson="2").lesson == "02"
     path = write(notebook("x = 1", lesson=None), tmp_path / "bob_02.ipynb")
     assert read_notebook(path).lesson == "02"
     assert read_notebook(path, lesson="3").lesson == "03"
@@ -199,3 +205,59 @@ def test_cells_read_before_are_remembered_but_their_statements_are_parsed_afresh
         write(notebook(f"y{k} = {k}"), tmp_path / "c_02.ipynb")
         read_notebook(tmp_path / "c_02.ipynb")
     assert len(read._STATEMENTS.table) <= read._MEMO_SIZE >= len(read._SOURCES.table)
+
+
+def test_a_table_filled_inside_a_top_level_loop_is_executed(tmp_path):
+    cells = (
+        "FACTORS = {}\nfor unit, f in [('deg', 0.0174), ('rad', 1.0)]:\n    FACTORS[unit] = f\n",
+        "for q in range(3):\n    print(q)\n",  # a demonstration: skipped
+        "def deg_to_rad(a):\n    return a * FACTORS['deg']\n",
+    )
+    nb = read_notebook(write(notebook(*cells), tmp_path / "a_00.ipynb"))
+    assert [(s.cell, s.kind) for s in nb.plan({"deg_to_rad"}, {})] == [
+        (1, "assign"),
+        (1, "block"),
+        (3, "def"),
+    ]
+
+
+def test_names_keep_the_binding_their_check_cell_saw(tmp_path):
+    # a later demo rebinds a global, and a helper of the same name is written again for a later
+    # exercise: the first exercise is graded with what its check cell saw (Restart & Run All)
+    cells = (
+        "import numpy as np\nT_BL = np.diag([-1.0, -1.0, 1.0, 1.0])\n",
+        "def _frames(robot, q):\n    return 'robot'\n",
+        "def base_link_pose(T):\n    return T_BL @ T, _frames(None, None)\n",
+        'check("0.2", base_link_pose)',
+        "T_BL = np.eye(4)  # a demonstration\n",
+        "def _frames(S, q):\n    return 'screws'\n",
+        "def later(S, q):\n    return _frames(S, q)\n",
+        'check("0.3", later)',
+    )
+    nb = read_notebook(write(notebook(*cells), tmp_path / "a_00.ipynb"))
+    graded = {"base_link_pose": nb.graded_site("base_link_pose", "0.2")}
+    cut = nb.check_call("0.2", graded["base_link_pose"])
+    assert cut == (4, 1)
+    notes: list[str] = []
+    plan = nb.plan({"base_link_pose"}, graded, cut, notes)
+    assert [s.cell for s in plan] == [1, 1, 2, 3]
+    assert any("code cell 5, line 1 binds `T_BL` again" in n for n in notes)
+    assert any("code cell 6, line 1 binds `_frames` again" in n for n in notes)
+    graded["later"] = nb.graded_site("later", "0.3")
+    plan = nb.plan({"later"}, graded, nb.check_call("0.3", graded["later"]))
+    assert [s.cell for s in plan] == [2, 6, 7]  # the later exercise: the later helper wins
+    assert [s.cell for s in nb.plan({"base_link_pose"}, graded)] == [1, 1, 2, 3, 5, 6]  # no cut
+
+
+def test_a_global_set_by_a_skipped_top_level_call_is_explained(tmp_path):
+    cells = (
+        "def _init():\n    global _SIGN\n    _SIGN = -1.0\n",
+        "_init()\n",
+        "def screw_axis(w, q):\n    return _SIGN * w\n",
+    )
+    nb = read_notebook(write(notebook(*cells), tmp_path / "a_03.ipynb"))
+    notes: list[str] = []
+    nb.plan({"screw_axis"}, {}, None, notes)
+    assert any(
+        "code cell 2, line 1 calls `_init()`, which sets the global `_SIGN`" in n for n in notes
+    )

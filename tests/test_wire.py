@@ -205,3 +205,20 @@ def test_joint_boxes_is_free_outside_its_boxes_and_keeps_a_budget():
     assert fresh(np.zeros((4, 6))).shape == (4,)  # each copy counts from zero
     with pytest.raises(ValueError, match="joint angles of shape"):
         fresh(np.zeros(5))
+
+
+def test_one_message_reads_a_bounded_amount_of_symbolic_text():
+    # sixty texts of 100 kB: read one after another, seconds and over a gigabyte; past the
+    # budget they arrive unread
+    one = "Add(" + ", ".join(["sin(" * 40 + "Symbol('x')" + ")" * 40] * 470) + ")"
+    assert 100_000 < len(one) < wire.MAX_SYMBOLIC_TOTAL
+    values = wire.decode([{"$sym": one}] * 60)
+    read = [v for v in values if not isinstance(v, wire.Opaque)]
+    assert 1 <= len(read) <= wire.MAX_SYMBOLIC_TOTAL // len(one)
+    assert "not read" in values[-1].text
+    with wire.symbolic_budget():  # one budget for every decode of a message
+        first = wire.decode([{"$sym": one}] * 5)
+        rest = wire.decode([{"$sym": one}] * 60)
+    assert sum(not isinstance(v, wire.Opaque) for v in first + rest) == len(read)
+    with wire.symbolic_budget(0):  # arguments of the checks' own functions: none read
+        assert isinstance(wire.decode({"$sym": "Symbol('x')"}), wire.Opaque)

@@ -40,6 +40,7 @@ import numpy as np
 __all__ = [
     "ANSWERED_BY_CHECKS",
     "MAX_MESSAGE_BYTES",
+    "MAX_SYMBOLIC_TOTAL",
     "Callback",
     "Function",
     "Opaque",
@@ -51,6 +52,7 @@ __all__ = [
     "dumps",
     "encode",
     "loads",
+    "symbolic_budget",
     "ur_flange_position",
 ]
 
@@ -61,6 +63,12 @@ _MAX_TEXT = 2000
 # Longest SymPy srepr text sent (= urkin.course.symbolic_answer.MAX_TEXT, which the trusted side
 # enforces; that module is not part of what a graded submission can import).
 MAX_SYMBOLIC_TEXT = 512 * 2**10
+#: Most SymPy srepr text read from one message, all its symbolic values together: reading
+#: costs up to about 0.2 kB of memory (kept while the check runs) and 2.5 µs per character, so
+#: 32 MB of it (a message's limit, in 64 texts of the largest size) would take 6 GB and
+#: minutes.  An honest answer holds one matrix (a six-joint chain: under 200 kB) and perhaps a
+#: few small ones in recorded calls.
+MAX_SYMBOLIC_TOTAL = 256 * 2**10
 #: Most JSON containers (lists and objects) and items (commas) in a message from a submission:
 #: 30 MB of ``[[],[],…]`` would otherwise be ten million lists in the grader, over a gigabyte.
 #: An honest answer of arrays is a few containers per array (their data is one string).
@@ -296,6 +304,24 @@ ANSWERED_BY_CHECKS = frozenset({"joint_boxes"})
 _TABLE: contextvars.ContextVar[list | None] = contextvars.ContextVar("callbacks", default=None)
 
 
+#: The symbolic text :func:`decode` may still read in the message being read (a one-item
+#: list, so that nested calls share it); None outside :func:`symbolic_budget`: each call of
+#: :func:`decode` then has :data:`MAX_SYMBOLIC_TOTAL` of its own.
+_SYMBOLIC: contextvars.ContextVar[list | None] = contextvars.ContextVar("symbolic", default=None)
+
+
+@contextlib.contextmanager
+def symbolic_budget(characters: int = MAX_SYMBOLIC_TOTAL) -> Iterator[None]:
+    """Within it, every :func:`decode` together reads at most ``characters`` of SymPy text
+    (the values of one message: its answer and its recorded calls); symbolic values beyond
+    that arrive as :class:`Opaque`, unread."""
+    token = _SYMBOLIC.set([characters])
+    try:
+        yield
+    finally:
+        _SYMBOLIC.reset(token)
+
+
 @contextlib.contextmanager
 def callbacks() -> Iterator[list]:
     """Within it, :func:`encode` sends each function of a kind in :data:`ANSWERED_BY_CHECKS`
@@ -507,6 +533,9 @@ def decode(data: Any, trusted: bool = False, _depth: int = 0) -> Any:
         raise WireError("the value is nested too deeply")
     if data is None or isinstance(data, (bool, int, float, str)):
         return data
+    if _depth == 0 and _SYMBOLIC.get() is None:  # a budget of its own
+        with symbolic_budget():
+            return decode(data, trusted, _depth)
     if isinstance(data, list):
         return [decode(v, trusted, _depth + 1) for v in data]
     if not isinstance(data, dict) or len(data) != 1:
@@ -540,6 +569,13 @@ def decode(data: Any, trusted: bool = False, _depth: int = 0) -> Any:
     if tag == "$sym" and isinstance(body, str):
         from urkin.course import symbolic_answer  # the trusted side only
 
+        left = _SYMBOLIC.get()
+        if left[0] < len(body):
+            return Opaque(
+                "SymPy expression",
+                f"not read: over {MAX_SYMBOLIC_TOTAL // 1024} kB of symbolic text in one answer",
+            )
+        left[0] -= len(body)
         try:
             return symbolic_answer.read(body)
         except ValueError as exc:

@@ -226,6 +226,31 @@ def _mutated(node: ast.stmt) -> str | None:
     return target.id if isinstance(target, ast.Name) else None
 
 
+def _written(site: Site) -> set[str]:
+    """The names a statement binds or changes in place."""
+    return site.binds | site.fills | ({site.mutates} if site.mutates else set())
+
+
+def _filled(block: ast.stmt) -> set[str]:
+    """The names whose contents the statements inside a top-level block change in place
+    (``for k, v in pairs: TABLE[k] = v``), not counting those of functions it defines."""
+    found: set[str] = set()
+    for field_name in ("body", "orelse", "finalbody", "handlers", "cases"):
+        for sub in getattr(block, field_name, None) or []:
+            if isinstance(sub, (ast.ExceptHandler, *_CASES)):
+                found |= _filled(sub)
+                continue
+            mutated = _mutated(sub)
+            if mutated is not None:
+                found.add(mutated)
+            elif isinstance(sub, _BLOCKS):
+                found |= _filled(sub)
+    return found
+
+
+_CASES = (ast.match_case,) if hasattr(ast, "match_case") else ()
+
+
 @dataclass
 class Site:
     """One top-level statement of a code cell."""
@@ -239,6 +264,7 @@ class Site:
     chains: set[str]
     module: str = ""  # for ``import a.b.c`` without ``as``: "a.b.c"
     mutates: str | None = None
+    fills: frozenset[str] = frozenset()  # a block's tables filled in place (``T[k] = …``)
 
     @property
     def line(self) -> int:
@@ -259,6 +285,7 @@ class Notebook:
     sites: list[Site] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     error: str | None = None
+    conflict: str = ""  # why the lesson cannot be told (its metadata and its name disagree)
 
     def sites_binding(self, name: str) -> list[Site]:
         return [s for s in self.sites if name in s.binds]
@@ -283,9 +310,35 @@ class Notebook:
                 break
         return candidates[0]
 
-    def plan(self, roots: set[str], graded: dict[str, Site]) -> list[Site]:
+    def check_call(self, exercise_id: str, graded: Site) -> tuple[int, int] | None:
+        """Where the exercise's first ``check("N.M", …)`` call after its graded definition
+        ``graded`` is, as (code cell, line); None where the notebook has none."""
+        call = re.compile(r"""\bcheck\(\s*["']""" + re.escape(exercise_id) + r"""["']""")
+        for number in sorted(n for n in self.cells if n >= graded.cell):
+            source = self.cells[number]
+            for match in call.finditer(source):
+                line = source.count("\n", 0, match.start()) + 1
+                if (number, line) > (graded.cell, graded.line):
+                    return number, line
+        return None
+
+    def plan(
+        self,
+        roots: set[str],
+        graded: dict[str, Site],
+        cut: tuple[int, int] | None = None,
+        notes: list[str] | None = None,
+    ) -> list[Site]:
         """The statements to execute so that the functions ``roots`` exist as the notebook
-        defines them, with each exercise function bound by its graded site (``graded``)."""
+        defines them, with each exercise function bound by its graded site (``graded``).
+
+        With ``cut`` (code cell, line: where the exercise's check cell calls ``check``), a
+        name bound before the cut keeps that binding: statements after it that bind or fill
+        the name again (a demo cell's ``T = np.eye(4)``, a helper of the same name written
+        for a later exercise) are not executed, so that the functions see what the check cell
+        saw.  ``notes`` gets a sentence for each of those that would have been executed, and
+        for each top-level call skipped that would have set, with ``global``, a name the
+        functions read and nothing else binds."""
         order = {id(s): i for i, s in enumerate(self.sites)}
         skipped = {
             id(s)
@@ -293,6 +346,15 @@ class Notebook:
             for s in self.sites_binding(name)
             if order[id(s)] > order[id(site)]
         }
+        late: list[Site] = []
+        if cut is not None:
+            seen = set().union(*(_written(s) for s in self.sites if (s.cell, s.line) < cut))
+            late = [
+                s
+                for s in self.sites
+                if (s.cell, s.line) > cut and id(s) not in skipped and _written(s) & seen
+            ]
+            skipped |= {id(s) for s in late}
         data_names = {n for s in self.sites if s.kind in ("assign", "block") for n in s.binds}
         needed, chains = set(roots), set()
         chosen: dict[int, Site] = {}
@@ -316,13 +378,56 @@ class Notebook:
                         or any(site.module.startswith(c + ".") or site.module == c for c in chains)
                     )
                 elif site.kind != "other":
-                    take = bool(site.binds & needed)
+                    take = bool(site.binds & needed) or bool(site.fills & needed & data_names)
                 if take:
                     chosen[id(site)] = site
                     needed |= site.uses
                     chains |= site.chains
                     changed = True
+        if notes is not None:
+            for site in late:
+                names = sorted(_written(site) & needed)
+                if names and site.kind != "import":
+                    notes.append(
+                        f"{site.describe()} binds `{names[0]}` again after the check cell of the "
+                        f"exercise it serves (code cell {cut[0]}): that exercise was graded with "
+                        f"the `{names[0]}` its check cell saw"
+                    )
+            for site, function, name in self._global_setters(needed):
+                notes.append(
+                    f"{site.describe()} calls `{function}()`, which sets the global `{name}` "
+                    "the graded code reads; the grader runs no calls at the top level of a cell "
+                    f"(lesson 00): bind `{name}` with an assignment (`{name} = …`) instead"
+                )
         return sorted(chosen.values(), key=lambda s: order[id(s)])
+
+    def _global_setters(self, names: set[str]) -> list[tuple[Site, str, str]]:
+        """Top-level calls the grader skips of notebook functions that set, with ``global``,
+        one of ``names`` that no statement binds: (the call, the function, the name)."""
+        bound = set().union(*(s.binds for s in self.sites))
+        wanted = names - bound
+        if not wanted:
+            return []
+        setters: dict[str, str] = {}
+        for site in self.sites:
+            if site.kind == "def":
+                for sub in ast.walk(site.node):
+                    if isinstance(sub, ast.Global):
+                        for name in sub.names:
+                            if name in wanted:
+                                setters.setdefault(site.node.name, name)
+        found = []
+        for site in self.sites:
+            node = site.node
+            if (
+                site.kind == "other"
+                and isinstance(node, ast.Expr)
+                and isinstance(node.value, ast.Call)
+                and isinstance(node.value.func, ast.Name)
+                and node.value.func.id in setters
+            ):
+                found.append((site, node.value.func.id, setters[node.value.func.id]))
+        return found
 
     def redefinitions(self, function: str, graded: Site) -> list[Site]:
         """Later statements that bind ``function`` again (not graded, reported)."""
@@ -333,8 +438,9 @@ class Notebook:
         ]
 
 
-#: What :func:`_facts` finds in one statement: kind, binds, uses, chains, module, mutates.
-_Facts = tuple[str, frozenset, frozenset, frozenset, str, "str | None"]
+#: What :func:`_facts` finds in one statement: kind, binds, uses, chains, module, mutates,
+#: fills.
+_Facts = tuple[str, frozenset, frozenset, frozenset, str, "str | None", frozenset]
 
 
 def _facts(node: ast.stmt) -> _Facts:
@@ -347,6 +453,7 @@ def _facts(node: ast.stmt) -> _Facts:
         frozenset(site.chains),
         site.module,
         site.mutates,
+        site.fills,
     )
 
 
@@ -399,8 +506,10 @@ def _sites(cell: int, source: str, body: list[ast.stmt]) -> list[Site]:
         facts = tuple(_facts(node) for node in body)
         _STATEMENTS.put(source, facts)
     return [
-        Site(cell, i, node, kind, set(binds), set(uses), set(chains), module, mutates)
-        for i, (node, (kind, binds, uses, chains, module, mutates)) in enumerate(zip(body, facts))
+        Site(cell, i, node, kind, set(binds), set(uses), set(chains), module, mutates, fills)
+        for i, (node, (kind, binds, uses, chains, module, mutates, fills)) in enumerate(
+            zip(body, facts)
+        )
     ]
 
 
@@ -436,7 +545,8 @@ def _site(cell: int, index: int, node: ast.stmt) -> Site:
             return Site(cell, index, node, "other", set(), set(), set())
         return Site(cell, index, node, "assign", _bound_at_top(node), uses, chains)
     if isinstance(node, _BLOCKS):
-        return Site(cell, index, node, "block", _bound_at_top(node), uses, chains)
+        binds = _bound_at_top(node)
+        return Site(cell, index, node, "block", binds, uses, chains, fills=frozenset(_filled(node)))
     return Site(cell, index, node, "other", set(), set(), set())
 
 
@@ -454,7 +564,9 @@ def read_notebook(path: str | Path, lesson: str | None = None) -> Notebook:
     ----------
     path : str or Path
     lesson : str, optional
-        The lesson to assume; by default the notebook's metadata says, then its file name.
+        The lesson to assume; by default the notebook's metadata says, then its file name
+        (when they disagree and the file has a course notebook's name, ``NN_topic.ipynb``,
+        none: see :attr:`Notebook.conflict`).
     """
     path = Path(path)
     notebook = Notebook(path, f"{int(lesson):02d}" if lesson is not None else None)
@@ -474,10 +586,19 @@ def read_notebook(path: str | Path, lesson: str | None = None) -> Notebook:
     if notebook.lesson is None:
         meta, named = _lesson_from_metadata(data), lesson_from_filename(path)
         notebook.lesson = meta or named
-        if meta and named and meta != named:
+        if meta and named and meta != named and re.match(r"\d{2}_", path.name):
+            # a notebook handed in under another lesson's course name (NN_topic.ipynb, as a
+            # Gradescope assignment takes it): either could be the assignment
+            notebook.lesson = None
+            notebook.conflict = (
+                f"the notebook's metadata says lesson {meta} and its file name lesson {named}: "
+                "not graded, since either could be the assignment (the instructor can pass "
+                "--lesson to grade it as one of them)"
+            )
+        elif meta and named and meta != named:  # another number in a name a student chose
             notebook.notes.append(
                 f"the notebook's metadata says lesson {meta} and its file name lesson {named}: "
-                f"graded as lesson {meta} (the metadata wins; the instructor can pass --lesson)"
+                f"graded as lesson {meta} (the instructor can pass --lesson)"
             )
     number, read = 0, 0
     for cell in cells:

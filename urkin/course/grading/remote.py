@@ -291,26 +291,32 @@ class RemoteSubmission(Submission):
             kind, message, where = (str(x) for x in raised)
             raise StudentRaised(kind[:80], message[:2000], where[:300], inputs)
         try:
-            value = wire.decode(reply.get("value"))
-            calls = {w: [] for w in watched}
-            spied = reply.get("spied") or {}
-            for w in watched:
-                for entry in spied.get(w, [])[:5000] if isinstance(spied, dict) else []:
-                    if not isinstance(entry, dict):
-                        continue
-                    call_args = wire.decode(entry.get("args", []))
-                    calls[w].append(
-                        Call(
-                            tuple(call_args) if isinstance(call_args, list) else (),
-                            wire.decode(entry.get("kwargs", {"$d": []})) or {},
-                            wire.decode(entry.get("result")),
-                            str(entry["raised"])[:80] if entry.get("raised") else None,
-                        )
-                    )
+            with wire.symbolic_budget():  # the whole reply: its answer and its recorded calls
+                return self._read_values(reply, watched)
         except (wire.WireError, TypeError, ValueError) as exc:
             raise StudentRaised(
                 "ValueError", f"the answer cannot be read: {exc}", "", inputs
             ) from None
+
+    @staticmethod
+    def _read_values(reply: dict, watched: tuple[str, ...]) -> tuple[Any, dict[str, list[Call]]]:
+        """The answer and the recorded calls of a reply, decoded."""
+        value = wire.decode(reply.get("value"))
+        calls = {w: [] for w in watched}
+        spied = reply.get("spied") or {}
+        for w in watched:
+            for entry in spied.get(w, [])[:5000] if isinstance(spied, dict) else []:
+                if not isinstance(entry, dict):
+                    continue
+                call_args = wire.decode(entry.get("args", []))
+                calls[w].append(
+                    Call(
+                        tuple(call_args) if isinstance(call_args, list) else (),
+                        wire.decode(entry.get("kwargs", {"$d": []})) or {},
+                        wire.decode(entry.get("result")),
+                        str(entry["raised"])[:80] if entry.get("raised") else None,
+                    )
+                )
         return value, calls
 
     def code(self, name: str) -> dict[str, str]:
@@ -338,8 +344,9 @@ def _called_back(functions: list, request: Any) -> dict:
         slot = request.get("slot") if isinstance(request, dict) else None
         if type(slot) is not int or not 0 <= slot < len(functions):
             raise ValueError("a call of a function the checks did not pass")
-        args = wire.decode(request.get("args", []))
-        kwargs = wire.decode(request.get("kwargs", {"$d": []}))
+        with wire.symbolic_budget(0):  # the checks' own functions take no symbolic arguments
+            args = wire.decode(request.get("args", []))
+            kwargs = wire.decode(request.get("kwargs", {"$d": []}))
         if not isinstance(args, list) or not isinstance(kwargs, dict):
             raise TypeError("malformed arguments")
         if not all(isinstance(k, str) for k in kwargs):

@@ -260,7 +260,7 @@ class Grader:
         )
         if notebook.lesson is None or notebook.lesson not in lessons():
             result.status = "unknown lesson"
-            result.reason = (
+            result.reason = notebook.conflict or (
                 "cannot tell which lesson this notebook is: keep the course notebook's name "
                 "(NN_topic.ipynb) or its metadata, or pass --lesson"
             )
@@ -320,7 +320,9 @@ class Grader:
         return [result for result, _ in outcomes]
 
     def _one(self, ex: Exercise, notebook: Notebook, graded: dict):
-        plan = notebook.plan({ex.function, *ex.uses}, graded)
+        cut = notebook.check_call(ex.id, graded[ex.function])
+        plan_notes: list[str] = []
+        plan = notebook.plan({ex.function, *ex.uses}, graded, cut, plan_notes)
         submission = RemoteSubmission(
             notebook,
             graded,
@@ -333,9 +335,9 @@ class Grader:
         )
         try:
             try:
-                notes = submission.start()
+                notes = plan_notes + submission.start()
             except SubmissionGone as gone:
-                return _blank(ex, gone.status, gone.message), []
+                return _blank(ex, gone.status, gone.message), plan_notes
             except OSError as exc:
                 return _blank(ex, "error", f"the grader could not start the process: {exc}"), []
             return run_exercise(ex, submission, self.seed), notes
