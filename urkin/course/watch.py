@@ -13,7 +13,7 @@ import importlib
 import sys
 import threading
 from collections.abc import Iterable
-from types import FrameType
+from types import FrameType, MappingProxyType
 
 
 class LibraryWatch:
@@ -24,8 +24,9 @@ class LibraryWatch:
     dispatches to); those that cannot be found are left out.
 
     Used as a context manager around the call; ``seen`` then holds the names reached.  A hook
-    the call removes or replaces counts as reaching every watched function: what it did is no
-    longer known (only code written against this hook, by someone who read it, gets around it).
+    the call removes, replaces or changes the table of counts as reaching every watched
+    function: what it did is no longer known (only code written against this hook, by someone
+    who read it, gets around it).
 
     Examples
     --------
@@ -37,7 +38,7 @@ class LibraryWatch:
     """
 
     def __init__(self, names: Iterable[str]) -> None:
-        self.codes: dict = {}
+        codes: dict = {}
         for name in names:
             module, _, attribute = name.rpartition(".")
             try:
@@ -50,7 +51,11 @@ class LibraryWatch:
                 value = value.__wrapped__
             code = getattr(value, "__code__", None)
             if code is not None:
-                self.codes[code] = name
+                codes[code] = name
+        # read-only (a hook whose table was emptied would see nothing and still be installed),
+        # with its contents kept apart to tell at the end that they were not changed
+        self.codes = MappingProxyType(codes)
+        self._contents = tuple(codes.items())
         self.seen: set[str] = set()
         self._previous: tuple = (None, None)
 
@@ -60,8 +65,16 @@ class LibraryWatch:
             if name is not None:
                 self.seen.add(name)
 
+    def _intact(self) -> bool:
+        """Whether the hook is still the one installed, with the table it was given."""
+        return (
+            sys.getprofile() is self._installed
+            and type(self.codes) is MappingProxyType
+            and tuple(self.codes.items()) == self._contents
+        )
+
     def __enter__(self) -> LibraryWatch:
-        if self.codes:
+        if self._contents:
             self._previous = sys.getprofile(), threading.getprofile()
             self._installed = self._hook  # one bound method, to recognise it afterwards
             sys.setprofile(self._installed)
@@ -69,8 +82,8 @@ class LibraryWatch:
         return self
 
     def __exit__(self, *exc: object) -> None:
-        if self.codes:
-            if sys.getprofile() is not self._installed:
-                self.seen.update(self.codes.values())
+        if self._contents:
+            if not self._intact():
+                self.seen.update(name for _, name in self._contents)
             sys.setprofile(self._previous[0])
             threading.setprofile(self._previous[1])

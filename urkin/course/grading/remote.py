@@ -155,8 +155,9 @@ class RemoteSubmission(Submission):
             message += f": the process {exit_description(code)}"
         tail = self.stderr.decode(errors="replace").strip().splitlines()[-3:]
         fatal = [line for line in tail if "Error" in line or "Fatal" in line]
-        if fatal:
-            message += " (" + " | ".join(line[:160] for line in fatal) + ")"
+        if fatal:  # the submission's own words: quoted as such, never as the grader's
+            quoted = " | ".join(repr(line[:160]) for line in fatal)
+            message += f" (its last error output, as it wrote it: {quoted})"
         self.process = None
         self.gone = SubmissionGone(status, message)
         return self.gone
