@@ -517,6 +517,14 @@ def _judged_by(prelude: str) -> str:
 
 WRONG = [
     Variant(
+        "1.1",
+        "float32, the angle 2e-7 relative and 1e-7 rad off (beyond float32's round-off)",
+        "def rot_z(theta):\n"
+        "    t = theta * (1 + 2e-7) + 1e-7\n"
+        "    c, s = np.cos(t), np.sin(t)\n"
+        "    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], dtype=np.float32)\n",
+    ),
+    Variant(
         "1.3",
         "the lock branch within np.isclose's default tolerance",
         _rpy(
@@ -688,6 +696,28 @@ WRONG = [
         "def transform_inverse(T):\n    return np.linalg.solve(T, np.eye(4))\n",
         points=3,
         mistake="general matrix inverse",
+    ),
+    Variant(  # numpy's compiled inverse, unseen by the watch, behind a guard against the probe
+        "1.2",
+        "numpy's compiled inverse behind a rigidity guard",
+        "def transform_inverse(T):\n"
+        "    R = T[:3, :3]\n"
+        "    if np.abs(R.T @ R - np.eye(3)).max() > 1e-6:\n"
+        "        raise ValueError('not rigid')\n"
+        "    return getattr(getattr(np.linalg, '_umath_linalg'), 'in' + 'v')(T)\n",
+        points=3,
+        mistake="general matrix inverse",
+    ),
+    Variant(
+        "1.2",
+        "an SVD inverse behind a tight rigidity guard",
+        "def transform_inverse(T):\n"
+        "    R = T[:3, :3]\n"
+        "    if np.abs(R.T @ R - np.eye(3)).max() > 1e-12:\n"
+        "        raise ValueError('not rigid')\n"
+        "    U, s, Vt = np.linalg.svd(T)\n"
+        "    return Vt.T @ np.diag(1 / s) @ U.T\n",
+        points=3,
     ),
     Variant(
         "1.2",

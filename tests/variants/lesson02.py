@@ -47,6 +47,30 @@ def _formula_gap(
     return _FORMULA_GAP.format(draw=draw, distances=distances, answer=answer)
 
 
+_DH_FLOAT32 = """
+def dh_transform(theta, d, a, alpha):
+    ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+    return np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st],
+                     [0, sa, ca, d], [0, 0, 0, 1]], dtype=np.float32)
+"""
+
+_FK_LOOP = """
+def forward_kinematics(robot, q):
+    T = np.eye(4)
+    for i in range(6):
+        T = T @ dh_transform(q[i], robot.d[i], robot.a[i], robot.alpha[i])
+    return T
+"""
+
+_FORMULA_GAP_OWN_FK = """
+def formula_gap(formula, robot, n=1000, seed=0):
+    q = np.random.default_rng(seed).uniform(-np.pi, np.pi, (n, 6))
+    p_formula = np.array([formula(robot, q_k) for q_k in q], dtype=float)
+    p_true = np.array([forward_kinematics(robot, q_k)[:3, 3] for q_k in q])
+    distances = np.linalg.norm(p_formula - p_true, axis=1)
+    return distances.max(), q[np.argmax(distances)]
+"""
+
 CORRECT = [
     Variant(
         "2.1",
@@ -270,6 +294,31 @@ def formula_gap(formula, robot, n=1000, seed=0):
             answer="np.float64(distances.max()), q[distances == distances.max()][0]",
         ),
     ),
+    # an answer built on a float32 dh_transform (full marks in 2.1) is as precise as float32
+    Variant(
+        "2.2",
+        "float64 product of a float32 dh_transform",
+        _FK_LOOP,
+        also=(("dh_transform", _DH_FLOAT32),),
+    ),
+    Variant(
+        "2.2",
+        "float32 product of a float32 dh_transform",
+        """
+def forward_kinematics(robot, q):
+    T = np.eye(4, dtype=np.float32)
+    for i in range(6):
+        T = T @ dh_transform(q[i], robot.d[i], robot.a[i], robot.alpha[i])
+    return T
+""",
+        also=(("dh_transform", _DH_FLOAT32),),
+    ),
+    Variant(
+        "2.7",
+        "the student's forward_kinematics on a float32 dh_transform",
+        _FORMULA_GAP_OWN_FK,
+        also=(("forward_kinematics", _FK_LOOP), ("dh_transform", _DH_FLOAT32)),
+    ),
 ]
 
 WRONG = [
@@ -342,6 +391,57 @@ def forward_kinematics(robot, q):
     return T
 """,
         mistake="multiplied in reverse order",
+    ),
+    Variant(
+        "2.2",
+        "a list breaks it: q + 0.0 on an array only",
+        """
+def forward_kinematics(robot, q):
+    q = q + 0.0
+    T = np.eye(4)
+    for i in range(6):
+        T = T @ dh_transform(q[i], robot.d[i], robot.a[i], robot.alpha[i])
+    return T
+""",
+        points=4,
+    ),
+    Variant(
+        "2.2",
+        "joint index off by one (q[i - 1])",
+        """
+def forward_kinematics(robot, q):
+    T = np.eye(4)
+    for i in range(6):
+        T = T @ dh_transform(q[i - 1], robot.d[i], robot.a[i], robot.alpha[i])
+    return T
+""",
+        mistake="shifted by one joint",
+    ),
+    Variant(
+        "2.2",
+        "float32, the flange 3 µm off",
+        """
+def forward_kinematics(robot, q):
+    T = np.eye(4)
+    for i in range(6):
+        T = T @ dh_transform(q[i], robot.d[i], robot.a[i], robot.alpha[i])
+    T[:3, 3] += 3e-6
+    return T.astype(np.float32)
+""",
+        also=(("dh_transform", _DH_FLOAT32),),
+    ),
+    Variant(
+        "2.2",
+        "float64 product of a float32 dh_transform, the flange 3 µm off",
+        """
+def forward_kinematics(robot, q):
+    T = np.eye(4)
+    for i in range(6):
+        T = T @ dh_transform(q[i], robot.d[i], robot.a[i], robot.alpha[i])
+    T[:3, 3] += 3e-6
+    return T
+""",
+        also=(("dh_transform", _DH_FLOAT32),),
     ),
     Variant(
         "2.2",

@@ -478,6 +478,34 @@ def holding_torques(robot, q, mass, r_com):
     return Jc.T @ np.array([0.0, 0.0, 9.81 * mass])
 """,
     ),
+    Variant(
+        "4.8",
+        "Jᵀ F on the student's float32 geometric_jacobian (full marks in 4.1)",
+        """
+def holding_torques(robot, q, mass, r_com):
+    q = np.asarray(q, dtype=float)
+    J = geometric_jacobian(robot, q)
+    f = np.array([0.0, 0.0, mass * 9.81])
+    lever = urkin.fk(robot, q)[:3, :3] @ np.asarray(r_com, dtype=float)
+    return J.T @ np.r_[f, np.cross(lever, f)]
+""",
+        also=(
+            (
+                "geometric_jacobian",
+                """
+def geometric_jacobian(robot, q):
+    frames = urkin.fk_frames(robot, np.asarray(q, dtype=float))
+    p = frames[6][:3, 3]
+    J = np.zeros((6, 6))
+    for i in range(6):
+        z, origin = frames[i][:3, 2], frames[i][:3, 3]
+        J[:3, i] = np.cross(z, p - origin)
+        J[3:, i] = z
+    return J.astype(np.float32)
+""",
+            ),
+        ),
+    ),
     # ------------------------------------------------------------------------------ 4.9
     Variant(
         "4.9",

@@ -620,6 +620,16 @@ WRONG = [
         None,
         "millimetres",
     ),
+    Variant(
+        "5.1",
+        "millimetres on both sides of e",
+        _position().replace(
+            "e = p_target - urkin.fk(robot, q)[:3, 3]",
+            "e = 1000 * p_target - 1000 * urkin.fk(robot, q)[:3, 3]",
+        ),
+        None,
+        "millimetres on both sides",
+    ),
     Variant("5.4", "the first three errors", _order(last="e[:3]"), 2, "first three"),
     Variant(
         "5.4",

@@ -571,7 +571,39 @@ def planar_2r(x, y, l1, l2):
 
 # ------------------------------------------------------------------------------------ 7.3
 
+_PLANAR_2R_FLOAT32 = """
+def planar_2r(x, y, l1, l2):
+    x, y, l1, l2 = (np.float32(v) for v in (x, y, l1, l2))
+    cos_b = np.clip((x * x + y * y - l1 * l1 - l2 * l2) / (2 * l1 * l2), -1, 1)
+    theta_b = np.arccos(cos_b)
+    theta_a = np.arctan2(y, x) - np.arctan2(l2 * np.sin(theta_b), l1 + l2 * np.cos(theta_b))
+    return np.array([theta_a, theta_b], dtype=np.float32)
+"""
+
+_IK_LAB_FLOAT64 = """
+def ik_lab(x_w, y_w, z_w, yaw_w):
+    x, y, z = np.array([x_w, y_w, z_w], dtype=float) - BASE_IN_TABLE
+    x_c, y_c = x - L9 * np.cos(yaw_w), y - L9 * np.sin(yaw_w)
+    theta1 = lab_theta1(x_c, y_c)
+    c1, s1 = np.cos(theta1), np.sin(theta1)
+    x3, y3 = x_c - L7 * c1 + OFFSET * s1, y_c - L7 * s1 - OFFSET * c1
+    r = x3 * c1 + y3 * s1
+    h = z + L8 + L10 - L1
+    theta2, theta3 = planar_2r(r, -h, L3, L5)
+    lab_angles = np.array(
+        [theta1, theta2, theta3, -theta2 - theta3, -np.pi / 2, np.pi / 2 + theta1 - yaw_w],
+        dtype=float,
+    )
+    return wrap_angles(lab_angles + LAB_TO_UR){shift}
+"""
+
 CORRECT += [
+    Variant(
+        "7.3",
+        "float64 answer built on a float32 planar_2r (full marks in 7.2)",
+        _IK_LAB_FLOAT64.format(shift=""),
+        also=(("planar_2r", _PLANAR_2R_FLOAT32),),
+    ),
     Variant(
         "7.3",
         "inlined, the sheet's numbers in metres",
@@ -689,6 +721,14 @@ def ik_lab(x_w, y_w, z_w, yaw_w):
 ]
 
 WRONG += [
+    Variant(
+        "7.3",
+        "built on a float32 planar_2r, every angle 2e-5 rad off",
+        _IK_LAB_FLOAT64.format(shift=" + 2e-5"),
+        also=(("planar_2r", _PLANAR_2R_FLOAT32),),
+        points=None,
+        mistake=None,
+    ),
     Variant(
         "7.3",
         "the sheet as printed (arctan, √(x² + y²), arctan(h/r)), wrapped",

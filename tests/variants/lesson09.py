@@ -191,6 +191,12 @@ CORRECT = [
     Variant("9.1", "float32", _BOX_FLOAT32),
     Variant("9.2", "pure Python, ceiling division", _SAMPLES_PURE),
     Variant("9.2", "a dot product, np.ceil", _SAMPLES_DOT),
+    Variant(
+        "9.2",
+        "a NumPy integer",
+        _samples(pieces="max(1, np.ceil(bound / resolution).astype(np.int64))"),
+    ),
+    Variant("9.2", "a NumPy int32", _samples(result="np.int32(pieces + 1)")),
     Variant("9.3", "one call of is_free for the whole path", _PATH_ONE_CALL),
     Variant("9.3", "one configuration at a time", _PATH_ONE_AT_A_TIME),
     Variant("9.3", "a template of the solution", _path()),
@@ -302,6 +308,20 @@ WRONG = [
         _samples(pieces="round(bound / resolution)"),
         points=None,
         mistake="one sample short",
+    ),
+    Variant(
+        "9.2",
+        "a float count: max(1.0, np.ceil(D / res)) + 1",
+        _samples(pieces="max(1.0, np.ceil(bound / resolution))"),
+        points=0,
+        mistake="returns a float; the count must be an int",
+    ),
+    Variant(
+        "9.2",
+        "a Python float count",
+        _samples(result="float(pieces + 1)"),
+        points=0,
+        mistake="returns a float; the count must be an int",
     ),
     Variant(
         "9.2",

@@ -6,21 +6,28 @@ reproduces the answer — names the likely mistake.
 
 Tolerances follow the answer's precision: a float64 answer is compared to the tolerance the
 exercise states (1e-9 unless it says otherwise), a float32 answer to float32's precision, so a
-correct single-precision implementation passes.
+correct single-precision implementation passes.  So is a float64 answer built on one of the
+student's earlier functions that answers in float32 (:func:`float32_helper`): it cannot be
+more precise than that function.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 __all__ = [
+    "FLOAT32_ULPS",
+    "Float32Helper",
     "Mismatch",
+    "angles_tolerance",
     "as_array",
     "close",
     "compare",
+    "float32_helper",
     "format_array",
     "identify_mistake",
     "require_rotation",
@@ -124,6 +131,14 @@ class Mismatch(Exception):
         return "\n".join(lines)
 
 
+# The float32 tolerance, in units of float32's ε (1.19e-7) times max(1, scale): four times the
+# largest error of honest float32 answers on the checks' inputs.  Measured with every lesson's
+# reference functions, their results and the earlier functions they call cast to float32
+# (chains such as forward kinematics over float32 DH links included): at most 2 ε · max(1,
+# scale), on seeds 0, 1 and 20261123.
+FLOAT32_ULPS = 8.0
+
+
 def tolerance(atol: float, like: Any = None, scale: float = 1.0) -> float:
     """The tolerance to compare an answer with: ``atol``, or its dtype's precision if coarser.
 
@@ -132,8 +147,8 @@ def tolerance(atol: float, like: Any = None, scale: float = 1.0) -> float:
     atol : float
         The tolerance the exercise states for float64 answers.
     like : array_like, optional
-        The student's answer; a float32 (or coarser) answer gets ``64 ε`` of float32, times
-        ``max(1, scale)``.
+        The student's answer (or what it was computed from); a float32 (or coarser) one gets
+        ``FLOAT32_ULPS`` ε of float32, times ``max(1, scale)``.
     scale : float
         Size of the numbers compared.
 
@@ -141,14 +156,99 @@ def tolerance(atol: float, like: Any = None, scale: float = 1.0) -> float:
     --------
     >>> tolerance(1e-9, np.zeros(3))
     1e-09
-    >>> round(tolerance(1e-9, np.zeros(3, dtype=np.float32)), 8)
-    7.63e-06
+    >>> round(tolerance(1e-9, np.zeros(3, dtype=np.float32)), 9)
+    9.54e-07
     """
     dtype = getattr(like, "dtype", None)
     if dtype is None or not np.issubdtype(dtype, np.floating) or dtype.itemsize >= 8:
         return atol
     # float32 (and anything coarser, which float32's precision judges)
-    return max(atol, 64 * float(np.finfo(np.float32).eps) * max(1.0, abs(scale)))
+    return max(atol, FLOAT32_ULPS * float(np.finfo(np.float32).eps) * max(1.0, abs(scale)))
+
+
+def angles_tolerance(atol: float, like: Any, rates: Any, q: Any) -> float:
+    """:func:`tolerance` for what is computed from joint angles ``q``, such as the pose an IK
+    answer reaches: a float32 answer's rounding of each q_i (float32's ε · max(1, |q_i|))
+    moves it by up to ``‖rates[:, i]‖`` times that, so ``scale`` is the sum of these.
+
+    Parameters
+    ----------
+    atol : float
+        The tolerance for float64 answers.
+    like : array_like
+        The student's answer (its dtype decides).
+    rates : array_like, shape (k, n)
+        How fast each joint moves what is compared (a Jacobian, rows [v; ω] at the flange).
+    q : array_like, shape (n,)
+        The joint angles.
+    """
+    rates = np.asarray(rates, dtype=float)
+    q = np.abs(np.asarray(q, dtype=float))
+    scale = float(np.sum(np.linalg.norm(rates, axis=0) * np.maximum(1.0, q)))
+    return tolerance(atol, like, scale)
+
+
+def _is_float32(value: Any) -> bool:
+    dtype = getattr(value, "dtype", None)
+    return dtype is not None and np.issubdtype(dtype, np.floating) and dtype.itemsize < 8
+
+
+@dataclass(frozen=True)
+class Float32Helper:
+    """An earlier function of the student's that answers in float32, which an answer uses.
+
+    ``name`` is the function, ``exercise`` its exercise id and ``sample`` one of its answers:
+    passed as ``like`` to :func:`tolerance` (or as ``helper`` to :func:`compare`), it judges an
+    answer built on the function at float32's precision, whatever dtype the answer has.
+    """
+
+    name: str
+    exercise: str
+    sample: np.ndarray
+
+    @property
+    def note(self) -> str:
+        """What the feedback says about it."""
+        return (
+            f"your {self.name} ({self.exercise}) returns float32, so an answer built on it is "
+            "judged at float32's precision"
+        )
+
+
+def float32_helper(
+    sub: Any, function: str, probes: Mapping[str, tuple[str, tuple[Any, ...]]]
+) -> Float32Helper | None:
+    """The first of the student's earlier functions that ``function`` uses (directly or not)
+    and that answers in float32, or None.
+
+    Parameters
+    ----------
+    sub : Submission
+        The student's functions.
+    function : str
+        The exercise's function, whose answer is judged.
+    probes : mapping
+        name → (exercise id, arguments): an earlier function and the arguments to call it with
+        to see its dtype.
+    """
+    from urkin.course.submission import StudentRaised
+
+    try:
+        used = set(sub.code(function))
+    except Exception:  # the code cannot be read: probe every earlier function defined
+        used = set(probes)
+    for name, (exercise_id, args) in probes.items():
+        if name == function or name not in used or not sub.has(name):
+            continue
+        try:
+            value = sub.call(name, *args)
+        except (StudentRaised, TypeError, ValueError):  # a function that cannot be probed
+            continue
+        values = value if isinstance(value, (tuple, list)) else [value]
+        for part in values:
+            if _is_float32(part):
+                return Float32Helper(name, exercise_id, np.asarray(part))
+    return None
 
 
 def _shape_of(value: Any) -> tuple[int, ...] | None:
@@ -222,19 +322,32 @@ def close(got: Any, expected: Any, atol: float = 1e-9, like: Any = None) -> bool
     return bool(np.allclose(got, expected, rtol=0, atol=tolerance(atol, like, scale)))
 
 
-def require_rotation(R: np.ndarray, what: str, inputs: Mapping[str, Any]) -> None:
-    """Raise :class:`Mismatch` unless ``R`` is a rotation matrix (orthonormal, det = +1)."""
-    if not close(R.T @ R, np.eye(3), 1e-9):
-        raise Mismatch(f"{what} is not orthonormal: RᵀR ≠ I", inputs=inputs, got=R)
+def require_rotation(
+    R: np.ndarray, what: str, inputs: Mapping[str, Any], helper: Float32Helper | None = None
+) -> None:
+    """Raise :class:`Mismatch` unless ``R`` is a rotation matrix (orthonormal, det = +1); to
+    float32's precision when ``R`` is float32 or built on a float32 ``helper``."""
+    like = helper.sample if helper is not None and not _is_float32(R) else R
+    if not close(R.T @ R, np.eye(3), 1e-9, like):
+        raise Mismatch(
+            f"{what} is not orthonormal: RᵀR ≠ I",
+            inputs=inputs,
+            got=R,
+            difference=None if helper is None else helper.note,
+        )
     if np.linalg.det(R.astype(float)) < 0:
         raise Mismatch(f"{what} has det = −1: a reflection, not a rotation", inputs=inputs, got=R)
 
 
-def require_transform(T: np.ndarray, what: str, inputs: Mapping[str, Any]) -> None:
-    """Raise :class:`Mismatch` unless ``T`` is a homogeneous rigid-body transform."""
-    if not close(T[3], [0, 0, 0, 1], 1e-12):
+def require_transform(
+    T: np.ndarray, what: str, inputs: Mapping[str, Any], helper: Float32Helper | None = None
+) -> None:
+    """Raise :class:`Mismatch` unless ``T`` is a homogeneous rigid-body transform (see
+    :func:`require_rotation` for ``helper``)."""
+    like = helper.sample if helper is not None and not _is_float32(T) else T
+    if not close(T[3], [0, 0, 0, 1], 1e-12, like):
         raise Mismatch(f"{what}: the last row must be [0, 0, 0, 1]", inputs=inputs, got=T)
-    require_rotation(T[:3, :3], f"the 3×3 block of {what}", inputs)
+    require_rotation(T[:3, :3], f"the 3×3 block of {what}", inputs, helper)
 
 
 def identify_mistake(
@@ -271,11 +384,14 @@ def compare(
     inputs: Mapping[str, Any],
     hypotheses: Mapping[str, Callable[[], Any]] | None = None,
     atol: float = 1e-9,
+    helper: Float32Helper | None = None,
 ) -> None:
     """Raise :class:`Mismatch` (naming a likely mistake) unless ``got`` matches ``expected``
-    within :func:`tolerance` ``(atol, got)``."""
+    within :func:`tolerance` ``(atol, got)`` — at float32's precision when ``got`` is built on
+    a float32 ``helper``."""
     expected = np.asarray(expected, dtype=float)
-    if close(got, expected, atol):
+    like = helper.sample if helper is not None and not _is_float32(got) else got
+    if close(got, expected, atol, like):
         return
     mistake = identify_mistake(got, hypotheses or {}, max(atol, 1e-6), right=expected)
     difference = None
@@ -284,8 +400,10 @@ def compare(
         scale = float(np.abs(expected).max(initial=0.0))
         if gap < 1e-3:  # the 4-decimal display would hide it
             difference = (
-                f"largest difference {gap:.1e}; the tolerance is {tolerance(atol, got, scale):.0e}"
+                f"largest difference {gap:.1e}; the tolerance is {tolerance(atol, like, scale):.0e}"
             )
+            if helper is not None and like is helper.sample:
+                difference += f" ({helper.note})"
     raise Mismatch(
         what, inputs=inputs, expected=expected, got=got, mistake=mistake, difference=difference
     )

@@ -295,6 +295,24 @@ def _non_rigid_probe(rng):
     return make_transform(A, rng.uniform(-1.0, 1.0, 3))
 
 
+def _nearly_rigid_probe(rng):
+    """A rigid transform whose rotation is moved 2e-7 from orthonormal (max |RᵀR − I|), as a
+    pose typed with seven decimals is."""
+    R = random_rotation(rng)
+    E = rng.normal(size=(3, 3))
+    E = E + E.T
+    R = R @ (np.eye(3) + 1e-7 * E / np.abs(E).max())  # RᵀR − I ≈ 2e-7 E / max|E|
+    return make_transform(R, rng.uniform(-1.0, 1.0, 3))
+
+
+def _is_numeric(value) -> bool:
+    try:
+        np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
 def _inverse_is_structured(sub, rng):
     T = random_pose(rng)
     got, inputs, seen = _inverse_call(sub, T, _GENERAL_INVERSE_CODE)
@@ -325,6 +343,36 @@ def _inverse_is_structured(sub, rng):
             inputs={"T": T},
             mistake=_GENERAL_INVERSE,
         )
+    # A transform 2e-7 from orthonormal, within the 1e-6 the course's checks accept as rigid (a
+    # pose typed with seven decimals): the transpose formula and a general inverse differ there
+    # by about that much, so a general inverse shows however it was reached, and refusing it
+    # refuses a transform the course calls rigid.
+    nearly = _nearly_rigid_probe(rng)
+    try:
+        value = sub.transform_inverse(nearly.copy())
+    except StudentRaised as exc:
+        if exc.kind == "ForbiddenCallError":
+            raise
+        raise Mismatch(
+            f"transform_inverse raised {exc.kind} for a transform whose rotation is 2e-7 from "
+            "orthonormal, within the 1e-6 the course's checks accept as rigid (a pose typed with "
+            "seven decimals is one): invert it with the transpose formula",
+            inputs={"T (2e-7 from rigid)": nearly},
+        ) from None
+    answer = np.asarray(value, dtype=float) if _is_numeric(value) else None
+    if answer is not None and answer.shape == (4, 4):
+        R, p = nearly[:3, :3], nearly[:3, 3]
+        formula = make_transform(R.T, -R.T @ p)
+        if not close(answer, formula, 1e-9) and close(answer, np.linalg.inv(nearly), 1e-9):
+            raise Mismatch(
+                "given a transform whose rotation is 2e-7 from orthonormal, transform_inverse "
+                "returned its general inverse (which differs from the transpose formula by about "
+                "that much): the exercise asks for the formula, no general inverse",
+                inputs={"T (2e-7 from rigid)": nearly},
+                expected=formula,
+                got=answer,
+                mistake=_GENERAL_INVERSE,
+            )
     # A matrix that is not a rigid transform, outside the function's contract: any exception,
     # and any answer other than the general inverse, is fine.
     probe = _non_rigid_probe(rng)
@@ -365,12 +413,14 @@ def _second_solution(rpy):
     return wrap_angles([roll + np.pi, np.pi - pitch, yaw + np.pi])
 
 
+# one name wherever the checks see it, so that the summary names it once
+_RPY_DEGREES = "returned degrees: seed 000's helper does, but angles are radians here"
+
+
 def _rpy_hypotheses(R):
     rpy = rotation_to_rpy(R)
     return {
-        "returned degrees: seed 000's helper does, but angles are radians here": lambda: np.degrees(
-            rpy
-        ),
+        _RPY_DEGREES: lambda: np.degrees(rpy),
         "returned (yaw, pitch, roll): the order is reversed": lambda: rpy[::-1],
         "the matrix was read transposed (R[i, j] for R[j, i])": lambda: rotation_to_rpy(R.T),
         "the angles of R = Rx(roll) Ry(pitch) Rz(yaw): the product is Rz(yaw) Ry(pitch) "
@@ -507,7 +557,7 @@ def _locked_hypotheses(R):
             pitch,
             0.0,
         ],
-        "returned degrees: angles are radians here": lambda: np.degrees([turn, pitch, 0.0]),
+        _RPY_DEGREES: lambda: np.degrees([turn, pitch, 0.0]),
     }
 
 

@@ -13,6 +13,7 @@ from urkin.course.compare import (
     as_array,
     close,
     compare,
+    float32_helper,
     require_transform,
     require_varying,
     tolerance,
@@ -89,6 +90,18 @@ def _dh_matches(sub, rng):
 
 # ---------------------------------------------------------------------- 2.2 forward_kinematics
 
+# the earlier functions an answer may be built on, and arguments that show their dtype
+_EARLIER = {
+    "forward_kinematics": ("2.2", (urkin.robot("ur5"), np.array([0.3, -1.2, 1.1, -0.6, 0.8, 0.2]))),
+    "dh_transform": ("2.1", (0.7, 0.1, 0.3, np.pi / 2)),
+}
+
+
+def _helper(sub, function):
+    """The float32 earlier function ``function`` is built on (its answer is judged at float32's
+    precision then), or None."""
+    return float32_helper(sub, function, _EARLIER)
+
 
 def _reversed_chain(robot, q):
     T = np.eye(4)
@@ -107,10 +120,17 @@ def _fk_hypotheses(robot, q):
         ),
         "q treated as degrees": lambda: _fk(robot, np.radians(q)),
         "the links multiplied in reverse order (T_5_6 … T_0_1)": lambda: _reversed_chain(robot, q),
+        "the joint angles shifted by one joint (q[i − 1] with link i, as np.roll(q, 1)): link "
+        "i turns by q[i], numbered from 0 like the rows of the table": lambda: _fk(
+            robot, np.roll(q, 1)
+        ),
+        "the joint angles shifted by one joint (q[i + 1] with link i): link i turns by q[i], "
+        "numbered from 0 like the rows of the table": lambda: _fk(robot, np.roll(q, -1)),
     }
 
 
 def _fk_is_transform(sub, rng):
+    helper = _helper(sub, "forward_kinematics")
     answers = []
     for _ in range(5):
         robot, q = random_arm(rng), random_q(rng)
@@ -118,12 +138,13 @@ def _fk_is_transform(sub, rng):
         T = as_array(
             sub.forward_kinematics(robot, q), (4, 4), "forward_kinematics(robot, q)", inputs
         )
-        require_transform(T, "forward_kinematics", inputs)
+        require_transform(T, "forward_kinematics", inputs, helper)
         answers.append(T)
     require_varying(answers, "forward_kinematics", inputs)
 
 
 def _fk_matches(sub, rng):
+    helper = _helper(sub, "forward_kinematics")
     for _ in range(20):
         robot, q = random_arm(rng), random_q(rng)
         inputs = {"robot": robot.name, "q": q}
@@ -136,6 +157,7 @@ def _fk_matches(sub, rng):
             what="T_0_6 = T_0_1 T_1_2 … T_5_6 with the robot's standard-DH table",
             inputs=inputs,
             hypotheses=_fk_hypotheses(robot, q),
+            helper=helper,
         )
 
 
@@ -143,18 +165,43 @@ def _fk_accepts_lists(sub, rng):
     robot = random_arm(rng)
     q = random_q(rng)
     inputs = {"robot": robot.name, "q": f"the list {[round(float(x), 4) for x in q]}"}
+    helper = _helper(sub, "forward_kinematics")
+    like = None if helper is None else helper.sample
+    expected = _fk(robot, q)
     got = as_array(
         sub.forward_kinematics(robot, q.tolist()),
         (4, 4),
         "forward_kinematics(robot, q) with q a list",
         inputs,
     )
+    if close(got, expected, 1e-9, like):
+        return
+    # blamed on the list only where an array passes
+    with_array = as_array(
+        sub.forward_kinematics(robot, q.copy()),
+        (4, 4),
+        "forward_kinematics(robot, q)",
+        {"robot": robot.name, "q": q},
+    )
+    if not close(with_array, expected, 1e-9, like):  # not a list's fault: say so, no point
+        raise Mismatch(
+            "the pose is wrong for an array of angles too (the checks above say why): this "
+            "point is for the right pose from a list of six numbers as well",
+            inputs=inputs,
+            expected=expected,
+            got=got,
+        )
     compare(
-        got, _fk(robot, q), what="q may be a list of six numbers, not only an array", inputs=inputs
+        got,
+        expected,
+        what="q may be a list of six numbers, not only an array",
+        inputs=inputs,
+        helper=helper,
     )
 
 
 def _fk_zero_pose(sub, rng):
+    helper = _helper(sub, "forward_kinematics")
     for name in urkin.ROBOTS:
         robot = urkin.robot(name)
         inputs = {"robot": name, "q": np.zeros(6)}
@@ -173,6 +220,7 @@ def _fk_zero_pose(sub, rng):
                 label: (lambda h=h: h()[:3, 3])
                 for label, h in _fk_hypotheses(robot, np.zeros(6)).items()
             },
+            helper=helper,
         )
 
 
@@ -759,17 +807,25 @@ def _gap_inputs(formula_text, robot, n, seed):
     return {"formula": formula_text, "robot": robot.name, "n": n, "seed": seed}
 
 
+def _gap_like(sub, gap):
+    """What a gap is as precise as: itself, or the float32 forward kinematics it is built on."""
+    helper = _helper(sub, "formula_gap")
+    return gap if helper is None else helper.sample, helper
+
+
 def _gap_right_formula(sub, rng):
     formula = Function("ur_position")
     for robot, n, seed in _gap_cases(rng):
         inputs = _gap_inputs("the right closed-form flange position", robot, n, seed)
         gap, q_worst = _gap_answer(sub, formula, robot, n, seed, inputs)
-        if not (0.0 <= gap <= tolerance(1e-12, gap)):
+        like, helper = _gap_like(sub, gap)
+        if not (0.0 <= gap <= tolerance(1e-12, like)):
             raise Mismatch(
                 "a right formula is off by round-off only: the gap must be ≥ 0 and below 1e-12",
                 inputs=inputs,
                 got=gap,
-                difference=f"gap {float(gap):.3g} m",
+                difference=f"gap {float(gap):.3g} m"
+                + ("" if helper is None else f" ({helper.note})"),
             )
         n_drawn = 1000 if n is None else n
         if not len(_rows_like(_draw(n_drawn, seed), q_worst)):
@@ -790,7 +846,8 @@ def _judge_gap(sub, formula, formula_text, robot, n, seed):
     q = _draw(n_drawn, seed_drawn)
     distances = _distances(formula, robot, q)
     right_gap, right_q = _worst(distances, q)
-    atol = tolerance(1e-12, gap, right_gap)
+    like, helper = _gap_like(sub, gap)
+    atol = tolerance(1e-12, like, right_gap)
     at = _rows_like(q, q_worst)
     gap_ok = abs(float(gap) - right_gap) <= atol
     q_ok = len(at) and distances[at].max() >= right_gap - atol
@@ -803,7 +860,7 @@ def _judge_gap(sub, formula, formula_text, robot, n, seed):
                 h_gap, h_q = compute()
         except Exception:  # a hypothesis that cannot be evaluated simply does not match
             continue
-        same_gap = abs(float(gap) - h_gap) <= tolerance(1e-12, gap, h_gap)
+        same_gap = abs(float(gap) - h_gap) <= tolerance(1e-12, like, h_gap)
         same_q = h_q is None or len(_rows_like(np.atleast_2d(h_q), q_worst))
         is_right = abs(h_gap - right_gap) <= 1e-12 and (
             h_q is None or np.array_equal(np.atleast_2d(h_q), right_q[None])
@@ -822,7 +879,8 @@ def _judge_gap(sub, formula, formula_text, robot, n, seed):
         got=np.r_[float(gap), q_worst],
         mistake=mistake,
         difference="shown as (gap, q1, …, q6)"
-        + (f"; gap {right_gap:.15g} m expected, {float(gap):.15g} m got" if not gap_ok else ""),
+        + (f"; gap {right_gap:.15g} m expected, {float(gap):.15g} m got" if not gap_ok else "")
+        + ("" if helper is None else f" ({helper.note})"),
     )
 
 
@@ -880,6 +938,7 @@ LESSON = Lesson(
                 Check("accepts q as a list", 1, _fk_accepts_lists),
             ),
             answer=concepts.FORWARD_KINEMATICS,
+            uses=("dh_transform",),
             builds_on=("2.1",),
         ),
         Exercise(
@@ -977,6 +1036,7 @@ LESSON = Lesson(
                     _gap_folded,
                 ),
             ),
+            uses=("forward_kinematics", "dh_transform"),
         ),
     ),
 )

@@ -658,6 +658,9 @@ def _log_inputs(rng, low: float = 0.1, high: float = 3.0) -> tuple[np.ndarray, n
     return V, se3_exp(V)
 
 
+_ORDER = "(v, ω) order: a twist is (ω, v), angular part first"
+
+
 def _G_inverse(w, theta, half=-0.5) -> np.ndarray:
     """G(θ)⁻¹ for a unit axis w (``half``: the coefficient of [ω], −½ when right)."""
     W = skew(w)
@@ -674,7 +677,7 @@ def _log_hypotheses(T):
         + (theta - np.sin(theta)) * (skew(w) @ skew(w))
     )
     hypotheses = {
-        "(v, ω) order: a twist is (ω, v), angular part first": lambda: np.r_[right[3:], right[:3]],
+        _ORDER: lambda: np.r_[right[3:], right[:3]],
         "the linear part is p: vθ = θ G⁻¹(θ) p — p is where the origin ends up, not the "
         "twist's linear velocity": lambda: np.r_[right[:3], p],
         "the linear part is v, not vθ: multiply G⁻¹(θ) p by θ": lambda: np.r_[
@@ -746,11 +749,7 @@ def _log_of_translations(sub, rng):
             np.r_[np.zeros(3), T[:3, 3]],
             what="a pure translation (R = I, θ = 0) has the twist V = (0, p)",
             inputs={"T": T},
-            hypotheses={
-                "(v, ω) order: a twist is (ω, v), angular part first": lambda T=T: np.r_[
-                    T[:3, 3], np.zeros(3)
-                ]
-            },
+            hypotheses={_ORDER: lambda T=T: np.r_[T[:3, 3], np.zeros(3)]},
         )
 
 
@@ -771,7 +770,12 @@ def _log_at_the_edges(sub, rng):
             continue
         near_pi = theta > 3.0
         rotation_wrong = not close(se3_exp(got)[:3, :3], T[:3, :3], 1e-8, like=got)
-        if near_pi and rotation_wrong:
+        swapped = np.r_[got[3:], got[:3]]
+        if np.linalg.norm(swapped[:3]) <= np.pi + 1e-9 and close(
+            se3_exp(swapped), T, 1e-8, like=got
+        ):  # the parts in the other order reproduce T: whatever θ is, that is the mistake
+            mistake = _ORDER
+        elif near_pi and rotation_wrong:
             mistake = (
                 "the axis divided by sin θ next to a half turn: it is lost there; use the "
                 "symmetric part of R"

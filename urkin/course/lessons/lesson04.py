@@ -14,6 +14,7 @@ from urkin.course.compare import (
     as_array,
     close,
     compare,
+    float32_helper,
     identify_mistake,
     tolerance,
     unless_right,
@@ -1301,7 +1302,15 @@ def _hold_hypotheses(arm, q, mass, r_com) -> dict:
     }
 
 
+# the student's geometric Jacobian (4.1), which τ = Jᵀ F is usually built on, and where to see
+# its dtype
+_JACOBIAN_PROBE = {
+    "geometric_jacobian": ("4.1", (urkin.robot("ur5"), np.array([0.3, -1.2, 1.1, -0.6, 0.8, 0.2])))
+}
+
+
 def _hold_cases(sub, rng, offset: bool):
+    helper = float32_helper(sub, "holding_torques", _JACOBIAN_PROBE)
     for _ in range(5):
         arm, q = random_arm(rng), random_q(rng)
         mass = float(rng.uniform(0.2, 5.0))
@@ -1320,6 +1329,7 @@ def _hold_cases(sub, rng, offset: bool):
             what="τ = Jᵀ F, F = [f; r × f] the wrench the flange holds the part with (N·m)",
             inputs=inputs,
             hypotheses=unless_right(_hold_hypotheses(arm, q, mass, r_com), expected),
+            helper=helper,
         )
 
 
@@ -2056,6 +2066,7 @@ LESSON = Lesson(
                     partial(_hold_cases, offset=True),
                 ),
             ),
+            uses=("geometric_jacobian",),
         ),
         Exercise(
             id="4.9",

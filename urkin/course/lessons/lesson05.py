@@ -9,7 +9,14 @@ import numpy as np
 import urkin
 from urkin import trajectory
 from urkin.course import concepts, wire
-from urkin.course.compare import Mismatch, as_array, close, compare, tolerance
+from urkin.course.compare import (
+    Mismatch,
+    angles_tolerance,
+    as_array,
+    close,
+    compare,
+    tolerance,
+)
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_arm, random_pose, random_regular_q
 from urkin.course.submission import StudentRaised
@@ -270,6 +277,10 @@ _MILLIMETRES = (
     "millimetres on one side of e = p_target − p only (seed 002 worked in mm): keep metres "
     "throughout"
 )
+_MILLIMETRES_BOTH = (
+    "millimetres on both sides of e = p_target − p (seed 002 worked in mm): e in mm with J_v "
+    "in metres gives a step 1000 times too long; keep metres throughout"
+)
 _UNCHANGED = (
     "returns q0 unchanged: the loop never takes a step (a loop condition the wrong way round, "
     "like seed 001's `while ‖V‖ < ε`, or a return inside the loop)"
@@ -289,7 +300,8 @@ def _check_reached(arm, q, q0, T_target, what, inputs, position_only=False):
     T = _fk(arm, wrap_angles(q))  # fk takes angles within a few turns: wrap the answer first
     position = float(np.linalg.norm(T[:3, 3] - T_target[:3, 3]))
     angle = 0.0 if position_only else float(rotation_angle(T[:3, :3], T_target[:3, :3]))
-    tol = tolerance(1e-8, like=q)
+    # a float32 answer: the miss its rounding alone can cause
+    tol = angles_tolerance(1e-8, q, _jacobian(arm, wrap_angles(q.astype(float))), q)
     if position <= tol and angle <= tol:
         return
     mistake = None
@@ -580,6 +592,39 @@ def _position_step(sub, rng):
         q, d, call = _one_step(sub, "ik_position", arm, p_target, q0, max_step, inputs)
         ignored = _ignores_iterations(sub, "ik_position", arm, p_target, q0, max_step, q)
         _judge_step(q, d, [s], max_step, call, inputs, hypotheses, ignored)
+    _position_small_step(sub, rng)
+
+
+def _position_small_step(sub, rng):
+    """A target a fraction of a millimetre away, max_step = 1: no step limit applies, so one
+    iteration moves q by J_v⁺e itself (a step 1000 times too long is millimetres in e)."""
+    arm, q0 = random_arm(rng), random_regular_q(rng)
+    J = _jacobian(arm, q0)[:3]
+    p = _fk(arm, q0)[:3, 3]
+    e = rng.normal(size=3)
+    s = np.linalg.pinv(J) @ e
+    e, s = e * (3e-4 / np.abs(s).max()), s * (3e-4 / np.abs(s).max())  # the step: 3e-4 rad
+    p_target = p + e
+    T_target = np.eye(4)
+    T_target[:3, 3] = p_target
+    inputs = _ik_inputs(arm, T_target, q0, position_only=True)
+    q, d, call = _one_step(sub, "ik_position", arm, p_target, q0, 1.0, inputs)
+    atol = tolerance(1e-9, like=q, scale=np.pi)
+    if float(np.abs(d - s).max()) <= atol:
+        return
+    mistake = None
+    if _parallel(d, s, atol) and 500 < float(np.abs(d).max() / np.abs(s).max()) < 2000:
+        mistake = _MILLIMETRES_BOTH
+    raise Mismatch(
+        f"{call}: with the target {1000 * np.linalg.norm(e):.2f} mm away no joint comes near "
+        "max_step, so one iteration moves q by the Newton step Δq = J_v⁺e itself",
+        inputs=inputs,
+        expected=s,
+        got=d,
+        mistake=mistake,
+        difference=f"largest joint change {np.abs(d).max():.2e} rad, expected "
+        f"{np.abs(s).max():.2e} rad",
+    )
 
 
 def _position_wraps_and_takes_lists(sub, rng):

@@ -12,6 +12,7 @@ import urkin
 from urkin.course import concepts
 from urkin.course.compare import (
     Mismatch,
+    angles_tolerance,
     as_array,
     close,
     compare,
@@ -572,7 +573,8 @@ def _check_lm_reached(arm, T_target, q0, value, trace, start, inputs):
     T = _fk(arm, wrap_angles(q))  # fk takes angles within a few turns: wrap the answer first
     position = float(np.linalg.norm(T[:3, 3] - T_target[:3, 3]))
     angle = float(rotation_angle(T[:3, :3], T_target[:3, :3]))
-    tol = tolerance(1e-8, like=q)
+    # a float32 answer: the miss its rounding alone can cause
+    tol = angles_tolerance(1e-8, q, _jacobian(arm, wrap_angles(q.astype(float))), q)
     if position <= tol and angle <= tol:
         return
     raise Mismatch(
@@ -848,6 +850,15 @@ def _poe_solves(M, S, T_target, q, steps: int) -> bool:
     return False
 
 
+def _reach_tolerance(got, J_s, T_target) -> float:
+    """1e-8 (m and rad), or for a float32 answer the miss its own rounding can cause: J_s, the
+    space Jacobian at ``got``, gives each joint's rates [ω; v], and the flange at the target
+    moves at v + ω × p."""
+    w, v = J_s[:3], J_s[3:]
+    moves = v + np.cross(w.T, T_target[:3, 3]).T
+    return angles_tolerance(1e-8, got, np.vstack([moves, w]), got)
+
+
 def _poe_miss(M, S, T_target, q) -> float:
     """Position (m) or angle (rad) by which ``q`` misses the target, whichever is larger."""
     T = fk_space(M, S, q)
@@ -921,7 +932,7 @@ def _poe_reaches(sub, rng, any_arm: bool):
         M, S, T_target, q0 = _poe_problem(rng, n=n)
         got = _poe_call(sub, M, S, T_target, q0)
         miss = _poe_miss(M, S, T_target, got.astype(float))
-        if not miss < tolerance(1e-8, got, 1.0):
+        if not miss < _reach_tolerance(got, jacobian_space(S, got.astype(float)), T_target):
             raise Mismatch(
                 "the answer must reach the target: e^[S1]q1 ⋯ e^[Sn]qn M = T_target within "
                 f"1e-8 m and 1e-8 rad (it misses by {miss:.2g})",
@@ -1306,7 +1317,8 @@ def _body_reaches(sub, rng, any_arm: bool):
         M, B, T_target, q0 = _body_problem(rng, n=n)
         got = _body_call(sub, M, B, T_target, q0)
         miss = _body_miss(M, B, T_target, got.astype(float))
-        if not miss < tolerance(1e-8, got, 1.0):
+        J_s = adjoint(fk_body(M, B, got.astype(float))) @ jacobian_body(B, got.astype(float))
+        if not miss < _reach_tolerance(got, J_s, T_target):
             raise Mismatch(
                 "the answer must reach the target: M e^[B1]q1 ⋯ e^[Bn]qn = T_target within "
                 f"1e-8 m and 1e-8 rad (it misses by {miss:.2g})",

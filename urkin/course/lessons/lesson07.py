@@ -13,7 +13,15 @@ import numpy as np
 
 from urkin.analytic_ik import ik_analytic
 from urkin.course import concepts
-from urkin.course.compare import Mismatch, as_array, close, format_array, tolerance
+from urkin.course.compare import (
+    Float32Helper,
+    Mismatch,
+    as_array,
+    close,
+    float32_helper,
+    format_array,
+    tolerance,
+)
 from urkin.course.exercise import Check, Exercise, Lesson
 from urkin.course.inputs import random_arm, random_rotation
 from urkin.course.lab import LAB_BASE_IN_WORLD, LAB_LINKS, LAB_OFFSET, fk_lab, ik_lab, lab_robot
@@ -141,14 +149,17 @@ def _gap(got: Any, expected: Any, period: float = _TURN) -> np.ndarray:
     return np.abs(difference - period * np.round(difference / period))
 
 
-def _same_angles(got: np.ndarray, expected: Any, atol: float, period: float = _TURN) -> bool:
+def _same_angles(
+    got: np.ndarray, expected: Any, atol: float, period: float = _TURN, like: Any = None
+) -> bool:
     """Whether the angles ``got`` equal ``expected`` up to whole turns, to
-    :func:`tolerance` (``got``'s precision)."""
+    :func:`tolerance` (the precision of ``like``, ``got`` itself by default)."""
     expected = np.asarray(expected, dtype=float)
     if np.shape(got) != expected.shape or not np.all(np.isfinite(expected)):
         return False
     scale = float(np.abs(expected).max(initial=0.0))
-    return bool(np.all(_gap(got, expected, period) <= tolerance(atol, got, scale)))
+    like = got if like is None else like
+    return bool(np.all(_gap(got, expected, period) <= tolerance(atol, like, scale)))
 
 
 Hypotheses = Mapping[str, tuple[Callable[[], Any], float]]
@@ -201,15 +212,31 @@ def _identify_nan(got: np.ndarray, hypotheses: Hypotheses) -> str | None:
     return None
 
 
-def _largest_gap(got: np.ndarray, expected: Any, atol: float) -> str | None:
+def _largest_gap(
+    got: np.ndarray, expected: Any, atol: float, helper: Float32Helper | None = None
+) -> str | None:
     gap = float(_gap(got, expected).max())
     if gap >= 1e-3:  # visible in the 4-decimal display
         return None
     scale = float(np.abs(np.asarray(expected, dtype=float)).max(initial=0.0))
+    note = "" if helper is None else f" ({helper.note})"
     return (
         f"largest difference {gap:.1e} rad (up to whole turns); the tolerance is "
-        f"{tolerance(atol, got, scale):.0e}"
+        f"{tolerance(atol, _like(got, helper), scale):.0e}{note}"
     )
+
+
+def _like(got: np.ndarray, helper: Float32Helper | None) -> Any:
+    """What the answer ``got`` is as precise as: itself, or the float32 function it is built
+    on."""
+    return got if helper is None or got.dtype.itemsize < 8 else helper.sample
+
+
+# the earlier functions ik_lab is built on, and arguments that show their dtype
+_EARLIER = {
+    "planar_2r": ("7.2", (0.25, 0.1, 0.2, 0.15)),
+    "lab_theta1": ("7.1", (0.3, 0.2)),
+}
 
 
 def _compare_angles(
@@ -220,10 +247,12 @@ def _compare_angles(
     inputs: Mapping[str, Any],
     hypotheses: Hypotheses,
     atol: float,
+    helper: Float32Helper | None = None,
 ) -> None:
     """Raise :class:`Mismatch` (naming a likely mistake) unless the angles ``got`` equal
-    ``expected`` up to whole turns."""
-    if _same_angles(got, expected, atol):
+    ``expected`` up to whole turns (at float32's precision when ``got`` is built on a float32
+    ``helper``)."""
+    if _same_angles(got, expected, atol, like=_like(got, helper)):
         return
     raise Mismatch(
         what,
@@ -231,7 +260,7 @@ def _compare_angles(
         expected=expected,
         got=got,
         mistake=_identify(got, hypotheses, right=expected),
-        difference=_largest_gap(got, expected, atol),
+        difference=_largest_gap(got, expected, atol, helper),
     )
 
 
@@ -808,14 +837,19 @@ def _round_trip(sub, target, where: str) -> np.ndarray:
     reached = _fk_lab(q.astype(float))
     expected = np.array([*target[:3], wrap_angles(target[3])])
     error = np.r_[reached[:3] - expected[:3], wrap_angles(reached[3] - expected[3])]
-    if not np.abs(error).max() <= tolerance(1e-8, q, np.pi):
+    helper = float32_helper(sub, "ik_lab", _EARLIER)
+    atol = tolerance(1e-8, _like(q, helper), np.pi)
+    if not np.abs(error).max() <= atol:
+        gap = float(np.abs(error).max())
+        note = "" if helper is None else f" ({helper.note})"
         raise Mismatch(
             f"fk_lab(ik_lab(x_w, y_w, z_w, yaw_w)) must give back the target {where}",
             inputs=inputs,
             expected=expected,
             got=reached,
             mistake=_identify(q, _lab_hypotheses(*target), right=_ik_lab(*target)),
-            difference=f"your ik_lab returned q = {format_array(q, inline=True)}",
+            difference=f"your ik_lab returned q = {format_array(q, inline=True)}; largest "
+            f"difference {gap:.1e} (m, and rad for the yaw); the tolerance is {atol:.0e}{note}",
         )
     return q
 
@@ -831,6 +865,7 @@ def _lab_round_trips(kind: str, sub, rng):
 
 
 def _lab_branch(sub, rng):
+    helper = float32_helper(sub, "ik_lab", _EARLIER)
     for kind in ("front", "behind", "front", "behind"):
         target = _lab_target(rng, kind)
         q = _lab_answer(sub, target)
@@ -842,6 +877,7 @@ def _lab_branch(sub, rng):
             inputs=_target_inputs(target),
             hypotheses=_lab_hypotheses(*target),
             atol=1e-8,
+            helper=helper,
         )
 
 
@@ -855,15 +891,16 @@ def _wrap_target(rng: np.random.Generator, kind: str, theta6: bool):
             return target
 
 
-def _in_range(q: np.ndarray) -> bool:
-    return bool(np.all((q > -np.pi) & (q <= np.pi + tolerance(1e-12, q, np.pi))))
+def _in_range(q: np.ndarray, like: Any = None) -> bool:
+    like = q if like is None else like
+    return bool(np.all((q > -np.pi) & (q <= np.pi + tolerance(1e-12, like, np.pi))))
 
 
 def _lab_wrapped(sub, rng):
     for k, kind in enumerate(("front", "behind") * 3):
         target = _wrap_target(rng, kind, theta6=k < 4)
         q = _round_trip(sub, target, "(and every angle in (−π, π])")
-        if not _in_range(q):
+        if not _in_range(q, _like(q, float32_helper(sub, "ik_lab", _EARLIER))):
             positive = np.all((q >= 0) & (q < _TURN))
             raise Mismatch(
                 "return UR angles wrapped into (−π, π], as wrap_angles does",
@@ -1453,6 +1490,7 @@ LESSON = Lesson(
                 Check("returns UR angles wrapped into (−π, π]", 1, _lab_wrapped),
             ),
             answer=concepts.LAB_IK,
+            uses=("planar_2r", "lab_theta1"),
             builds_on=("7.1", "7.2"),
         ),
         Exercise(

@@ -250,6 +250,34 @@ _WRAPPED = (
 
 _ROUND_OFF = 1e-9  # relative: where D / resolution is this close to a whole number m, m or m+1
 
+_FLOAT_COUNT = (
+    "returns a float; the count must be an int (e.g. int(np.ceil(...))): np.ceil and "
+    "max(1.0, …) give floats, which range() and np.linspace's num refuse"
+)
+
+
+def _is_int(value) -> bool:
+    """Whether ``value`` is an int: Python's or a NumPy integer (which the plain-data copy
+    gives as a 0-d integer array), not a float that happens to be whole, nor a bool."""
+    if isinstance(value, (bool, np.bool_)):
+        return False
+    if isinstance(value, (int, np.integer)):
+        return True
+    return (
+        isinstance(value, np.ndarray)
+        and value.shape == ()
+        and np.issubdtype(value.dtype, np.integer)
+    )
+
+
+def _type_name(value) -> str:
+    """The type of a returned count, as the student wrote it."""
+    if isinstance(value, np.ndarray):
+        return f"a NumPy {value.dtype}"
+    if isinstance(value, np.generic):
+        return f"a numpy.{type(value).__name__}"
+    return f"a {type(value).__name__}"
+
 
 def _bound(qa, qb, rho, rule="sum") -> float:
     dq = np.asarray(qb, dtype=float) - np.asarray(qa, dtype=float)
@@ -297,12 +325,23 @@ def _judge_samples(sub, qa, qb, rho, resolution, what, *, as_lists=False):
     inputs = {"qa": qa, "qb": qb, "rho": rho, "resolution": resolution}
     args = [x.tolist() if as_lists else x.copy() for x in (qa, qb, rho)]
     value = sub.samples_needed(*args, resolution)
+    if isinstance(value, np.ndarray) and value.shape == (1,):  # a NumPy scalar, as copied
+        value = value.reshape(())
     call = "samples_needed(qa, qb, rho, resolution)"
     got = float(as_array(value, (), call, inputs))
     right = _accepted(qa, qb, rho, resolution)
     if got != round(got):
         raise Mismatch(f"{call} must return a whole number of samples", inputs=inputs, got=got)
     if int(got) in right:
+        if not _is_int(value):
+            raise Mismatch(
+                f"{call} must return an int: it is a count, which path_is_free passes on to "
+                f"np.linspace and range; got {_type_name(value)} {got:g}",
+                inputs=inputs,
+                expected=min(right),
+                got=got,
+                mistake=_FLOAT_COUNT,
+            )
         return
     mistake = None
     for name, how in _SAMPLE_MISTAKES.items():
