@@ -389,9 +389,10 @@ class Notebook:
                 names = sorted(_written(site) & needed)
                 if names and site.kind != "import":
                     notes.append(
-                        f"{site.describe()} binds `{names[0]}` again after the check cell of the "
-                        f"exercise it serves (code cell {cut[0]}): that exercise was graded with "
-                        f"the `{names[0]}` its check cell saw"
+                        f"{site.describe()} binds `{names[0]}` again after the check cell of an "
+                        f"exercise that uses it (code cell {cut[0]}): that exercise was graded "
+                        f"with the `{names[0]}` bound above its check cell, as Restart & Run All "
+                        "runs the notebook"
                     )
             for site, function, name in self._global_setters(needed):
                 notes.append(
