@@ -576,3 +576,23 @@ def test_a_trivial_body_earns_nothing(tmp_path, number, exercise, function, body
     with Grader(SEED, TIME_LIMIT) as grader:
         result = grader.grade(path, exercises=[exercise])
     assert result.exercise(exercise).earned == 0
+
+
+def test_a_stub_kept_above_the_function_written_in_a_new_cell_is_not_what_is_graded(tmp_path):
+    # a student keeps the exercise cell's stub and writes rot_z in a new cell below it: the
+    # check cell sees the new one, and so does the grader (with a note)
+    data = student_notebook("01", solved=False)
+    at = next(i for i, c in enumerate(data["cells"]) if "def rot_z(" in "".join(c["source"]))
+    mine = dict(data["cells"][at], id="mine")
+    mine["source"] = (
+        "def rot_z(theta):\n"
+        "    c, s = np.cos(theta), np.sin(theta)\n"
+        "    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])\n"
+    )
+    data["cells"].insert(at + 1, mine)
+    path = write(data, tmp_path / "alice_01.ipynb")
+    with Grader(SEED, TIME_LIMIT) as grader:
+        result = grader.grade(path, exercises=["1.1"])
+    (outcome,) = result.exercises
+    assert outcome.earned == outcome.points, outcome.report()
+    assert any("still holds the stub of `rot_z`" in n for n in result.notes), result.notes

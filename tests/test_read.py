@@ -261,3 +261,20 @@ def test_a_global_set_by_a_skipped_top_level_call_is_explained(tmp_path):
     assert any(
         "code cell 2, line 1 calls `_init()`, which sets the global `_SIGN`" in n for n in notes
     )
+
+
+def test_a_stub_left_in_the_exercise_cell_gives_way_to_the_function_written_below(tmp_path):
+    stub = (
+        'def rot_z(theta):\n    """Rotation about z."""\n'
+        '    raise NotImplementedError("Exercise 1.1: write rot_z")\n'
+    )
+    data = notebook(stub, "def rot_z(theta):\n    return 'mine'\n", 'check("1.1", rot_z)')
+    data["cells"][0]["id"] = "exercise-cell"
+    nb = read_notebook(write(data, tmp_path / "a_01.ipynb"))
+    site = nb.graded_site("rot_z", "1.1", "exercise-cell")
+    assert site.cell == 2
+    assert nb.stub_left("rot_z", "exercise-cell", site).cell == 1
+    data["cells"].pop(1)  # only the stub: it is what is graded (not attempted)
+    nb = read_notebook(write(data, tmp_path / "a_01.ipynb"))
+    site = nb.graded_site("rot_z", "1.1", "exercise-cell")
+    assert site.cell == 1 and nb.stub_left("rot_z", "exercise-cell", site) is None

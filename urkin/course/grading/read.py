@@ -15,8 +15,9 @@ cost nothing and cannot hang the grader.  IPython syntax (``%magic``, ``!shell``
 read as IPython reads it.
 
 The graded function is the one defined in the exercise's cell (the cell the course notebook
-gives that exercise, else the last definition before the exercise's ``check(...)`` cell, else
-the first definition).  A later redefinition or import of the same name is not graded: it is
+gives that exercise, unless that cell still holds the stub and the function is written in
+another cell; else the last definition before the exercise's ``check(...)`` cell, else the
+first definition).  A later redefinition or import of the same name is not graded: it is
 reported in the feedback (:attr:`Notebook.notes`).
 """
 
@@ -226,6 +227,20 @@ def _mutated(node: ast.stmt) -> str | None:
     return target.id if isinstance(target, ast.Name) else None
 
 
+def _is_stub(node: ast.stmt) -> bool:
+    """Whether a statement is a course stub: a function whose body (after its docstring) only
+    raises NotImplementedError."""
+    if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        return False
+    body = node.body
+    if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
+        body = body[1:]
+    if len(body) != 1 or not isinstance(body[0], ast.Raise) or body[0].exc is None:
+        return False
+    raised = body[0].exc.func if isinstance(body[0].exc, ast.Call) else body[0].exc
+    return isinstance(raised, ast.Name) and raised.id == "NotImplementedError"
+
+
 def _written(site: Site) -> set[str]:
     """The names a statement binds or changes in place."""
     return site.binds | site.fills | ({site.mutates} if site.mutates else set())
@@ -297,8 +312,11 @@ class Notebook:
             return None
         if cell_id is not None:
             in_cell = [s for s in candidates if self.cell_ids.get(s.cell) == cell_id]
-            if in_cell:
+            written = [s for s in candidates if not _is_stub(s.node)]
+            if in_cell and not (_is_stub(in_cell[-1].node) and written):
                 return in_cell[-1]
+            if in_cell:  # the exercise's cell still holds the stub: written in another cell
+                candidates = written
         call = re.compile(r"""\bcheck\(\s*["']""" + re.escape(exercise_id) + r"""["']""")
         for number, source in self.cells.items():
             match = call.search(source)
@@ -309,6 +327,19 @@ class Notebook:
                     return before[-1]
                 break
         return candidates[0]
+
+    def stub_left(self, function: str, cell_id: str | None, graded: Site) -> Site | None:
+        """The stub of ``function`` left in the exercise's cell (``cell_id``) when another
+        definition, ``graded``, is graded instead; else None."""
+        for site in self.sites_binding(function):
+            if (
+                site is not graded
+                and cell_id is not None
+                and self.cell_ids.get(site.cell) == cell_id
+                and _is_stub(site.node)
+            ):
+                return site
+        return None
 
     def check_call(self, exercise_id: str, graded: Site) -> tuple[int, int] | None:
         """Where the exercise's first ``check("N.M", …)`` call after its graded definition

@@ -288,6 +288,12 @@ class Grader:
             site = notebook.graded_site(ex.function, ex.id, cells.get(ex.function))
             if site is not None:
                 graded[ex.function] = site
+                stub = notebook.stub_left(ex.function, cells.get(ex.function), site)
+                if stub is not None:
+                    notes.append(
+                        f"{stub.describe()}, the exercise's cell, still holds the stub of "
+                        f"`{ex.function}`: the grader graded the one in {site.describe()}"
+                    )
                 for later in notebook.redefinitions(ex.function, site):
                     notes.append(
                         f"{later.describe()} defines `{ex.function}` again; the grader graded "
