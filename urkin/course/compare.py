@@ -168,8 +168,9 @@ def tolerance(atol: float, like: Any = None, scale: float = 1.0) -> float:
 
 def angles_tolerance(atol: float, like: Any, rates: Any, q: Any) -> float:
     """:func:`tolerance` for what is computed from joint angles ``q``, such as the pose an IK
-    answer reaches: a float32 answer's rounding of each q_i (float32's ε · max(1, |q_i|))
-    moves it by up to ``‖rates[:, i]‖`` times that, so ``scale`` is the sum of these.
+    answer reaches: a float32 answer's rounding of each ``q_i`` (float32's ε ·
+    ``max(1, |q_i|)``) moves it by up to ``‖rates[:, i]‖`` times that, so ``scale`` is the sum
+    of these.
 
     Parameters
     ----------
