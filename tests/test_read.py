@@ -251,7 +251,7 @@ def test_names_keep_the_binding_their_check_cell_saw(tmp_path):
 
 def test_a_global_set_by_a_skipped_top_level_call_is_explained(tmp_path):
     cells = (
-        "def _init():\n    global _SIGN\n    _SIGN = -1.0\n",
+        "_SIGN = None\ndef _init():\n    global _SIGN\n    _SIGN = -1.0\n",
         "_init()\n",
         "def screw_axis(w, q):\n    return _SIGN * w\n",
     )

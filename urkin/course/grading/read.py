@@ -369,7 +369,7 @@ class Notebook:
         for a later exercise) are not executed, so that the functions see what the check cell
         saw.  ``notes`` gets a sentence for each of those that would have been executed, and
         for each top-level call skipped that would have set, with ``global``, a name the
-        functions read and nothing else binds."""
+        functions read."""
         order = {id(s): i for i, s in enumerate(self.sites)}
         skipped = {
             id(s)
@@ -416,9 +416,14 @@ class Notebook:
                     chains |= site.chains
                     changed = True
         if notes is not None:
-            for site in late:
-                names = sorted(_written(site) & needed)
-                if names and site.kind != "import":
+            for site in late:  # those that would have been executed
+                if site.kind == "mutation":
+                    names = sorted({site.mutates} & needed & data_names)
+                elif site.kind in ("def", "class", "assign", "block"):
+                    names = sorted((site.binds & needed) | (site.fills & needed & data_names))
+                else:
+                    names = []
+                if names:
                     notes.append(
                         f"{site.describe()} binds `{names[0]}` again after the check cell of an "
                         f"exercise that uses it (code cell {cut[0]}): that exercise was graded "
@@ -435,11 +440,8 @@ class Notebook:
 
     def _global_setters(self, names: set[str]) -> list[tuple[Site, str, str]]:
         """Top-level calls the grader skips of notebook functions that set, with ``global``,
-        one of ``names`` that no statement binds: (the call, the function, the name)."""
-        bound = set().union(*(s.binds for s in self.sites))
-        wanted = names - bound
-        if not wanted:
-            return []
+        one of ``names``: (the call, the function, the name)."""
+        wanted = set(names)
         setters: dict[str, str] = {}
         for site in self.sites:
             if site.kind == "def":
