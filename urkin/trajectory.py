@@ -457,14 +457,18 @@ class TimeScaling:
             # the fraction of T spent speeding up (and slowing down); for a profile that is
             # nearly all cruise, from the two peaks, since V − 1 then cancels (to 0 where the
             # acceleration is 1e16 times the speed)
-            if V - 1.0 > _CRUISE or self.peak_acceleration == 0.0:
-                ramp = (V - 1.0) / V
+            if V - 1.0 > _CRUISE:
+                ramp, A = (V - 1.0) / V, V * V / (V - 1.0)
             else:
-                ramp = self.peak_speed / self.peak_acceleration / T
+                ramp = (
+                    self.peak_speed / self.peak_acceleration / T
+                    if self.peak_acceleration > 0.0
+                    else (V - 1.0) / V
+                )
+                A = V / ramp if ramp > 0.0 else math.inf  # inf: no sample is on a ramp
             rising, falling = tau < ramp, tau > 1.0 - ramp
             back = 1.0 - tau
-            with np.errstate(over="ignore", invalid="ignore"):  # A = inf: no ramp is picked
-                A = V * V / (V - 1.0) if V - 1.0 > _CRUISE else V / ramp if ramp > 0 else math.inf
+            with np.errstate(over="ignore", invalid="ignore"):  # A = inf times a τ of none
                 s = np.where(
                     rising,
                     0.5 * A * tau * tau,

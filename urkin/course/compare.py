@@ -16,6 +16,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
+from weakref import WeakKeyDictionary
 
 import numpy as np
 
@@ -30,6 +31,7 @@ __all__ = [
     "float32_helper",
     "format_array",
     "identify_mistake",
+    "judged_like",
     "require_rotation",
     "require_transform",
     "require_varying",
@@ -216,6 +218,17 @@ class Float32Helper:
         )
 
 
+def judged_like(got: Any, helper: Float32Helper | None) -> Any:
+    """What an answer ``got`` is as precise as, for :func:`tolerance`'s ``like``: itself, or
+    the float32 ``helper`` it is built on when it is not float32 itself."""
+    return helper.sample if helper is not None and not _is_float32(got) else got
+
+
+#: The float32 helpers found for each submission's functions (:func:`float32_helper`): the
+#: checks of one exercise ask again and again, and each probe is a call of the student's code.
+_FOUND: WeakKeyDictionary = WeakKeyDictionary()
+
+
 def float32_helper(
     sub: Any, function: str, probes: Mapping[str, tuple[str, tuple[Any, ...]]]
 ) -> Float32Helper | None:
@@ -232,6 +245,14 @@ def float32_helper(
         name → (exercise id, arguments): an earlier function and the arguments to call it with
         to see its dtype.
     """
+    found = _FOUND.setdefault(sub, {})
+    if function not in found:
+        found[function] = _probe_float32(sub, function, probes)
+    return found[function]
+
+
+def _probe_float32(sub: Any, function: str, probes: Mapping) -> Float32Helper | None:
+    """:func:`float32_helper`, by calling the earlier functions."""
     from urkin.course.submission import StudentRaised
 
     try:
@@ -328,7 +349,7 @@ def require_rotation(
 ) -> None:
     """Raise :class:`Mismatch` unless ``R`` is a rotation matrix (orthonormal, det = +1); to
     float32's precision when ``R`` is float32 or built on a float32 ``helper``."""
-    like = helper.sample if helper is not None and not _is_float32(R) else R
+    like = judged_like(R, helper)
     if not close(R.T @ R, np.eye(3), 1e-9, like):
         raise Mismatch(
             f"{what} is not orthonormal: RᵀR ≠ I",
@@ -345,7 +366,7 @@ def require_transform(
 ) -> None:
     """Raise :class:`Mismatch` unless ``T`` is a homogeneous rigid-body transform (see
     :func:`require_rotation` for ``helper``)."""
-    like = helper.sample if helper is not None and not _is_float32(T) else T
+    like = judged_like(T, helper)
     if not close(T[3], [0, 0, 0, 1], 1e-12, like):
         raise Mismatch(f"{what}: the last row must be [0, 0, 0, 1]", inputs=inputs, got=T)
     require_rotation(T[:3, :3], f"the 3×3 block of {what}", inputs, helper)
@@ -391,7 +412,7 @@ def compare(
     within :func:`tolerance` ``(atol, got)`` — at float32's precision when ``got`` is built on
     a float32 ``helper``."""
     expected = np.asarray(expected, dtype=float)
-    like = helper.sample if helper is not None and not _is_float32(got) else got
+    like = judged_like(got, helper)
     if close(got, expected, atol, like):
         return
     mistake = identify_mistake(got, hypotheses or {}, max(atol, 1e-6), right=expected)

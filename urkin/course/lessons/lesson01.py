@@ -382,10 +382,9 @@ def _inverse_is_structured(sub, rng):
         if exc.kind == "ForbiddenCallError":
             raise
         return
-    try:
-        answer = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+    if not _is_numeric(value):
         return
+    answer = np.asarray(value, dtype=float)
     general = np.linalg.inv(probe)
     if answer.shape == (4, 4) and close(answer, general, 1e-6):
         raise Mismatch(

@@ -14,6 +14,7 @@ from urkin.course.compare import (
     close,
     compare,
     float32_helper,
+    judged_like,
     require_transform,
     require_varying,
     tolerance,
@@ -808,9 +809,10 @@ def _gap_inputs(formula_text, robot, n, seed):
 
 
 def _gap_like(sub, gap):
-    """What a gap is as precise as: itself, or the float32 forward kinematics it is built on."""
+    """What a gap is as precise as (:func:`judged_like`), and the float32 forward kinematics it
+    may be built on."""
     helper = _helper(sub, "formula_gap")
-    return gap if helper is None else helper.sample, helper
+    return judged_like(gap, helper), helper
 
 
 def _gap_right_formula(sub, rng):

@@ -20,6 +20,7 @@ from urkin.course.compare import (
     close,
     float32_helper,
     format_array,
+    judged_like,
     tolerance,
 )
 from urkin.course.exercise import Check, Exercise, Lesson
@@ -222,14 +223,8 @@ def _largest_gap(
     note = "" if helper is None else f" ({helper.note})"
     return (
         f"largest difference {gap:.1e} rad (up to whole turns); the tolerance is "
-        f"{tolerance(atol, _like(got, helper), scale):.0e}{note}"
+        f"{tolerance(atol, judged_like(got, helper), scale):.0e}{note}"
     )
-
-
-def _like(got: np.ndarray, helper: Float32Helper | None) -> Any:
-    """What the answer ``got`` is as precise as: itself, or the float32 function it is built
-    on."""
-    return got if helper is None or got.dtype.itemsize < 8 else helper.sample
 
 
 # the earlier functions ik_lab is built on, and arguments that show their dtype
@@ -252,7 +247,7 @@ def _compare_angles(
     """Raise :class:`Mismatch` (naming a likely mistake) unless the angles ``got`` equal
     ``expected`` up to whole turns (at float32's precision when ``got`` is built on a float32
     ``helper``)."""
-    if _same_angles(got, expected, atol, like=_like(got, helper)):
+    if _same_angles(got, expected, atol, like=judged_like(got, helper)):
         return
     raise Mismatch(
         what,
@@ -838,7 +833,7 @@ def _round_trip(sub, target, where: str) -> np.ndarray:
     expected = np.array([*target[:3], wrap_angles(target[3])])
     error = np.r_[reached[:3] - expected[:3], wrap_angles(reached[3] - expected[3])]
     helper = float32_helper(sub, "ik_lab", _EARLIER)
-    atol = tolerance(1e-8, _like(q, helper), np.pi)
+    atol = tolerance(1e-8, judged_like(q, helper), np.pi)
     if not np.abs(error).max() <= atol:
         gap = float(np.abs(error).max())
         note = "" if helper is None else f" ({helper.note})"
@@ -900,7 +895,7 @@ def _lab_wrapped(sub, rng):
     for k, kind in enumerate(("front", "behind") * 3):
         target = _wrap_target(rng, kind, theta6=k < 4)
         q = _round_trip(sub, target, "(and every angle in (−π, π])")
-        if not _in_range(q, _like(q, float32_helper(sub, "ik_lab", _EARLIER))):
+        if not _in_range(q, judged_like(q, float32_helper(sub, "ik_lab", _EARLIER))):
             positive = np.all((q >= 0) & (q < _TURN))
             raise Mismatch(
                 "return UR angles wrapped into (−π, π], as wrap_angles does",
